@@ -1,0 +1,26 @@
+#pragma once
+// A test record in SI units: structure-of-arrays signals plus the operating variables of the test.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dampbench {
+
+/// One measured (or synthetic) test: displacement in, force out, all in SI units.
+/// Rotary devices store the angle in x [rad] and the torque in F [N·m].
+struct Dataset {
+  std::string name;            ///< label used in tables (file stem by default)
+  std::string source;          ///< file path or generator description
+  std::vector<double> t_s;     ///< time [s], strictly increasing
+  std::vector<double> x_m;     ///< displacement [m]
+  std::vector<double> v_m_s;   ///< velocity [m/s] (from the file or 3rd-order differentiation)
+  std::vector<double> a_m_s2;  ///< acceleration [m/s²] (from the file or 3rd-order differentiation)
+  std::vector<double> F_N;     ///< measured force [N]; empty when only the input is known
+  /// Operating variables of the test (I [A], V [V], phi [deg], amp [m], freq [Hz]).
+  std::map<std::string, double> operating;
+
+  [[nodiscard]] std::size_t size() const { return t_s.size(); }
+  [[nodiscard]] bool has_force() const { return !F_N.empty(); }
+};
+
+}  // namespace dampbench

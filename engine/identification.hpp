@@ -1,0 +1,45 @@
+#pragma once
+// Repeated identification runs of one (model, dataset): R independent optimizer runs advance in
+// lockstep, each iteration's R·N candidates evaluated as one batch across cores (DESIGN.md, data flow).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "engine/batch_evaluator.hpp"
+#include "engine/bounds.hpp"
+#include "engine/metrics.hpp"
+#include "engine/optimizer.hpp"
+
+namespace dampbench {
+
+struct IdentificationSettings {
+  int runs = 50;                ///< independent runs (fvd paper: 50)
+  std::uint64_t seed = 1;       ///< sweep seed
+  std::uint64_t task_key = 0;   ///< stable key of the task (see task_key()); runs are keyed (seed, task, run)
+  Metric metric = Metric::of_abs;
+  int grain_blocks = 1;         ///< lane blocks per oneTBB task; results do not depend on it
+};
+
+/// Stable key of a (model, dataset, optimizer) task, from their names.
+std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name, std::string_view optimizer);
+
+struct RunResult {
+  std::vector<double> best_params;                ///< SI
+  double best_value = 0;                          ///< the optimized metric at best_params
+  std::array<double, kMetricCount> best_metrics;  ///< every metric at best_params (order of kAllMetrics)
+  long long evaluations = 0;
+  double wall_time_s = 0;  ///< this run's share of the lockstep group's wall time (group time / runs)
+  std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence)
+};
+
+struct Identification {
+  std::vector<RunResult> runs;
+  double wall_time_s = 0;          ///< whole lockstep group
+  double candidate_samples = 0;    ///< Σ evaluations × samples
+  [[nodiscard]] int best_run() const;  ///< index of the run with the lowest best_value (first on ties)
+};
+
+Identification identify(const Model& model, const Signals& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);
+
+}  // namespace dampbench

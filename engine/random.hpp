@@ -1,0 +1,64 @@
+#pragma once
+// Keyed random streams (DESIGN.md, "Reproducibility"): every random number is a pure function of
+// (seed, task, run, iteration, member, draw index). There is no global or thread-local generator, so the
+// numbers a particle draws do not depend on which thread asks, in which order, or how a batch is split.
+//
+// Generator: the SplitMix64 finalizer (Steele, Lea & Flood 2014, "Fast splittable pseudorandom number
+// generators") applied to a counter mixed into a 64-bit key. Keys are built by hashing their parts one
+// after the other with the same finalizer.
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
+#include <numbers>
+#include <string_view>
+
+namespace dampbench {
+
+/// SplitMix64 finalizer: a bijective 64-bit mix with full avalanche.
+constexpr std::uint64_t mix64(std::uint64_t z) {
+  z += 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+/// Combines key parts in order: hash_key({seed, task, run}) differs from hash_key({seed, run, task}).
+constexpr std::uint64_t hash_key(std::initializer_list<std::uint64_t> parts) {
+  std::uint64_t h = 0x6A09E667F3BCC909ULL;
+  for (std::uint64_t p : parts) h = mix64(h ^ mix64(p));
+  return h;
+}
+
+/// Stable 64-bit hash of a name (FNV-1a), for task keys built from model and dataset names.
+constexpr std::uint64_t hash_name(std::string_view s) {
+  std::uint64_t h = 0xCBF29CE484222325ULL;
+  for (char c : s) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001B3ULL;
+  return h;
+}
+
+/// A stream of random numbers fixed by its key: draw k is mix64(key ^ mix64(k)).
+class RandomStream {
+ public:
+  explicit constexpr RandomStream(std::uint64_t key) : key_(key) {}
+
+  constexpr std::uint64_t next_u64() { return mix64(key_ ^ mix64(counter_++)); }
+
+  /// Uniform in [0, 1) with 53 random bits.
+  constexpr double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
+
+  /// Uniform in [lo, hi).
+  constexpr double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+  /// Standard normal by the Box–Muller transform (one draw used, no cached pair: keeps draws keyed).
+  double normal() {
+    const double u1 = 1.0 - uniform();  // (0, 1]
+    const double u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+  }
+
+ private:
+  std::uint64_t key_;
+  std::uint64_t counter_ = 0;
+};
+
+}  // namespace dampbench

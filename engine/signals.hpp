@@ -1,0 +1,29 @@
+#pragma once
+// A dataset prepared for the kernels: the signals, trapezoid weights and the force statistics that
+// normalize the metrics, computed once per dataset and shared by every candidate.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/dataset.hpp"
+
+namespace dampbench {
+
+struct Signals {
+  std::string name;
+  std::vector<double> t_s, x_m, v_m_s, a_m_s2;
+  std::vector<double> F_N;        ///< measured force; empty when only the input is known (simulate)
+  std::vector<double> w_trapz_s;  ///< trapezoid-rule weights: ∫ g dt ≈ Σ w_k g_k
+  double duration_s = 0;          ///< t_end − t_start
+  double force_std_N = 0;         ///< population standard deviation of the measured force, σ(p_m) of fvd eq. 7
+  double force_max_abs_N = 0;     ///< max |F|, normalizes nrmse
+  std::map<std::string, double> operating;
+
+  [[nodiscard]] std::size_t size() const { return t_s.size(); }
+  [[nodiscard]] bool has_force() const { return !F_N.empty(); }
+};
+
+/// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).
+Signals prepare_signals(const Dataset& data);
+
+}  // namespace dampbench

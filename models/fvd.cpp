@@ -1,0 +1,131 @@
+// Fluid viscous damper family (fvd paper, 003_c8ee1dc8d3676469: "Mechanical models", eqs. 1, 2, 5, 6;
+// MODELS.md §1). The paper writes the law as m·ÿ + (damper force) = p, the force p applied by the
+// actuator; the model force is therefore F = m·a + C·sgn(v)|v|^α + K1·x + K2·x².
+//
+// Units: SI inside (kg, N/(m/s)^α, N/m, N/m²); the paper's tables use kN/(mm/s)^α, kN/mm and kN/mm²,
+// produced by to_paper_units. Default bounds cover a 750 kN device (Table 1: 750 kN at 460 mm/s).
+#include <cmath>
+
+#include "engine/algebraic_model.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench::fvd {
+namespace {
+
+/// Per-sample quantities shared by every candidate lane.
+struct Sample {
+  double x, x2, v, a, sgn_v, log_abs_v;
+};
+
+Sample prepare_sample(const Signals& s, std::size_t k) {
+  const double x = s.x_m[k], v = s.v_m_s[k];
+  return {x, x * x, v, s.a_m_s2[k], sign(v), log_abs_clamped(v)};
+}
+
+/// C·sgn(v)|v|^α, written exp(α·log|v|) so the lane loop needs one vector exp.
+template <class P>
+double generalized_viscous_force(const P& p, int l, int iC, int ialpha, const Sample& s) {
+  return p.p[iC][l] * s.sgn_v * std::exp(p.p[ialpha][l] * s.log_abs_v);
+}
+
+// Parameter descriptions shared by the four laws.
+const ParameterInfo kMass{"m", "kg", 0.0, 2000.0, "kg"};
+const ParameterInfo kAlpha{"alpha", "1", 0.0, 1.0, "1"};
+const ParameterInfo kK1{"K1", "N/m", 0.0, 1e8, "kN/mm"};
+const ParameterInfo kK2{"K2", "N/m^2", 0.0, 1e9, "kN/mm^2"};
+const ParameterInfo kCgen{"C", "N/(m/s)^alpha", 0.0, 1e7, "kN/(mm/s)^alpha"};
+
+/// SI → paper units: C [N/(m/s)^α] → kN/(mm/s)^α is ÷(10³·10^(3α)); K1 ÷10⁶; K2 ÷10⁹.
+std::vector<double> paper_units(std::span<const double> p, int iC, int ialpha, int iK1, int iK2) {
+  std::vector<double> out(p.begin(), p.end());
+  const double alpha = ialpha >= 0 ? p[ialpha] : 1.0;
+  out[iC] = p[iC] / (1e3 * std::pow(1e3, alpha));
+  if (iK1 >= 0) out[iK1] = p[iK1] / 1e6;
+  if (iK2 >= 0) out[iK2] = p[iK2] / 1e9;
+  return out;
+}
+
+/// fvd eq. 1, linear viscous: F = m·a + C·v.
+struct LinearViscous {
+  static constexpr int kParams = 2;
+  using Sample = fvd::Sample;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"fvd.linear_viscous", "fvd eq. 1", "F = m*a + C*v",
+                             {kMass, {"C", "N*s/m", 0.0, 2e7, "kN/(mm/s)"}}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    return p.p[0][l] * s.a + p.p[1][l] * s.v;
+  }
+  static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, -1, -1, -1); }
+};
+
+/// fvd eq. 2, generalized viscous (Constantinou): F = m·a + C·sgn(v)|v|^α.
+struct GeneralizedViscous {
+  static constexpr int kParams = 3;
+  using Sample = fvd::Sample;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"fvd.generalized_viscous", "fvd eq. 2", "F = m*a + C*sgn(v)*|v|^alpha",
+                             {kMass, kCgen, kAlpha}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s);
+  }
+  static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, -1, -1); }
+};
+
+/// fvd eq. 5, generalized viscous – linear elastic (generalized Kelvin–Voigt): F = m·a + C·sgn(v)|v|^α + K1·x.
+struct GvLinearElastic {
+  static constexpr int kParams = 4;
+  using Sample = fvd::Sample;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"fvd.gv_linear_elastic", "fvd eq. 5", "F = m*a + C*sgn(v)*|v|^alpha + K1*x",
+                             {kMass, kCgen, kAlpha, kK1}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s) + p.p[3][l] * s.x;
+  }
+  static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, -1); }
+};
+
+/// fvd eq. 6, generalized viscous – quadratic elastic (eq. 4 without K0):
+/// F = m·a + C·sgn(v)|v|^α + K1·x + K2·x².
+struct GvQuadraticElastic {
+  static constexpr int kParams = 5;
+  using Sample = fvd::Sample;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"fvd.gv_quadratic_elastic", "fvd eq. 6",
+                             "F = m*a + C*sgn(v)*|v|^alpha + K1*x + K2*x^2", {kMass, kCgen, kAlpha, kK1, kK2}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s) + p.p[3][l] * s.x + p.p[4][l] * s.x2;
+  }
+  static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, 4); }
+};
+
+}  // namespace
+}  // namespace dampbench::fvd
+
+namespace dampbench {
+
+std::vector<std::unique_ptr<Model>> make_fvd_models() {
+  std::vector<std::unique_ptr<Model>> models;
+  models.push_back(std::make_unique<AlgebraicModel<fvd::LinearViscous>>());
+  models.push_back(std::make_unique<AlgebraicModel<fvd::GeneralizedViscous>>());
+  models.push_back(std::make_unique<AlgebraicModel<fvd::GvLinearElastic>>());
+  models.push_back(std::make_unique<AlgebraicModel<fvd::GvQuadraticElastic>>());
+  return models;
+}
+
+}  // namespace dampbench

@@ -1,0 +1,21 @@
+#pragma once
+// Every model dampbench knows, by id (MODELS.md names are the contract).
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "engine/model.hpp"
+
+namespace dampbench {
+
+/// All models, in a stable order (family by family, as in MODELS.md).
+std::span<const Model* const> all_models();
+
+/// The model with this id; throws InputError "unknown model 'x' (known: ...)".
+const Model& find_model(std::string_view id);
+
+/// Model families (one per source paper); each returns its models.
+std::vector<std::unique_ptr<Model>> make_fvd_models();
+
+}  // namespace dampbench

@@ -1,0 +1,84 @@
+#include "optimizers/pso/pso.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+#include "engine/random.hpp"
+
+namespace dampbench {
+
+void PsoSettings::validate() const {
+  if (population < 2) throw InputError(fmt::format("pso: population must be at least 2, got {}", population));
+  if (iterations < 1) throw InputError(fmt::format("pso: iterations must be at least 1, got {}", iterations));
+  if (!(inertia >= 0) || !(inertia_end >= 0) || !(cognitive >= 0) || !(social >= 0))
+    throw InputError("pso: inertia, cognitive and social coefficients must be non-negative numbers");
+  if (!(vmax_fraction > 0)) throw InputError(fmt::format("pso: vmax_fraction must be > 0, got {}", vmax_fraction));
+}
+
+Pso::Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_key)
+    : settings_(settings), bounds_(bounds), run_key_(run_key), dim_(bounds.dim()) {
+  settings_.validate();
+  const int n = settings_.population;
+  x_.resize(static_cast<std::size_t>(n) * dim_);
+  v_.assign(x_.size(), 0.0);
+  pbest_.resize(x_.size());
+  pbest_value_.assign(n, std::numeric_limits<double>::infinity());
+  gbest_.assign(dim_, 0.0);
+  gbest_value_ = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
+    for (int j = 0; j < dim_; ++j) x(i, j) = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
+  }
+}
+
+void Pso::ask(CandidateBatch& batch, int first) {
+  if (iteration_ > 0) move_swarm();
+  for (int i = 0; i < settings_.population; ++i)
+    for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x(i, j);
+}
+
+void Pso::tell(std::span<const double> values) {
+  for (int i = 0; i < settings_.population; ++i) {
+    // The first evaluation always sets pbest (even +inf), so every particle has an attractor.
+    if (iteration_ == 0 || values[i] < pbest_value_[i]) {
+      pbest_value_[i] = values[i];
+      std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_,
+                  pbest_.begin() + static_cast<std::ptrdiff_t>(i) * dim_);
+    }
+    if (values[i] < gbest_value_ || (iteration_ == 0 && i == 0)) {
+      gbest_value_ = values[i];
+      std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, gbest_.begin());
+    }
+  }
+  ++iteration_;
+}
+
+void Pso::move_swarm() {
+  const double progress =
+      settings_.iterations > 1 ? static_cast<double>(iteration_ - 1) / (settings_.iterations - 1) : 0.0;
+  const double w = settings_.inertia + (settings_.inertia_end - settings_.inertia) * progress;
+  for (int i = 0; i < settings_.population; ++i) {
+    RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(iteration_), static_cast<std::uint64_t>(i)}));
+    for (int j = 0; j < dim_; ++j) {
+      const double lo = bounds_.lower[j], hi = bounds_.upper[j];
+      const double vmax = settings_.vmax_fraction * (hi - lo);
+      const double r1 = rng.uniform(), r2 = rng.uniform();
+      double vel = w * v(i, j) + settings_.cognitive * r1 * (pbest(i, j) - x(i, j)) +
+                   settings_.social * r2 * (gbest_[j] - x(i, j));
+      vel = std::clamp(vel, -vmax, vmax);
+      double pos = x(i, j) + vel;
+      if (pos < lo || pos > hi) {
+        pos = std::clamp(pos, lo, hi);
+        vel = 0.0;
+      }
+      x(i, j) = pos;
+      v(i, j) = vel;
+    }
+  }
+}
+
+}  // namespace dampbench

@@ -1,0 +1,62 @@
+#pragma once
+// Particle swarm optimization, global-best topology (Kennedy & Eberhart 1995), inertia form
+// (Shi & Eberhart 1998), used by the fvd paper (N = 50 particles, L = 100 iterations).
+//
+//   v ← w·v + c1·r1·(pbest − x) + c2·r2·(gbest − x),   x ← x + v,   r1, r2 ~ U[0, 1) per dimension.
+//
+// Defaults: w = 0.7298, c1 = c2 = 1.49618, the constriction coefficients of Clerc & Kennedy (2002)
+// written in inertia form (Eberhart & Shi 2000) — the fvd paper gives none. With inertia_end ≠ inertia
+// the inertia decreases linearly over the iterations (Shi & Eberhart 1999).
+// Iterations count swarm evaluations: iteration 0 evaluates the initial swarm, so a run costs exactly
+// population × iterations evaluations (5 000 for the paper's N = 50, L = 100).
+// Initial positions uniform in the bounds, initial velocities zero (Engelbrecht 2012).
+// Bounds: a velocity component is clamped to ±vmax_fraction·(upper − lower); a particle leaving the box
+// is put back on the violated bound and that velocity component is zeroed (absorbing walls).
+// Random numbers: stream (run_key, iteration, particle) — a particle's draws never depend on others.
+#include <cstdint>
+#include <vector>
+
+#include "engine/optimizer.hpp"
+
+namespace dampbench {
+
+struct PsoSettings {
+  int population = 50;          ///< particles N (fvd paper)
+  int iterations = 100;         ///< swarm evaluations L, including the initial one (fvd paper)
+  double inertia = 0.7298;      ///< w at the first iteration
+  double inertia_end = 0.7298;  ///< w at the last iteration (linear decrease when different)
+  double cognitive = 1.49618;   ///< c1
+  double social = 1.49618;      ///< c2
+  double vmax_fraction = 0.5;   ///< velocity clamp as a fraction of each parameter's range
+
+  /// Throws InputError for population < 2, iterations < 1, negative coefficients, vmax_fraction ≤ 0.
+  void validate() const;
+};
+
+class Pso final : public Optimizer {
+ public:
+  Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_key);
+
+  [[nodiscard]] int batch_size() const override { return settings_.population; }
+  void ask(CandidateBatch& batch, int first) override;
+  void tell(std::span<const double> values) override;
+  [[nodiscard]] bool finished() const override { return iteration_ >= settings_.iterations; }
+  [[nodiscard]] std::span<const double> best_position() const override { return gbest_; }
+  [[nodiscard]] double best_value() const override { return gbest_value_; }
+
+ private:
+  void move_swarm();
+  double& x(int i, int j) { return x_[static_cast<std::size_t>(i) * dim_ + j]; }
+  double& v(int i, int j) { return v_[static_cast<std::size_t>(i) * dim_ + j]; }
+  double& pbest(int i, int j) { return pbest_[static_cast<std::size_t>(i) * dim_ + j]; }
+
+  PsoSettings settings_;
+  Bounds bounds_;
+  std::uint64_t run_key_;
+  int dim_;
+  int iteration_ = 0;  ///< swarm evaluations told so far
+  std::vector<double> x_, v_, pbest_, pbest_value_, gbest_;
+  double gbest_value_;
+};
+
+}  // namespace dampbench
