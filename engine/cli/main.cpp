@@ -1,0 +1,88 @@
+// dampbench command line: models, simulate, fit, run. Bad input ends with "dampbench: error: ..." and
+// exit code 2; nothing here crashes on user input.
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include "engine/cli/commands.hpp"
+#include "engine/error.hpp"
+
+namespace {
+
+void add_data_options(CLI::App* cmd, dampbench::cli::DataOptions& d) {
+  cmd->add_option("--units", d.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
+  cmd->add_option("--columns", d.columns, "column names of a file without header, e.g. t,x,v,F");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace dampbench::cli;
+  CLI::App app{"dampbench: identify damper models from test data and compare models and optimizers at scale"};
+  app.set_version_flag("--version", std::string("dampbench ") + DAMPBENCH_VERSION + " (" + DAMPBENCH_BUILD_FLAGS + ")");
+  app.require_subcommand(1);
+  int threads = 0;
+  app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+
+  std::string models_format = "md";
+  auto* models = app.add_subcommand("models", "list every model with parameter names, units and default bounds");
+  models->add_option("--format", models_format, "md or json");
+
+  SimulateOptions sim;
+  auto* simulate = app.add_subcommand("simulate", "force of a model with given parameters under a displacement");
+  simulate->add_option("--model", sim.model, "model id (see `dampbench models`)")->required();
+  simulate->add_option("--params", sim.params, "parameter values in SI, name=value,...")->required();
+  simulate->add_option("--input", sim.input.path, "displacement record (CSV); t and x are used");
+  add_data_options(simulate, sim.input);
+  simulate->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
+  simulate->add_option("--noise-rel", sim.noise_rel, "Gaussian noise, std = R x RMS(force)");
+  simulate->add_option("--seed", sim.seed, "noise seed");
+  simulate->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI); default stdout");
+
+  FitOptions fit;
+  auto* fitc = app.add_subcommand("fit", "identify a model's parameters on a record with repeated optimizer runs");
+  fitc->add_option("--model", fit.model, "model id")->required();
+  fitc->add_option("--data", fit.data.path, "test record (CSV)")->required();
+  add_data_options(fitc, fit.data);
+  fitc->add_option("--metric", fit.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
+  fitc->add_option("--optimizer", fit.optimizer, "pso (default)");
+  fitc->add_option("--pop", fit.population, "population size (default 50)");
+  fitc->add_option("--iters", fit.iterations, "iterations (default 100)");
+  fitc->add_option("--runs", fit.runs, "independent runs (default 50)");
+  fitc->add_option("--seed", fit.seed, "seed (default 1)");
+  fitc->add_option("--bounds", fit.bounds, "bounds in SI, name=lo:hi,...");
+  fitc->add_option("--format", fit.format, "md (default) or json");
+
+  RunOptions run;
+  auto* runc = app.add_subcommand("run", "run a preset (datasets/presets/*.toml) and write its tables");
+  runc->add_option("preset", run.preset, "preset file")->required();
+  runc->add_option("-o,--output", run.output_dir, "output folder (default results/<preset name>)");
+  for (auto* cmd : {simulate, fitc, runc})
+    cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    std::optional<tbb::global_control> limit;
+    if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    if (models->parsed()) return models_command(models_format);
+    if (simulate->parsed()) return simulate_command(sim);
+    if (fitc->parsed()) return fit_command(fit);
+    if (runc->parsed()) return run_command(run);
+  } catch (const dampbench::InputError& e) {
+    std::fprintf(stderr, "dampbench: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dampbench: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}
