@@ -43,6 +43,11 @@ auto with_prefix(std::string_view where, Fn&& fn) {
   }
 }
 
+/// unit_to_si with `where` prefixed to its messages.
+double factor_to_si(std::string_view where, std::string_view column, std::string_view unit) {
+  return with_prefix(where, [&] { return unit_to_si(column, unit); });
+}
+
 std::string at_line(const std::string& source, std::size_t line) { return fmt::format("{}:{}", source, line); }
 
 std::string join_quoted(const std::vector<std::string>& names) {
@@ -132,8 +137,8 @@ std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool com
   columns.resize(options.columns.size());
   for (std::size_t i = 0; i < options.columns.size(); ++i) {
     ColumnInfo renamed = column_from_cell(options.columns[i], option_origin);
-    columns[i].name = std::move(renamed.name);
-    if (!renamed.unit.empty()) columns[i] = std::move(renamed);  // a unit in --columns beats the header's
+    if (renamed.unit.empty()) columns[i].name = std::move(renamed.name);  // keeps the header's unit, if any
+    else columns[i] = std::move(renamed);
   }
   check_names(columns, option_origin);
   return columns;
@@ -143,14 +148,14 @@ std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool com
 void assign_units(std::vector<ColumnInfo>& columns, const CsvOptions& options, const std::string& source) {
   const std::string units_origin = source + ": --units";
   for (const auto& [name, unit] : options.units)
-    with_prefix(units_origin, [&] { return unit_to_si(name, unit); });
+    factor_to_si(units_origin, name, unit);
   for (auto& column : columns) {
     if (const auto found = options.units.find(column.name); found != options.units.end()) {
       column.unit = found->second;
       column.unit_origin = units_origin;
     }
     if (!column.unit.empty())
-      column.factor = with_prefix(column.unit_origin, [&] { return unit_to_si(column.name, column.unit); });
+      column.factor = factor_to_si(column.unit_origin, column.name, column.unit);
   }
 }
 
@@ -235,7 +240,7 @@ Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::ve
 std::map<std::string, std::string> parse_units_option(std::string_view text) {
   std::map<std::string, std::string> units;
   for (auto& [column, unit] : parse_key_values(text, "--units")) {
-    with_prefix("--units", [&] { return unit_to_si(column, unit); });
+    factor_to_si("--units", column, unit);
     units.emplace(std::move(column), std::move(unit));
   }
   return units;

@@ -221,7 +221,7 @@ TEST(CsvLoaderErrors, MissingColumn) {
 }
 
 TEST(CsvLoaderErrors, NonNumericCell) {
-  std::string text = "t,x,F\n" + linear_rows(5) + "0.05,5,abc\n" + linear_rows(0);
+  std::string text = "t,x,F\n" + linear_rows(5) + "0.05,5,abc\n";
   EXPECT_TRUE(HasText(parse_error(text), "data.csv:7: column 3 ('F'): expected a number, got 'abc'"));
   EXPECT_TRUE(HasText(parse_error("t,x,F\n0,1,\n"), "data.csv:2: column 3 ('F'): expected a number, got ''"));
 }
@@ -241,7 +241,7 @@ TEST(CsvLoaderErrors, WrongCellCount) {
 }
 
 TEST(CsvLoaderErrors, TimeMustIncrease) {
-  // t in ms: 0, 10, ..., 60, then 20 after 20 at line 9 — reported in seconds
+  // t in ms: 0, 10, 20 (lines 2-4), then 20 again at line 5 — reported in seconds
   std::string text = "t[ms],x,F\n";
   for (int k = 0; k <= 2; ++k) text += fmt::format("{},0,0\n", 10 * k);
   text += "20,0,0\n";  // line 5: 20 after 20

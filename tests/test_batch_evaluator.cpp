@@ -1,0 +1,105 @@
+// Batch evaluation is bit-identical whatever the thread count, the grain size, the candidate's position
+// in the batch, or the batch it shares (DESIGN.md, "Reproducibility").
+#include "engine/batch_evaluator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "engine/bounds.hpp"
+#include "engine/random.hpp"
+#include "models/registry.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+struct Fixture {
+  const Model& model = find_model("fvd.gv_quadratic_elastic");
+  Signals data;
+  CandidateBatch batch;
+
+  explicit Fixture(int count) {
+    Dataset d = testing::two_sine_record(700);
+    d.F_N = model.simulate(std::vector<double>{400, 7e5, 0.35, 3e6, 2e7}, prepare_signals(d));
+    data = prepare_signals(d);
+    const Bounds b = default_bounds(model);
+    batch.resize(model.dim(), count);
+    RandomStream rng(hash_key({5}));
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < model.dim(); ++j) batch.at(i, j) = rng.uniform(b.lower[j], b.upper[j]);
+  }
+
+  std::vector<double> evaluate(const CandidateBatch& b, int threads, int grain) const {
+    std::vector<double> out(b.count());
+    tbb::task_arena arena(threads);
+    arena.execute([&] { BatchEvaluator(model, data, grain).evaluate(b, Metric::of_abs, out); });
+    return out;
+  }
+};
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+TEST(BatchEvaluator, OneAndTwoThreadsGiveTheSameBits) {
+  const Fixture f(203);
+  EXPECT_TRUE(same_bits(f.evaluate(f.batch, 1, 1), f.evaluate(f.batch, 2, 1)));
+}
+
+TEST(BatchEvaluator, GrainSizeDoesNotChangeResults) {
+  const Fixture f(203);
+  const auto reference = f.evaluate(f.batch, 2, 1);
+  for (int grain : {2, 3, 7, 100}) EXPECT_TRUE(same_bits(reference, f.evaluate(f.batch, 2, grain))) << grain;
+}
+
+TEST(BatchEvaluator, CandidateAloneEqualsCandidateInBatch) {
+  const Fixture f(41);
+  const auto together = f.evaluate(f.batch, 2, 1);
+  for (int i = 0; i < f.batch.count(); ++i) {
+    CandidateBatch alone(f.model.dim(), 1);
+    alone.set_candidate(0, f.batch.candidate(i));
+    EXPECT_EQ(f.evaluate(alone, 1, 1)[0], together[i]) << "candidate " << i;
+  }
+}
+
+TEST(BatchEvaluator, ReversedBatchGivesTheSameValues) {
+  const Fixture f(50);
+  CandidateBatch reversed(f.model.dim(), f.batch.count());
+  for (int i = 0; i < f.batch.count(); ++i) reversed.set_candidate(f.batch.count() - 1 - i, f.batch.candidate(i));
+  const auto a = f.evaluate(f.batch, 2, 1), b = f.evaluate(reversed, 2, 1);
+  for (int i = 0; i < f.batch.count(); ++i) EXPECT_EQ(a[i], b[f.batch.count() - 1 - i]);
+}
+
+TEST(BatchEvaluator, BlownUpCandidateIsMaskedAndDoesNotTouchNeighbours) {
+  Fixture f(20);
+  const auto clean = f.evaluate(f.batch, 2, 1);
+  f.batch.at(5, 1) = std::numeric_limits<double>::quiet_NaN();
+  f.batch.at(6, 4) = std::numeric_limits<double>::infinity();
+  const auto dirty = f.evaluate(f.batch, 2, 1);
+  EXPECT_EQ(dirty[5], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(dirty[6], std::numeric_limits<double>::infinity());
+  for (int i = 0; i < 20; ++i) {
+    if (i != 5 && i != 6) EXPECT_EQ(dirty[i], clean[i]) << i;
+  }
+}
+
+TEST(BatchEvaluator, MetricOfSimulatedForceMatchesBatchPath) {
+  const Fixture f(3);
+  const auto batch_values = f.evaluate(f.batch, 1, 1);
+  for (int i = 0; i < 3; ++i) {
+    const auto F = f.model.simulate(f.batch.candidate(i), f.data);
+    double integral = 0;
+    for (std::size_t k = 0; k < F.size(); ++k) integral += f.data.w_trapz_s[k] * std::fabs(f.data.F_N[k] - F[k]);
+    EXPECT_NEAR(batch_values[i], integral / (f.data.force_std_N * f.data.duration_s), 1e-12 * batch_values[i]);
+  }
+}
+
+}  // namespace dampbench

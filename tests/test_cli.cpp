@@ -1,0 +1,160 @@
+// The command line end to end (engine/cli): the contract outside checks rely on, and bad input
+// reported with a clear message and a non-zero exit code.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+using testing::run_dampbench;
+
+std::filesystem::path temp_dir() {
+  auto dir = std::filesystem::temp_directory_path() /
+             ("dampbench_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+              ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+void expect_error(const std::string& args, const std::string& message) {
+  const auto r = run_dampbench(args);
+  EXPECT_NE(r.exit_code, 0) << args;
+  EXPECT_NE(r.output.find(message), std::string::npos) << "args: " << args << "\noutput: " << r.output;
+}
+
+}  // namespace
+
+TEST(Cli, ModelsJsonListsEveryFvdModel) {
+  const auto r = run_dampbench("models --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  const auto& m = j.at("models").at("fvd.gv_quadratic_elastic");
+  ASSERT_EQ(m.at("parameters").size(), 5u);
+  EXPECT_EQ(m.at("parameters")[2].at("name"), "alpha");
+  EXPECT_EQ(m.at("parameters")[0].at("unit"), "kg");
+  EXPECT_LT(m.at("parameters")[3].at("lower").get<double>(), m.at("parameters")[3].at("upper").get<double>());
+  for (const char* id : {"fvd.linear_viscous", "fvd.generalized_viscous", "fvd.gv_linear_elastic"})
+    EXPECT_TRUE(j.at("models").contains(id)) << id;
+}
+
+TEST(Cli, SimulateThenFitRecoversParameters) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "sim.csv";
+  auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 "
+                         "--sine amp=0.02,freq=1,cycles=2,fs=400 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,x,v,a,F");
+
+  r = run_dampbench("fit --model fvd.generalized_viscous --data " + csv.string() +
+                    " --runs 4 --iters 150 --bounds m=0:10 --format json --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_NEAR(j.at("best_params").at("C").get<double>(), 2e5, 2e3);
+  EXPECT_NEAR(j.at("best_params").at("alpha").get<double>(), 0.4, 4e-3);
+  EXPECT_LT(j.at("metrics").at("of_abs").get<double>(), 1e-3);
+  for (const char* k : {"of_abs", "of_sq", "rmse", "nrmse", "mae"}) EXPECT_TRUE(j.at("metrics").contains(k)) << k;
+  for (const char* k : {"best", "worst", "mean", "std"}) EXPECT_TRUE(j.at("runs").contains(k)) << k;
+  EXPECT_LE(j.at("runs").at("best").get<double>(), j.at("runs").at("mean").get<double>());
+}
+
+TEST(Cli, SimulateOnAnInputFileUsesItsSamples) {
+  const auto dir = temp_dir();
+  write(dir / "in.csv", "t[ms],x[mm]\n0,0\n10,1\n20,2\n30,3\n40,4\n50,5\n60,6\n70,7\n80,8\n");
+  const auto out = dir / "out.csv";
+  const auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1000 --input " +
+                               (dir / "in.csv").string() + " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out);
+  std::string line;
+  std::getline(in, line);
+  int rows = 0;
+  while (std::getline(in, line)) {
+    double t, x, v, a, F;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &t, &x, &v, &a, &F), 5);
+    EXPECT_NEAR(t, 0.01 * rows, 1e-15);
+    EXPECT_NEAR(x, 0.001 * rows, 1e-15);
+    EXPECT_NEAR(v, 0.1, 1e-12);       // x rises 1 mm per 10 ms: 0.1 m/s, exact for a 3rd-order scheme
+    EXPECT_NEAR(F, 100.0, 1e-9);      // C·v
+    ++rows;
+  }
+  EXPECT_EQ(rows, 9);
+}
+
+TEST(Cli, BadInputIsReportedClearly) {
+  const auto dir = temp_dir();
+  const auto good = dir / "good.csv";
+  write(good, "t,x,F\n0,0,0\n1,1,1\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  const std::string data = " --data " + good.string();
+  expect_error("fit --model fvd.nope" + data, "unknown model 'fvd.nope' (known: fvd.linear_viscous");
+  expect_error("fit --model fvd.linear_viscous --bounds K9=0:1" + data,
+               "model fvd.linear_viscous has no parameter 'K9' (parameters: m, C)");
+  expect_error("fit --model fvd.linear_viscous --bounds C=5:1" + data,
+               "--bounds C: lower bound 5 is greater than upper bound 1");
+  expect_error("fit --model fvd.linear_viscous --bounds C=abc:1" + data, "--bounds C lower bound");
+  expect_error("fit --model fvd.linear_viscous --metric r2" + data, "unknown metric 'r2'");
+  expect_error("fit --model fvd.linear_viscous --optimizer sa" + data, "unknown optimizer 'sa' (known: pso)");
+  expect_error("fit --model fvd.linear_viscous --pop 1" + data, "pso: population must be at least 2, got 1");
+  expect_error("fit --model fvd.linear_viscous --runs 0" + data, "runs must be at least 1, got 0");
+  expect_error("fit --model fvd.linear_viscous --format xml" + data, "--format: expected md or json, got 'xml'");
+  expect_error("fit --model fvd.linear_viscous --data " + (dir / "missing.csv").string(), "cannot open data file");
+  expect_error("simulate --model fvd.linear_viscous --params m=1", "--params: missing parameter 'C'");
+  expect_error("simulate --model fvd.linear_viscous --params m=1,C=2,Q=3 --sine amp=0.01,freq=1,fs=100",
+               "has no parameter 'Q'");
+  expect_error("simulate --model fvd.linear_viscous --params m=1,C=2", "give exactly one of --input FILE or --sine");
+
+  const auto no_force = dir / "noF.csv";
+  write(no_force, "t,x\n0,0\n1,1\n2,2\n3,3\n4,4\n5,5\n6,6\n7,7\n8,8\n");
+  expect_error("fit --model fvd.linear_viscous --data " + no_force.string(), "missing column 'F'");
+  const auto bad_time = dir / "time.csv";
+  write(bad_time, "t,x,F\n0,0,0\n1,1,1\n1,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  expect_error("fit --model fvd.linear_viscous --data " + bad_time.string(), "time.csv:4: time must increase");
+  const auto bad_cell = dir / "cell.csv";
+  write(bad_cell, "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  expect_error("fit --model fvd.linear_viscous --data " + bad_cell.string(),
+               "cell.csv:3: column 3 ('F'): expected a number, got 'abc'");
+  expect_error("fit --model fvd.linear_viscous --units x=furlong" + data, "unknown unit 'furlong'");
+}
+
+TEST(Cli, RunPresetWritesTheFvdTables) {
+  const auto dir = temp_dir();
+  const std::string root = DAMPBENCH_SOURCE_DIR;
+  write(dir / "mini.toml",
+        "name = \"mini\"\nseed = 3\nruns = 3\nmodels = [\"fvd.linear_viscous\", \"fvd.gv_linear_elastic\"]\n"
+        "[optimizer]\nname = \"pso\"\npopulation = 20\niterations = 20\n"
+        "[[datasets]]\nname = \"Test 1\"\nfile = \"" + root + "/datasets/fvd/test1_20mm_92mms.csv\"\n"
+        "[[datasets]]\nname = \"Test 3\"\nfile = \"" + root + "/datasets/fvd/test3_20mm_460mms.csv\"\n");
+  const auto out = dir / "out";
+  const auto r = run_dampbench("run " + (dir / "mini.toml").string() + " -o " + out.string() + " --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"table03_of_abs_fvd.linear_viscous.csv", "table05_params_fvd.linear_viscous.csv",
+                        "table08_variability_fvd.gv_linear_elastic.csv", "ranking.csv", "tables.md", "summary.md"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  EXPECT_NE(r.output.find("candidate-samples/s"), std::string::npos);
+}
+
+TEST(Cli, BadPresetIsReportedWithFileLineAndKey) {
+  const auto dir = temp_dir();
+  write(dir / "bad.toml", "name = \"bad\"\nruns = 0\nmodels = [\"fvd.linear_viscous\"]\n");
+  expect_error("run " + (dir / "bad.toml").string(), "bad.toml:2: key 'runs': expected an integer >= 1, got 0");
+  write(dir / "bad2.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\", \"fvd.x\"]\n");
+  expect_error("run " + (dir / "bad2.toml").string(), "key 'models': unknown model 'fvd.x'");
+  write(dir / "bad3.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\nfile = \"nowhere.csv\"\n");
+  expect_error("run " + (dir / "bad3.toml").string(), "cannot open data file");
+  write(dir / "bad4.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\n"
+                           "file = \"a.csv\"\n[bounds]\n\"fvd.linear_viscous\" = \"C=3:1\"\n");
+  expect_error("run " + (dir / "bad4.toml").string(), "bad4.toml:7: key 'fvd.linear_viscous': bounds C: lower bound 3");
+  expect_error("run " + (dir / "nothere.toml").string(), "cannot open preset file");
+}
+
+}  // namespace dampbench

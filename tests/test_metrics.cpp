@@ -1,0 +1,109 @@
+// Metrics against hand-computed values (engine/metrics.hpp). The candidate model is fvd.linear_viscous
+// with m = 0 and C = 1, so the model force is the velocity signal itself.
+#include "engine/metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "engine/batch_evaluator.hpp"
+#include "engine/error.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench {
+namespace {
+
+Signals four_samples() {
+  Dataset d;
+  d.name = "hand";
+  d.t_s = {0.0, 0.5, 1.5, 2.0};  // non-uniform: trapezoid weights 0.25, 0.75, 0.75, 0.25
+  d.x_m = {0, 0, 0, 0};
+  d.v_m_s = {1, -2, 0.5, 3};
+  d.a_m_s2 = {0, 0, 0, 0};
+  d.F_N = {2, -3, 1, 2};  // errors e = F − v = 1, −1, 0.5, −1
+  return prepare_signals(d);
+}
+
+std::array<double, kMetricCount> metrics_of(const Signals& s, double m, double C) {
+  const Model& model = find_model("fvd.linear_viscous");
+  CandidateBatch batch(2, 1);
+  batch.at(0, 0) = m;
+  batch.at(0, 1) = C;
+  std::vector<MetricSums> sums(1);
+  BatchEvaluator(model, s).evaluate_sums(batch, sums);
+  return finish_all_metrics(sums[0], s);
+}
+
+}  // namespace
+
+TEST(Signals, TrapezoidWeightsAndForceStatistics) {
+  const Signals s = four_samples();
+  EXPECT_DOUBLE_EQ(s.w_trapz_s[0], 0.25);
+  EXPECT_DOUBLE_EQ(s.w_trapz_s[1], 0.75);
+  EXPECT_DOUBLE_EQ(s.w_trapz_s[2], 0.75);
+  EXPECT_DOUBLE_EQ(s.w_trapz_s[3], 0.25);
+  EXPECT_DOUBLE_EQ(s.duration_s, 2.0);
+  EXPECT_DOUBLE_EQ(s.force_std_N, std::sqrt(17.0 / 4.0));  // mean 0.5, Σ(F − mean)² = 17
+  EXPECT_DOUBLE_EQ(s.force_max_abs_N, 3.0);
+}
+
+TEST(Metrics, HandComputedValues) {
+  const Signals s = four_samples();
+  const auto m = metrics_of(s, 0.0, 1.0);
+  const double sigma = std::sqrt(4.25);
+  // Σ w|e| = 0.25 + 0.75 + 0.375 + 0.25 = 1.625; Σ w e² = 0.25 + 0.75 + 0.1875 + 0.25 = 1.4375
+  EXPECT_NEAR(m[0], 1.625 / (sigma * 2.0), 1e-15);    // of_abs
+  EXPECT_NEAR(m[1], 1.4375 / (4.25 * 2.0), 1e-15);    // of_sq
+  EXPECT_NEAR(m[2], std::sqrt(3.25 / 4.0), 1e-15);    // rmse: Σe² = 3.25
+  EXPECT_NEAR(m[3], std::sqrt(3.25 / 4.0) / 3.0, 1e-15);  // nrmse
+  EXPECT_NEAR(m[4], 3.5 / 4.0, 1e-15);                // mae: Σ|e| = 3.5
+}
+
+TEST(Metrics, OfAbsOfASineIsItsMeanAbsoluteValueOverSigma) {
+  // Measured F = sin(t) over one period, model force 0: ∫|sin| = 4, T = 2π. σ is that of the n samples
+  // (both ends included, mean 0): σ² = Σsin²/n = ((n − 1)/2)/n.
+  Dataset d;
+  d.name = "sine";
+  const int n = 20001;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * std::numbers::pi * k / (n - 1);
+    d.t_s.push_back(t);
+    d.x_m.push_back(0);
+    d.v_m_s.push_back(0);
+    d.a_m_s2.push_back(0);
+    d.F_N.push_back(std::sin(t));
+  }
+  const Signals s = prepare_signals(d);
+  const auto m = metrics_of(s, 0.0, 0.0);
+  const double var = 0.5 * (n - 1) / n;
+  EXPECT_NEAR(m[0], 4.0 / (std::sqrt(var) * 2 * std::numbers::pi), 1e-7);
+  EXPECT_NEAR(m[1], std::numbers::pi / (var * 2 * std::numbers::pi), 1e-7);  // ∫sin² = π
+  EXPECT_NEAR(m[2], std::sqrt(0.5), 1e-4);
+  EXPECT_NEAR(m[4], 2 / std::numbers::pi, 1e-4);
+}
+
+TEST(Metrics, NonFiniteForceGivesPlusInfinityNeverNaN) {
+  const Signals s = four_samples();
+  for (double C : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e308 * 10}) {
+    for (double v : metrics_of(s, 0.0, C)) {
+      EXPECT_TRUE(std::isinf(v)) << "C = " << C;
+      EXPECT_GT(v, 0);
+    }
+  }
+  // Finite parameters whose force overflows: 1e308 · v with |v| = 3 is +inf.
+  for (double v : metrics_of(s, 0.0, 1e308)) EXPECT_EQ(v, std::numeric_limits<double>::infinity());
+}
+
+TEST(Metrics, NamesRoundTripAndUnknownNameIsRejected) {
+  for (Metric m : kAllMetrics) EXPECT_EQ(parse_metric(metric_name(m)), m);
+  try {
+    parse_metric("r2");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "unknown metric 'r2' (known: of_abs, of_sq, rmse, nrmse, mae)");
+  }
+}
+
+}  // namespace dampbench

@@ -1,0 +1,56 @@
+#include "engine/random.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace dampbench {
+
+TEST(RandomStream, SameKeySameSequence) {
+  RandomStream a(hash_key({1, 2, 3})), b(hash_key({1, 2, 3}));
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(a.next_u64(), b.next_u64());
+}
+
+TEST(RandomStream, KeyPartsAreOrdered) {
+  EXPECT_NE(hash_key({1, 2}), hash_key({2, 1}));
+  EXPECT_NE(hash_key({0}), hash_key({0, 0}));
+  EXPECT_NE(hash_name("fvd.linear_viscous"), hash_name("fvd.generalized_viscous"));
+}
+
+TEST(RandomStream, NeighbouringKeysGiveDifferentStreams) {
+  std::set<std::uint64_t> first_draws;
+  for (std::uint64_t member = 0; member < 1000; ++member)
+    first_draws.insert(RandomStream(hash_key({7, 0, member})).next_u64());
+  EXPECT_EQ(first_draws.size(), 1000u);
+}
+
+TEST(RandomStream, UniformMomentsMatch) {
+  RandomStream rng(hash_key({42}));
+  const int n = 200000;
+  double sum = 0, sum_sq = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = rng.uniform();
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    sum += u;
+    sum_sq += u * u;
+  }
+  // U[0,1): mean 1/2, variance 1/12; 5 standard errors.
+  EXPECT_NEAR(sum / n, 0.5, 5 * std::sqrt(1.0 / 12 / n));
+  EXPECT_NEAR(sum_sq / n - (sum / n) * (sum / n), 1.0 / 12, 0.002);
+}
+
+TEST(RandomStream, NormalMomentsMatch) {
+  RandomStream rng(hash_key({9}));
+  const int n = 200000;
+  double sum = 0, sum_sq = 0;
+  for (int i = 0; i < n; ++i) {
+    const double z = rng.normal();
+    sum += z;
+    sum_sq += z * z;
+  }
+  EXPECT_NEAR(sum / n, 0.0, 5 / std::sqrt(double(n)));
+  EXPECT_NEAR(sum_sq / n, 1.0, 0.02);
+}
+
+}  // namespace dampbench

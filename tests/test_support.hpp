@@ -1,0 +1,47 @@
+#pragma once
+// Helpers shared by the tests: synthetic records with analytic derivatives, and running the CLI.
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+#include "engine/dataset.hpp"
+
+namespace dampbench::testing {
+
+/// x = X1 sin(ω1 t) + X2 sin(ω2 t + φ) with exact v and a; no force. Two frequencies make the mass
+/// identifiable: on a single sine m·a = −mω²x is indistinguishable from a negative stiffness.
+inline Dataset two_sine_record(int samples = 1000, double fs_hz = 500.0) {
+  Dataset d;
+  d.name = "two_sine";
+  const double X1 = 0.015, w1 = 2 * std::numbers::pi * 1.5, X2 = 0.006, w2 = 2 * std::numbers::pi * 4.1, phase = 0.3;
+  for (int k = 0; k < samples; ++k) {
+    const double t = k / fs_hz;
+    d.t_s.push_back(t);
+    d.x_m.push_back(X1 * std::sin(w1 * t) + X2 * std::sin(w2 * t + phase));
+    d.v_m_s.push_back(X1 * w1 * std::cos(w1 * t) + X2 * w2 * std::cos(w2 * t + phase));
+    d.a_m_s2.push_back(-X1 * w1 * w1 * std::sin(w1 * t) - X2 * w2 * w2 * std::sin(w2 * t + phase));
+  }
+  return d;
+}
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs the dampbench executable with the given argument string (shell syntax).
+inline CommandResult run_dampbench(const std::string& args) {
+  CommandResult r;
+  const std::string cmd = std::string(DAMPBENCH_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace dampbench::testing
