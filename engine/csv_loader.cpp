@@ -115,8 +115,8 @@ void check_names(const std::vector<ColumnInfo>& columns, const std::string& orig
 }
 
 /// The columns named by the header line (if any) and options.columns; throws when neither names them.
-std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool comma_separated,
-                                     const CsvOptions& options, const std::string& source) {
+std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool comma_separated, const CsvOptions& options,
+                                     const std::string& source) {
   const std::string option_origin = source + ": --columns";
   std::vector<ColumnInfo> columns;
   if (header) {
@@ -137,8 +137,10 @@ std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool com
   columns.resize(options.columns.size());
   for (std::size_t i = 0; i < options.columns.size(); ++i) {
     ColumnInfo renamed = column_from_cell(options.columns[i], option_origin);
-    if (renamed.unit.empty()) columns[i].name = std::move(renamed.name);  // keeps the header's unit, if any
-    else columns[i] = std::move(renamed);
+    if (renamed.unit.empty())
+      columns[i].name = std::move(renamed.name);  // keeps the header's unit, if any
+    else
+      columns[i] = std::move(renamed);
   }
   check_names(columns, option_origin);
   return columns;
@@ -147,15 +149,13 @@ std::vector<ColumnInfo> name_columns(const std::optional<Line>& header, bool com
 /// Applies options.units (validated here, even for columns the file lacks) and computes the SI factors.
 void assign_units(std::vector<ColumnInfo>& columns, const CsvOptions& options, const std::string& source) {
   const std::string units_origin = source + ": --units";
-  for (const auto& [name, unit] : options.units)
-    factor_to_si(units_origin, name, unit);
+  for (const auto& [name, unit] : options.units) factor_to_si(units_origin, name, unit);
   for (auto& column : columns) {
     if (const auto found = options.units.find(column.name); found != options.units.end()) {
       column.unit = found->second;
       column.unit_origin = units_origin;
     }
-    if (!column.unit.empty())
-      column.factor = factor_to_si(column.unit_origin, column.name, column.unit);
+    if (!column.unit.empty()) column.factor = factor_to_si(column.unit_origin, column.name, column.unit);
   }
 }
 
@@ -191,8 +191,8 @@ double parse_cell(std::string_view cell, std::size_t index, const ColumnInfo& co
 }
 
 /// Appends the values of one data line to `values` (one vector per column).
-void read_row(const Line& line, bool comma_separated, const std::vector<ColumnInfo>& columns,
-              const std::string& source, std::vector<std::vector<double>>& values) {
+void read_row(const Line& line, bool comma_separated, const std::vector<ColumnInfo>& columns, const std::string& source,
+              std::vector<std::vector<double>>& values) {
   const std::string where = at_line(source, line.number);
   const auto cells = split_cells(line.text, comma_separated);
   if (cells.size() != columns.size())
@@ -205,8 +205,8 @@ void check_time_step(const std::vector<double>& t_s, const std::string& source, 
   const double previous = t_s[t_s.size() - 2];
   const double current = t_s.back();
   if (!(current > previous))
-    throw InputError(fmt::format("{}: time must increase strictly ({:g} s after {:g} s)", at_line(source, line),
-                                 current, previous));
+    throw InputError(
+        fmt::format("{}: time must increase strictly ({:g} s after {:g} s)", at_line(source, line), current, previous));
 }
 
 double mean(const std::vector<double>& values) {
@@ -226,10 +226,14 @@ Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::ve
   data.t_s = std::move(*column("t"));
   data.x_m = std::move(*column("x"));
   if (auto* force = column("F")) data.F_N = std::move(*force);
-  if (auto* velocity = column("v")) data.v_m_s = std::move(*velocity);
-  else data.v_m_s = differentiate_3rd_order(data.t_s, data.x_m);
-  if (auto* acceleration = column("a")) data.a_m_s2 = std::move(*acceleration);
-  else data.a_m_s2 = differentiate_3rd_order(data.t_s, data.v_m_s);
+  if (auto* velocity = column("v"))
+    data.v_m_s = std::move(*velocity);
+  else
+    data.v_m_s = differentiate_3rd_order(data.t_s, data.x_m);
+  if (auto* acceleration = column("a"))
+    data.a_m_s2 = std::move(*acceleration);
+  else
+    data.a_m_s2 = differentiate_3rd_order(data.t_s, data.v_m_s);
   for (const char* name : {"I", "V", "phi"})
     if (const auto* operating = column(name)) data.operating[name] = mean(*operating);
   return data;

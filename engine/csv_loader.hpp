@@ -13,10 +13,10 @@ namespace dampbench {
 
 /// How to read a record file; the defaults read a file with a header row in SI units.
 struct CsvOptions {
-  std::map<std::string, std::string> units;   ///< column → unit, overrides header units (--units x=mm,F=kN)
-  std::vector<std::string> columns;           ///< names for a header-less file (--columns t,x,v,F); may carry units "x[mm]"
-  bool require_force = true;                  ///< fit needs F; simulate --input does not
-  std::size_t min_samples = 8;                ///< fewer samples is an error (never fewer than 4: derivatives need them)
+  std::map<std::string, std::string> units;  ///< column → unit, overrides header units (--units x=mm,F=kN)
+  std::vector<std::string> columns;  ///< names for a header-less file (--columns t,x,v,F); may carry units "x[mm]"
+  bool require_force = true;         ///< fit needs F; simulate --input does not
+  std::size_t min_samples = 8;       ///< fewer samples is an error (never fewer than 4: derivatives need them)
 };
 
 /// Parses --units "x=mm,F=kN" into CsvOptions::units (validating column and unit names).

@@ -43,8 +43,8 @@ std::vector<double> differentiate_3rd_order(const std::vector<double>& t, const 
   const std::size_t n = t.size();
   std::vector<double> dy(n);
   for (std::size_t i = 0; i < 2; ++i) {
-    dy[i] = stencil_derivative(t, y, 0, i);                            // forward stencil {0..3}
-    dy[n - 1 - i] = stencil_derivative(t, y, n - kStencil, 3 - i);    // backward stencil {n-4..n-1}
+    dy[i] = stencil_derivative(t, y, 0, i);                         // forward stencil {0..3}
+    dy[n - 1 - i] = stencil_derivative(t, y, n - kStencil, 3 - i);  // backward stencil {n-4..n-1}
   }
   for (std::size_t i = 2; i + 2 < n; ++i)
     dy[i] = 0.5 * (stencil_derivative(t, y, i - 2, 2) + stencil_derivative(t, y, i - 1, 1));

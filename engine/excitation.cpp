@@ -33,19 +33,21 @@ void validate(const SineSpec& spec, std::string_view origin) {
     throw InputError(fmt::format("{}: give either freq or vpeak, not both", origin));
   if (spec.freq_hz == 0 && spec.peak_velocity_m_s == 0)
     throw InputError(fmt::format("{}: freq or vpeak is required", origin));
-  if (spec.freq_hz != 0) require_positive(spec.freq_hz, "freq", origin);
-  else require_positive(spec.peak_velocity_m_s, "vpeak", origin);
+  if (spec.freq_hz != 0)
+    require_positive(spec.freq_hz, "freq", origin);
+  else
+    require_positive(spec.peak_velocity_m_s, "vpeak", origin);
   require_positive(spec.cycles, "cycles", origin);
   require_positive(spec.fs_hz, "fs", origin);
   const double freq = sine_frequency_hz(spec);
   if (spec.fs_hz < kMinSamplesPerCycle * freq)
-    throw InputError(fmt::format("{}: fs = {:g} Hz gives {:g} samples per cycle at {:g} Hz; at least {:g} are "
-                                 "needed (fs >= {:g} Hz)",
-                                 origin, spec.fs_hz, spec.fs_hz / freq, freq, kMinSamplesPerCycle,
-                                 kMinSamplesPerCycle * freq));
+    throw InputError(
+        fmt::format("{}: fs = {:g} Hz gives {:g} samples per cycle at {:g} Hz; at least {:g} are "
+                    "needed (fs >= {:g} Hz)",
+                    origin, spec.fs_hz, spec.fs_hz / freq, freq, kMinSamplesPerCycle, kMinSamplesPerCycle * freq));
   if (const std::size_t samples = sample_count(spec); samples < kMinSamples)
-    throw InputError(fmt::format("{}: {} samples (cycles * fs / freq + 1); at least {} are needed", origin, samples,
-                                 kMinSamples));
+    throw InputError(
+        fmt::format("{}: {} samples (cycles * fs / freq + 1); at least {} are needed", origin, samples, kMinSamples));
 }
 
 /// The field of `spec` that `key` sets, or nullptr for an unknown key.
@@ -91,8 +93,8 @@ Dataset make_sine(const SineSpec& spec) {
   const std::size_t n = sample_count(spec);
   Dataset data;
   data.name = "sine";
-  data.source = fmt::format("sine amp={:g} m, freq={:g} Hz, cycles={:g}, fs={:g} Hz", amp, freq, spec.cycles,
-                            spec.fs_hz);
+  data.source =
+      fmt::format("sine amp={:g} m, freq={:g} Hz, cycles={:g}, fs={:g} Hz", amp, freq, spec.cycles, spec.fs_hz);
   data.t_s.resize(n);
   data.x_m.resize(n);
   data.v_m_s.resize(n);

@@ -17,7 +17,8 @@ std::vector<std::string_view> split_commas(std::string_view text) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    pieces.push_back(trim(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    pieces.push_back(
+        trim(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
     if (comma == std::string_view::npos) return pieces;
     start = comma + 1;
   }
@@ -44,8 +45,10 @@ ParsedNumber try_parse_number(std::string_view text) {
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, parsed.value);
   if (ptr != end) return {};  // trailing characters, or nothing parsed at all
-  if (ec == std::errc::result_out_of_range) parsed.status = NumberStatus::out_of_range;
-  else if (ec == std::errc()) parsed.status = NumberStatus::ok;
+  if (ec == std::errc::result_out_of_range)
+    parsed.status = NumberStatus::out_of_range;
+  else if (ec == std::errc())
+    parsed.status = NumberStatus::ok;
   return parsed;
 }
 

@@ -23,9 +23,9 @@ struct Column {
 };
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kInch = 0.0254;                   // m, exact
-constexpr double kPoundForce = 4.4482216152605;    // N, exact (0.45359237 kg × 9.80665 m/s²)
-constexpr double kStandardGravity = 9.80665;       // m/s², exact
+constexpr double kInch = 0.0254;                 // m, exact
+constexpr double kPoundForce = 4.4482216152605;  // N, exact (0.45359237 kg × 9.80665 m/s²)
+constexpr double kStandardGravity = 9.80665;     // m/s², exact
 
 constexpr std::array<Unit, 2> kTime{{{"s", 1.0}, {"ms", 1e-3}}};
 constexpr std::array<Unit, 7> kDisplacement{
@@ -79,8 +79,7 @@ std::string known_columns_text() {
 
 double unit_to_si(std::string_view column, std::string_view unit) {
   const Column* entry = find_column(column);
-  if (entry == nullptr)
-    throw InputError(fmt::format("unknown column '{}' (known: {})", column, known_columns_text()));
+  if (entry == nullptr) throw InputError(fmt::format("unknown column '{}' (known: {})", column, known_columns_text()));
   for (const Unit& candidate : entry->units)
     if (candidate.name == unit) return candidate.factor;
   throw InputError(fmt::format("unknown unit '{}' for column '{}' (known: {})", unit, column, unit_names(*entry)));

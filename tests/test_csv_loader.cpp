@@ -66,8 +66,8 @@ TEST(CsvLoader, HeaderUnitsAreConvertedToSi) {
   const Dataset data = parse("t[s],x[mm],F[kN]\n" + linear_rows(10));
   ASSERT_EQ(data.size(), 10u);
   EXPECT_DOUBLE_EQ(data.t_s[3], 0.03);
-  EXPECT_DOUBLE_EQ(data.x_m[3], 0.003);    // 3 mm
-  EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);   // 6 kN
+  EXPECT_DOUBLE_EQ(data.x_m[3], 0.003);   // 3 mm
+  EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);  // 6 kN
   EXPECT_EQ(data.name, "data");
   EXPECT_EQ(data.source, "data.csv");
   EXPECT_TRUE(data.operating.empty());
@@ -75,8 +75,8 @@ TEST(CsvLoader, HeaderUnitsAreConvertedToSi) {
 
 TEST(CsvLoader, HeaderUnitsMayBeSeparatedBySpaces) {
   const Dataset data = parse("t [ms], x [cm], F [lbf]\n" + linear_rows(10));
-  EXPECT_DOUBLE_EQ(data.t_s[3], 3e-5);               // 0.03 ms
-  EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);               // 3 cm
+  EXPECT_DOUBLE_EQ(data.t_s[3], 3e-5);                   // 0.03 ms
+  EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);                   // 3 cm
   EXPECT_NEAR(data.F_N[3], 6 * 4.4482216152605, 1e-12);  // 6 lbf
 }
 
@@ -90,8 +90,8 @@ TEST(CsvLoader, UnitsOptionOverridesHeader) {
   CsvOptions options;
   options.units = parse_units_option("x=cm,F=kN");
   const Dataset data = parse("t,x[mm],F\n" + linear_rows(10), options);
-  EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);     // 3 cm, not 3 mm
-  EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);   // 6 kN
+  EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);    // 3 cm, not 3 mm
+  EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);  // 6 kN
 }
 
 TEST(CsvLoader, UnitsOptionForAbsentColumnIsIgnored) {
@@ -175,15 +175,16 @@ TEST(CsvLoader, ComputesVelocityAndAccelerationOfASine) {
     v_error = std::max(v_error, std::abs(data.v_m_s[k] - amp * omega * std::cos(arg)));
     a_error = std::max(a_error, std::abs(data.a_m_s2[k] + amp * omega * omega * std::sin(arg)));
   }
-  EXPECT_LT(v_error, 1e-6 * amp * omega);          // 3rd/4th-order scheme at 1000 samples per cycle
+  EXPECT_LT(v_error, 1e-6 * amp * omega);  // 3rd/4th-order scheme at 1000 samples per cycle
   EXPECT_LT(a_error, 1e-3 * amp * omega * omega);
 }
 
 TEST(CsvLoader, OperatingColumnsGiveTheirMean) {
   std::string text = "t,x,F,I[mA],V,phi[rad]\n";
-  for (int k = 0; k < 8; ++k) text += fmt::format("{},0,0,{},{},{}\n", k, k % 2 ? 500 : 1500, 2.5, std::numbers::pi / 2);
+  for (int k = 0; k < 8; ++k)
+    text += fmt::format("{},0,0,{},{},{}\n", k, k % 2 ? 500 : 1500, 2.5, std::numbers::pi / 2);
   const Dataset data = parse(text);
-  EXPECT_DOUBLE_EQ(data.operating.at("I"), 1.0);   // mean of 0.5 A and 1.5 A
+  EXPECT_DOUBLE_EQ(data.operating.at("I"), 1.0);  // mean of 0.5 A and 1.5 A
   EXPECT_DOUBLE_EQ(data.operating.at("V"), 2.5);
   EXPECT_NEAR(data.operating.at("phi"), 90.0, 1e-12);  // π/2 rad in degrees
   EXPECT_EQ(data.operating.size(), 3u);
@@ -229,7 +230,8 @@ TEST(CsvLoaderErrors, NonNumericCell) {
 TEST(CsvLoaderErrors, NonFiniteCell) {
   for (const char* value : {"nan", "inf", "-inf", "NaN"}) {
     const std::string text = "t,x,F\n" + linear_rows(5) + fmt::format("0.05,5,{}\n", value);
-    EXPECT_TRUE(HasText(parse_error(text), fmt::format("data.csv:7: column 3 ('F'): value is not finite ('{}')", value)));
+    EXPECT_TRUE(
+        HasText(parse_error(text), fmt::format("data.csv:7: column 3 ('F'): value is not finite ('{}')", value)));
   }
   EXPECT_TRUE(HasText(parse_error("t,x,F\n0,1e999,0\n"), "data.csv:2: column 2 ('x'): value out of range ('1e999')"));
 }
@@ -272,7 +274,8 @@ TEST(CsvLoaderErrors, UnknownUnitInHeader) {
 TEST(CsvLoaderErrors, UnknownUnitInOptions) {
   EXPECT_EQ(error_of([] { parse_units_option("x=furlong"); }),
             "--units: unknown unit 'furlong' for column 'x' (known: m, mm, cm, um, in, rad, deg)");
-  EXPECT_EQ(error_of([] { parse_units_option("q=mm"); }), "--units: unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
+  EXPECT_EQ(error_of([] { parse_units_option("q=mm"); }),
+            "--units: unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
   EXPECT_EQ(error_of([] { parse_units_option("x=mm,x=cm"); }), "--units: 'x' given twice");
   CsvOptions options;
   options.units = {{"x", "furlong"}};  // built by hand, not validated by parse_units_option
@@ -284,7 +287,8 @@ TEST(CsvLoaderErrors, UnknownUnitInOptions) {
 TEST(CsvLoaderErrors, UnknownColumnNames) {
   EXPECT_EQ(parse_error("t,x,F,q\n0,0,0,0\n"), "data.csv:1: unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
   EXPECT_TRUE(HasText(parse_error("time,x,F,load\n0,0,0,0\n"), "data.csv:1: unknown columns 'time', 'load'"));
-  EXPECT_TRUE(HasText(parse_error(linear_rows(10), with_columns({"t", "x", "f"})), "data.csv: --columns: unknown column 'f'"));
+  EXPECT_TRUE(
+      HasText(parse_error(linear_rows(10), with_columns({"t", "x", "f"})), "data.csv: --columns: unknown column 'f'"));
   EXPECT_TRUE(HasText(parse_error("t,x,x\n0,0,0\n"), "data.csv:1: column 'x' given twice"));
 }
 
@@ -350,10 +354,10 @@ TEST(CsvRealData, MrDamperFileLoads) {
   EXPECT_EQ(data.name, "10mm1Hz1A");
   ASSERT_GT(data.size(), 1000u);
   const auto [x_min, x_max] = std::minmax_element(data.x_m.begin(), data.x_m.end());
-  EXPECT_NEAR(*x_max, 0.0097, 0.05 * 0.0097);   // data README: x ≈ ±9.7 mm
+  EXPECT_NEAR(*x_max, 0.0097, 0.05 * 0.0097);  // data README: x ≈ ±9.7 mm
   EXPECT_NEAR(*x_min, -0.0097, 0.05 * 0.0097);
   const auto [v_min, v_max] = std::minmax_element(data.v_m_s.begin(), data.v_m_s.end());
-  EXPECT_NEAR(*v_max, 0.0626, 0.05 * 0.0626);   // data README: v ≈ ±62.6 mm/s
+  EXPECT_NEAR(*v_max, 0.0626, 0.05 * 0.0626);  // data README: v ≈ ±62.6 mm/s
   EXPECT_NEAR(*v_min, -0.0626, 0.05 * 0.0626);
   EXPECT_EQ(data.F_N.size(), data.size());
   EXPECT_EQ(data.a_m_s2.size(), data.size());

@@ -14,7 +14,7 @@ namespace dampbench {
 namespace {
 
 constexpr double kOmega = 2 * std::numbers::pi;  // 1 Hz
-constexpr double kPhase = 0.7;                    // rad, so that no endpoint sits on a zero of sin or cos
+constexpr double kPhase = 0.7;                   // rad, so that no endpoint sits on a zero of sin or cos
 
 /// Max |d^order x/dt^order - exact| for x = sin(ωt + φ) over one period sampled with n intervals,
 /// skipping `skip` points at each end. order 2 applies differentiate_3rd_order twice.
@@ -39,8 +39,8 @@ double max_error(int n, int order, int skip) {
 std::vector<double> observed_orders(int order, int skip) {
   const double e50 = max_error(50, order, skip), e100 = max_error(100, order, skip);
   const double e200 = max_error(200, order, skip);
-  std::printf("derivative %d, %d end points skipped: max error %.3g, %.3g, %.3g; observed orders %.2f, %.2f\n",
-              order, skip, e50, e100, e200, std::log2(e50 / e100), std::log2(e100 / e200));
+  std::printf("derivative %d, %d end points skipped: max error %.3g, %.3g, %.3g; observed orders %.2f, %.2f\n", order,
+              skip, e50, e100, e200, std::log2(e50 / e100), std::log2(e100 / e200));
   return {std::log2(e50 / e100), std::log2(e100 / e200)};
 }
 

@@ -40,9 +40,7 @@ TEST(SineOption, ParsesAllKeys) {
   EXPECT_DOUBLE_EQ(spec.fs_hz, 500.0);
 }
 
-TEST(SineOption, CyclesDefaultToOne) {
-  EXPECT_DOUBLE_EQ(parse_sine_option("amp=0.01,freq=2,fs=100").cycles, 1.0);
-}
+TEST(SineOption, CyclesDefaultToOne) { EXPECT_DOUBLE_EQ(parse_sine_option("amp=0.01,freq=2,fs=100").cycles, 1.0); }
 
 TEST(SineOption, FrequencyFromPeakVelocity) {
   const SineSpec spec = parse_sine_option("amp=0.02,vpeak=0.46,cycles=2,fs=200");

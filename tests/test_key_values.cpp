@@ -43,8 +43,7 @@ TEST(KeyValues, ValueMayContainColons) {
 
 TEST(KeyValues, RejectsMissingEquals) {
   EXPECT_EQ(error_of([] { parse_key_values("C", "--params"); }), "--params: expected name=value, got 'C'");
-  EXPECT_EQ(error_of([] { parse_key_values("C=1,alpha", "--params"); }),
-            "--params: expected name=value, got 'alpha'");
+  EXPECT_EQ(error_of([] { parse_key_values("C=1,alpha", "--params"); }), "--params: expected name=value, got 'alpha'");
 }
 
 TEST(KeyValues, RejectsEmptyValueEmptyNameAndEmptyEntry) {
@@ -73,7 +72,9 @@ TEST(ParseNumber, RejectsNonNumbersWithMessage) {
 
 TEST(ParseNumber, RejectsNonFiniteAndOutOfRange) {
   for (const char* text : {"nan", "inf", "-inf", "+inf", "NaN", "infinity"})
-    EXPECT_EQ(error_of([&] { parse_number(text, "v"); }), std::string("v: expected a finite number, got '") + text + "'") << text;
+    EXPECT_EQ(error_of([&] { parse_number(text, "v"); }),
+              std::string("v: expected a finite number, got '") + text + "'")
+        << text;
   EXPECT_EQ(error_of([] { parse_number("1e999", "v"); }), "v: number out of range, got '1e999'");
 }
 

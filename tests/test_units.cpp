@@ -28,25 +28,42 @@ struct Case {
 
 TEST(Units, FactorsToSi) {
   const Case cases[] = {
-      {"t", "s", 1.0},           {"t", "ms", 0.001},
-      {"x", "m", 1.0},           {"x", "mm", 0.001},
-      {"x", "cm", 0.01},         {"x", "um", 1e-6},
-      {"x", "in", 0.0254},       {"x", "rad", 1.0},
+      {"t", "s", 1.0},
+      {"t", "ms", 0.001},
+      {"x", "m", 1.0},
+      {"x", "mm", 0.001},
+      {"x", "cm", 0.01},
+      {"x", "um", 1e-6},
+      {"x", "in", 0.0254},
+      {"x", "rad", 1.0},
       {"x", "deg", 0.017453292519943295},
-      {"v", "m/s", 1.0},         {"v", "mm/s", 0.001},
-      {"v", "cm/s", 0.01},       {"v", "in/s", 0.0254},
-      {"v", "rad/s", 1.0},       {"v", "deg/s", 0.017453292519943295},
-      {"a", "m/s^2", 1.0},       {"a", "mm/s^2", 0.001},
-      {"a", "g", 9.80665},       {"a", "rad/s^2", 1.0},
-      {"F", "N", 1.0},           {"F", "kN", 1000.0},
-      {"F", "lbf", 4.4482216152605}, {"F", "kip", 4448.2216152605},
-      {"F", "N*m", 1.0},         {"F", "N.m", 1.0},
-      {"F", "Nm", 1.0},          {"F", "kN*m", 1000.0},
-      {"I", "A", 1.0},           {"I", "mA", 0.001},
-      {"V", "V", 1.0},           {"V", "mV", 0.001},
-      {"phi", "deg", 1.0},       {"phi", "rad", 57.29577951308232},
+      {"v", "m/s", 1.0},
+      {"v", "mm/s", 0.001},
+      {"v", "cm/s", 0.01},
+      {"v", "in/s", 0.0254},
+      {"v", "rad/s", 1.0},
+      {"v", "deg/s", 0.017453292519943295},
+      {"a", "m/s^2", 1.0},
+      {"a", "mm/s^2", 0.001},
+      {"a", "g", 9.80665},
+      {"a", "rad/s^2", 1.0},
+      {"F", "N", 1.0},
+      {"F", "kN", 1000.0},
+      {"F", "lbf", 4.4482216152605},
+      {"F", "kip", 4448.2216152605},
+      {"F", "N*m", 1.0},
+      {"F", "N.m", 1.0},
+      {"F", "Nm", 1.0},
+      {"F", "kN*m", 1000.0},
+      {"I", "A", 1.0},
+      {"I", "mA", 0.001},
+      {"V", "V", 1.0},
+      {"V", "mV", 0.001},
+      {"phi", "deg", 1.0},
+      {"phi", "rad", 57.29577951308232},
   };
-  for (const Case& c : cases) EXPECT_NEAR(unit_to_si(c.column, c.unit), c.factor, 1e-12 * c.factor) << c.column << " " << c.unit;
+  for (const Case& c : cases)
+    EXPECT_NEAR(unit_to_si(c.column, c.unit), c.factor, 1e-12 * c.factor) << c.column << " " << c.unit;
 }
 
 TEST(Units, UnknownUnitListsKnownOnes) {
@@ -80,8 +97,7 @@ TEST(SplitNameUnit, Forms) {
 
 TEST(SplitNameUnit, RejectsBrokenBrackets) {
   for (const char* cell : {"x[mm", "xmm]", "x]mm[", "x[mm]y"})
-    EXPECT_NE(error_of([&] { split_name_unit(cell); }).find("expected name or name[unit]"), std::string::npos)
-        << cell;
+    EXPECT_NE(error_of([&] { split_name_unit(cell); }).find("expected name or name[unit]"), std::string::npos) << cell;
 }
 
 }  // namespace
