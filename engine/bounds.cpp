@@ -25,8 +25,8 @@ void override_bounds(Bounds& bounds, const Model& model, std::string_view text, 
     if (colon == std::string::npos)
       throw InputError(fmt::format("{} {}: expected lo:hi, got '{}'", option, name, range));
     const std::string what = fmt::format("{} {}", option, name);
-    bounds.lower[j] = parse_number(std::string_view(range).substr(0, colon), what + " lower bound");
-    bounds.upper[j] = parse_number(std::string_view(range).substr(colon + 1), what + " upper bound");
+    bounds.lower[j] = parse_number(trim(std::string_view(range).substr(0, colon)), what + " lower bound");
+    bounds.upper[j] = parse_number(trim(std::string_view(range).substr(colon + 1)), what + " upper bound");
   }
   validate_bounds(bounds, model, option);
 }
