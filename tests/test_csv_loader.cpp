@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/error.hpp"
+#include "tests/test_support.hpp"
 
 #ifndef DAMPBENCH_SHARED_DATA_DIR
 #error "DAMPBENCH_SHARED_DATA_DIR must name the folder with the real test data"
@@ -27,15 +28,7 @@ Dataset parse(const std::string& text, const CsvOptions& options = {}, const std
   return parse_csv(in, source, options);
 }
 
-template <class Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 /// The message of parsing `text` as "data.csv".
 std::string parse_error(const std::string& text, const CsvOptions& options = {}) {

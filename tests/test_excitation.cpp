@@ -8,19 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/error.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
 
-template <class Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 std::string sine_error(const char* text) {
   return error_of([&] { parse_sine_option(text); });

@@ -93,12 +93,8 @@ TEST(Identification, RejectsBadSettings) {
   Bounds inverted = default_bounds(p.model);
   std::swap(inverted.lower[1], inverted.upper[1]);
   s.runs = 1;
-  try {
-    identify(p.model, p.data, inverted, make_optimizer_factory({}), s);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "--bounds C: lower bound 1e+07 is greater than upper bound 0");
-  }
+  EXPECT_EQ(testing::error_of([&] { identify(p.model, p.data, inverted, make_optimizer_factory({}), s); }),
+            "--bounds C: lower bound 1e+07 is greater than upper bound 0");
 }
 
 }  // namespace dampbench

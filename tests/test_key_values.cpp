@@ -7,20 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "engine/error.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
 
 /// The message of the InputError thrown by `fn`, or "no error".
-template <class Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 TEST(KeyValues, KeepsOrderAndTrims) {
   const auto entries = parse_key_values(" C = 1.5 , alpha=0.3,k=2e4", "--params");

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/dataset.hpp"
+#include "engine/error.hpp"
 
 namespace dampbench::testing {
 
@@ -24,6 +25,17 @@ inline Dataset two_sine_record(int samples = 1000, double fs_hz = 500.0) {
     d.a_m_s2.push_back(-X1 * w1 * w1 * std::sin(w1 * t) - X2 * w2 * w2 * std::sin(w2 * t + phase));
   }
   return d;
+}
+
+/// The message of the InputError that fn throws, or "no error".
+template <class Fn>
+std::string error_of(Fn&& fn) {
+  try {
+    fn();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "no error";
 }
 
 struct CommandResult {

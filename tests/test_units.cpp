@@ -6,19 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/error.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
 
-template <class Fn>
-std::string error_of(Fn&& fn) {
-  try {
-    fn();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 struct Case {
   const char* column;
