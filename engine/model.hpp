@@ -1,6 +1,7 @@
 #pragma once
 // The model interface (DESIGN.md, data flow): a model names its parameters with SI units and default
 // bounds, cites its paper and equation, and evaluates a block of candidates at once.
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -39,6 +40,13 @@ class Model {
   /// Force of one candidate at every sample, computed by the same kernel as evaluate_block, so the
   /// bits are those the batch path sees.
   [[nodiscard]] virtual std::vector<double> simulate(std::span<const double> params, const Signals& data) const = 0;
+
+  /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
+  /// with internal states; nullopt for algebraic models, whose force is exact.
+  [[nodiscard]] virtual std::optional<std::vector<double>> simulate_reference(std::span<const double> /*params*/,
+                                                                              const Signals& /*data*/) const {
+    return std::nullopt;
+  }
 
   /// Values in the paper's table units (ParameterInfo::paper_unit); may depend on other parameters
   /// (fvd's C is in kN/(mm/s)^α). Default: unchanged.

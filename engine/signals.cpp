@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace dampbench {
 
@@ -22,6 +23,12 @@ Signals prepare_signals(const Dataset& data) {
     s.w_trapz_s[k + 1] += half_dt;
   }
   s.duration_s = n > 1 ? s.t_s.back() - s.t_s.front() : 0.0;
+  if (n > 0) {
+    const auto [lo, hi] = std::minmax_element(s.x_m.begin(), s.x_m.end());
+    s.displacement_ptp = *hi - *lo;
+    for (double v : s.v_m_s) s.velocity_max_abs = std::max(s.velocity_max_abs, std::fabs(v));
+    s.excitation_freq_hz = s.displacement_ptp > 0 ? s.velocity_max_abs / (std::numbers::pi * s.displacement_ptp) : 0.0;
+  }
   if (!s.F_N.empty()) {
     double mean = 0;
     for (double f : s.F_N) mean += f;

@@ -12,7 +12,8 @@ struct Registry {
   std::vector<const Model*> views;
 
   Registry() {
-    for (auto& m : make_fvd_models()) owned.push_back(std::move(m));
+    for (auto make : {make_fvd_models, make_crfd_models, make_mrd_models})
+      for (auto& m : make()) owned.push_back(std::move(m));
     for (const auto& m : owned) views.push_back(m.get());
   }
 };

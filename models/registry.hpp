@@ -17,5 +17,7 @@ const Model& find_model(std::string_view id);
 
 /// Model families (one per source paper); each returns its models.
 std::vector<std::unique_ptr<Model>> make_fvd_models();
+std::vector<std::unique_ptr<Model>> make_crfd_models();
+std::vector<std::unique_ptr<Model>> make_mrd_models();
 
 }  // namespace dampbench

@@ -1,8 +1,28 @@
 #pragma once
-// Optimizers by name (`--optimizer NAME` and sweep files).
+// Optimizers by name (`--optimizer NAME` and sweep files), with their settings as "key" → "value" strings.
+//
+//   name  settings (defaults and sources in each optimizer's header)
+//   pso   variant (inertia | constriction | linear_inertia), inertia, inertia_end, cognitive, social,
+//         vmax_fraction                                                          optimizers/pso/pso.hpp
+//   ga    pc, pm, eta_c, eta_m, tournament, elites, preset (lssvm)               optimizers/ga/ga.hpp
+//   aga   k1, k2, k3, k4, pm_min, eta_c, eta_m, tournament, elites               optimizers/ga/aga.hpp
+//   de    strategy (rand1bin | best1bin | currenttobest1bin), F, CR              optimizers/de/de.hpp
+//
+// Order of application: the optimizer's defaults, then `population` and `iterations` of the spec, then
+// the named bundle (`preset` for ga, `variant` for pso), then every other setting. So a preset's own
+// population and generations (lssvm: 50 and 500) replace the spec's fields — which always hold a value,
+// the command line's defaults 50/100 when the user gave none — and only when the preset is given;
+// explicit settings then override the preset's rates. For ga, aga and de, `iterations` counts
+// generations (the initial population included): every optimizer costs population × iterations
+// evaluations.
+#include <map>
 #include <string>
+#include <vector>
 
 #include "engine/optimizer.hpp"
+#include "optimizers/de/de.hpp"
+#include "optimizers/ga/aga.hpp"
+#include "optimizers/ga/ga.hpp"
 #include "optimizers/pso/pso.hpp"
 
 namespace dampbench {
@@ -11,11 +31,17 @@ namespace dampbench {
 struct OptimizerSpec {
   std::string name = "pso";
   int population = 50;  ///< fvd paper N
-  int iterations = 100; ///< fvd paper L
+  int iterations = 100; ///< fvd paper L (generations for ga, aga, de)
+  std::map<std::string, std::string> settings = {};  ///< algorithm settings, e.g. {"pc", "0.6"}, {"preset", "lssvm"}
 };
 
-/// Validates the spec (InputError: unknown optimizer, bad population or iterations) and returns a
-/// factory that makes one run's optimizer from its bounds and run key.
+/// The known optimizer names, in the order of the "known:" lists of messages: pso, ga, aga, de.
+std::vector<std::string> optimizer_names();
+
+/// Validates the spec and returns a factory that makes one run's optimizer from its bounds and run key.
+/// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de)"), unknown setting
+/// ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known
+/// name (the message names the setting), or settings that the optimizer's validate() rejects.
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec);
 
 }  // namespace dampbench

@@ -17,6 +17,32 @@ void PsoSettings::validate() const {
   if (!(inertia >= 0) || !(inertia_end >= 0) || !(cognitive >= 0) || !(social >= 0))
     throw InputError("pso: inertia, cognitive and social coefficients must be non-negative numbers");
   if (!(vmax_fraction > 0)) throw InputError(fmt::format("pso: vmax_fraction must be > 0, got {}", vmax_fraction));
+  if (variant == PsoVariant::constriction && !(cognitive + social > 4))
+    throw InputError(fmt::format(
+        "pso: the constriction variant needs phi = cognitive + social > 4 (Clerc & Kennedy 2002), got {}",
+        cognitive + social));
+}
+
+PsoSettings PsoSettings::constriction() {
+  PsoSettings s;
+  s.variant = PsoVariant::constriction;
+  s.cognitive = 2.05;
+  s.social = 2.05;
+  return s;
+}
+
+PsoSettings PsoSettings::linear_inertia() {
+  PsoSettings s;
+  s.inertia = 0.9;
+  s.inertia_end = 0.4;
+  s.cognitive = 2.0;
+  s.social = 2.0;
+  return s;
+}
+
+double PsoSettings::constriction_factor() const {
+  const double phi = cognitive + social;
+  return 2.0 / std::abs(2.0 - phi - std::sqrt(phi * phi - 4.0 * phi));
 }
 
 Pso::Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_key)
@@ -43,14 +69,15 @@ void Pso::ask(CandidateBatch& batch, int first) {
 
 void Pso::tell(std::span<const double> values) {
   for (int i = 0; i < settings_.population; ++i) {
+    const double value = std::isfinite(values[i]) ? values[i] : std::numeric_limits<double>::infinity();
     // The first evaluation always sets pbest (even +inf), so every particle has an attractor.
-    if (iteration_ == 0 || values[i] < pbest_value_[i]) {
-      pbest_value_[i] = values[i];
+    if (iteration_ == 0 || value < pbest_value_[i]) {
+      pbest_value_[i] = value;
       std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_,
                   pbest_.begin() + static_cast<std::ptrdiff_t>(i) * dim_);
     }
-    if (values[i] < gbest_value_ || (iteration_ == 0 && i == 0)) {
-      gbest_value_ = values[i];
+    if (value < gbest_value_ || (iteration_ == 0 && i == 0)) {
+      gbest_value_ = value;
       std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, gbest_.begin());
     }
   }
@@ -61,14 +88,17 @@ void Pso::move_swarm() {
   const double progress =
       settings_.iterations > 1 ? static_cast<double>(iteration_ - 1) / (settings_.iterations - 1) : 0.0;
   const double w = settings_.inertia + (settings_.inertia_end - settings_.inertia) * progress;
+  const bool constricted = settings_.variant == PsoVariant::constriction;
+  const double chi = constricted ? settings_.constriction_factor() : 1.0;
   for (int i = 0; i < settings_.population; ++i) {
     RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(iteration_), static_cast<std::uint64_t>(i)}));
     for (int j = 0; j < dim_; ++j) {
       const double lo = bounds_.lower[j], hi = bounds_.upper[j];
       const double vmax = settings_.vmax_fraction * (hi - lo);
       const double r1 = rng.uniform(), r2 = rng.uniform();
-      double vel = w * v(i, j) + settings_.cognitive * r1 * (pbest(i, j) - x(i, j)) +
-                   settings_.social * r2 * (gbest_[j] - x(i, j));
+      const double cognitive = settings_.cognitive * r1 * (pbest(i, j) - x(i, j));
+      const double social = settings_.social * r2 * (gbest_[j] - x(i, j));
+      double vel = constricted ? chi * (v(i, j) + cognitive + social) : w * v(i, j) + cognitive + social;
       vel = std::clamp(vel, -vmax, vmax);
       double pos = x(i, j) + vel;
       if (pos < lo || pos > hi) {

@@ -1,0 +1,132 @@
+#pragma once
+// Candidate-lane kernels (DESIGN.md, "Performance principles"): the time loop is outside, the loop over
+// kLanes candidates inside and vectorized (`#pragma omp simd`); quantities shared by all lanes at a
+// sample are prepared once; metric sums live in lane arrays; no force matrix is stored.
+//
+// A model is a Law (its equations) run by a Kernel (how time advances):
+//   AlgebraicKernel<Law>  F = f(params; x, v, a) at each sample            (engine/algebraic_kernel.hpp)
+//   OdeKernel<Law>        internal states integrated between samples      (engine/ode_kernel.hpp)
+// KernelModel<Kernel> turns a kernel into a Model: evaluate_block (metric sums of up to kLanes
+// candidates) and simulate (one candidate's force) both run the same kernel, so they see the same bits.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/model.hpp"
+#include "engine/vector_math.hpp"
+
+namespace dampbench {
+
+/// Static description of a law: id, citation, force law and parameters.
+struct ModelInfo {
+  std::string id;
+  std::string citation;
+  std::string law;
+  std::vector<ParameterInfo> parameters;
+};
+
+/// Parameters of one lane block: p[j][lane].
+template <int D>
+struct LaneParams {
+  alignas(64) double p[D][kLanes];
+};
+
+/// Copies candidates [first, first + count) into a lane block; lanes past count repeat the first one.
+template <int D>
+LaneParams<D> gather_lanes(const CandidateBatch& batch, int first, int count) {
+  LaneParams<D> lanes;
+  for (int j = 0; j < D; ++j) {
+    const double* row = batch.param_row(j);
+    for (int l = 0; l < kLanes; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
+  }
+  return lanes;
+}
+
+/// One candidate in every lane (simulate).
+template <int D>
+LaneParams<D> broadcast_lanes(std::span<const double> params) {
+  LaneParams<D> lanes;
+  for (int j = 0; j < D; ++j)
+    for (int l = 0; l < kLanes; ++l) lanes.p[j][l] = params[j];
+  return lanes;
+}
+
+/// The four metric sums of a lane block, accumulated sample by sample.
+struct LaneSums {
+  alignas(64) double abs_w[kLanes] = {}, sq_w[kLanes] = {}, abs_e[kLanes] = {}, sq_e[kLanes] = {};
+
+  void add(const double* force, double measured, double w) {
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      const double e = measured - force[l];
+      const double ae = std::fabs(e);
+      abs_w[l] += w * ae;
+      sq_w[l] += w * (e * e);
+      abs_e[l] += ae;
+      sq_e[l] += e * e;
+    }
+  }
+  /// Writes the first `count` lanes; lanes flagged in `failed` get +inf sums (masked candidates).
+  void store(MetricSums* out, int count, const bool* failed = nullptr) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int l = 0; l < count; ++l)
+      out[l] = (failed && failed[l]) ? MetricSums{inf, inf, inf, inf} : MetricSums{abs_w[l], sq_w[l], abs_e[l], sq_e[l]};
+  }
+};
+
+/// A Model from a Kernel type. A Kernel has:
+///   using Law = ...;                          (Law::kParams, Law::info(), optional Law::to_paper_units)
+///   Kernel(const LaneParams<Law::kParams>&, const Signals&);
+///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
+///   const bool* failed() const;               lanes that blew up (or nullptr)
+template <class Kernel>
+class KernelModel final : public Model {
+  using Law = typename Kernel::Law;
+
+ public:
+  [[nodiscard]] std::string_view id() const override { return Law::info().id; }
+  [[nodiscard]] std::string_view citation() const override { return Law::info().citation; }
+  [[nodiscard]] std::string_view law() const override { return Law::info().law; }
+  [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
+
+  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+                      MetricSums* out) const override {
+    Kernel kernel(gather_lanes<Law::kParams>(batch, first, count), data);
+    LaneSums sums;
+    alignas(64) double f[kLanes];
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      kernel.forces(k, f);
+      sums.add(f, data.F_N[k], data.w_trapz_s[k]);
+    }
+    sums.store(out, count, kernel.failed());
+  }
+
+  [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
+    Kernel kernel(broadcast_lanes<Law::kParams>(params), data);
+    std::vector<double> force(data.size());
+    alignas(64) double f[kLanes];
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      kernel.forces(k, f);
+      force[k] = f[0];
+    }
+    if (kernel.failed() && kernel.failed()[0]) std::fill(force.begin(), force.end(), std::nan(""));
+    return force;
+  }
+
+  [[nodiscard]] std::vector<double> to_paper_units(std::span<const double> params) const override {
+    if constexpr (requires { Law::to_paper_units(params); }) return Law::to_paper_units(params);
+    else return Model::to_paper_units(params);
+  }
+
+  [[nodiscard]] std::optional<std::vector<double>> simulate_reference(std::span<const double> params,
+                                                                      const Signals& data) const override {
+    if constexpr (requires { Kernel::reference(params, data); }) return Kernel::reference(params, data);
+    else return std::nullopt;
+  }
+};
+
+}  // namespace dampbench

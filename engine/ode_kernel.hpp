@@ -1,0 +1,138 @@
+#pragma once
+// Kernel for laws with internal states (Bouc–Wen, Spencer, generalized Maxwell, voltage filter): a
+// fixed-step classical Runge–Kutta scheme (RK4) with sub-steps between samples, vectorized over candidate
+// lanes (DESIGN.md, "Performance principles"); SUNDIALS CVODE (BDF, rtol 1e-10) is the reference.
+//
+// Inputs between samples: x and v are interpolated linearly (the record is all we know); both this
+// kernel and the CVODE reference see the same piecewise-linear inputs, so their difference is the
+// integration error alone. States start at zero at the first sample (MODELS.md).
+//
+// Sub-step rule (from the record only, the same for every lane): on the interval [t_k, t_k+1] the
+// number of RK4 sub-steps is ceil(dt·max|v| / (ΔZ / Law::kSubstepsPerStroke)), at least 1: a sub-step
+// never moves the piston more than 1/kSubstepsPerStroke of the peak-to-peak stroke ΔZ. Hysteretic
+// states change over a fraction of the stroke, whatever the sampling rate, so the rule ties the step
+// to the motion rather than to the clock.
+//
+// Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
+// marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
+//
+// A Law provides:
+//   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
+//   static const ModelInfo& info();
+//   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
+//   template <class P> static void rhs(const P&, int lane, const Context&, double x, double v,
+//                                      const double* y, double* dydt);
+//   template <class P> static double force(const P&, int lane, const Context&, double x, double v, const double* y);
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine/lane_kernel.hpp"
+#include "engine/ode/cvode_integrator.hpp"
+
+namespace dampbench {
+
+/// RK4 sub-steps on the sample interval [k−1, k] by the rule above.
+inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke) {
+  const double dt = data.t_s[k] - data.t_s[k - 1];
+  if (data.displacement_ptp <= 0) return 1;
+  const double n = std::ceil(dt * data.velocity_max_abs * substeps_per_stroke / data.displacement_ptp);
+  return std::max(1, static_cast<int>(std::min(n, 1e6)));
+}
+
+template <class L>
+class OdeKernel {
+ public:
+  using Law = L;
+  static constexpr int S = Law::kStates;
+
+  OdeKernel(const LaneParams<Law::kParams>& p, const Signals& data)
+      : p_(p), data_(data), ctx_(Law::context(data)) {}
+
+  void forces(std::size_t k, double* f) {
+    if (k > 0) advance(k);
+    const double x = data_.x_m[k], v = data_.v_m_s[k];
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      double yl[S];
+      for (int j = 0; j < S; ++j) yl[j] = y_[j][l];
+      f[l] = Law::force(p_, l, ctx_, x, v, yl);
+    }
+  }
+  [[nodiscard]] const bool* failed() const { return failed_; }
+
+  /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
+  static std::vector<double> reference(std::span<const double> params, const Signals& data) {
+    const auto P = broadcast_lanes<Law::kParams>(params);
+    const auto ctx = Law::context(data);
+    std::size_t interval = 0;  // last interval used; times only move forward within one CVODE call
+    auto input = [&](double t, double& x, double& v) {
+      while (interval + 2 < data.size() && t > data.t_s[interval + 1]) ++interval;
+      while (interval > 0 && t < data.t_s[interval]) --interval;
+      const double t0 = data.t_s[interval], t1 = data.t_s[interval + 1];
+      const double th = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+      x = data.x_m[interval] + th * (data.x_m[interval + 1] - data.x_m[interval]);
+      v = data.v_m_s[interval] + th * (data.v_m_s[interval + 1] - data.v_m_s[interval]);
+    };
+    const auto states = integrate_cvode(
+        [&](double t, std::span<const double> y, std::span<double> dydt) {
+          double x, v;
+          input(t, x, v);
+          Law::rhs(P, 0, ctx, x, v, y.data(), dydt.data());
+        },
+        std::vector<double>(S, 0.0), data.t_s, {1e-10, 1e-12, 1000000});
+    std::vector<double> force(data.size());
+    for (std::size_t k = 0; k < data.size(); ++k)
+      force[k] = Law::force(P, 0, ctx, data.x_m[k], data.v_m_s[k], states[k].data());
+    return force;
+  }
+
+ private:
+  /// Integrates every lane from sample k−1 to sample k.
+  void advance(std::size_t k) {
+    const int n = ode_substeps(data_, k, Law::kSubstepsPerStroke);
+    const double h = (data_.t_s[k] - data_.t_s[k - 1]) / n;
+    const double x0 = data_.x_m[k - 1], dx = data_.x_m[k] - x0;
+    const double v0 = data_.v_m_s[k - 1], dv = data_.v_m_s[k] - v0;
+    for (int i = 0; i < n; ++i) {
+      const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
+      step(h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv);
+    }
+    constexpr double kBlowUp = 1e30;
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      bool bad = false;
+      for (int j = 0; j < S; ++j) bad = bad || !(std::fabs(y_[j][l]) < kBlowUp);
+      failed_[l] = failed_[l] || bad;
+      for (int j = 0; j < S; ++j) y_[j][l] = bad ? 0.0 : y_[j][l];
+    }
+  }
+
+  /// One RK4 step of size h with inputs at the step's start (xa, va), middle (xm, vm) and end (xb, vb).
+  void step(double h, double xa, double va, double xm, double vm, double xb, double vb) {
+#pragma omp simd
+    for (int l = 0; l < kLanes; ++l) {
+      double y[S], k1[S], k2[S], k3[S], k4[S], t[S];
+      for (int j = 0; j < S; ++j) y[j] = y_[j][l];
+      Law::rhs(p_, l, ctx_, xa, va, y, k1);
+      for (int j = 0; j < S; ++j) t[j] = y[j] + 0.5 * h * k1[j];
+      Law::rhs(p_, l, ctx_, xm, vm, t, k2);
+      for (int j = 0; j < S; ++j) t[j] = y[j] + 0.5 * h * k2[j];
+      Law::rhs(p_, l, ctx_, xm, vm, t, k3);
+      for (int j = 0; j < S; ++j) t[j] = y[j] + h * k3[j];
+      Law::rhs(p_, l, ctx_, xb, vb, t, k4);
+      for (int j = 0; j < S; ++j) y_[j][l] = y[j] + (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+    }
+  }
+
+  LaneParams<Law::kParams> p_;
+  const Signals& data_;
+  typename Law::Context ctx_;
+  alignas(64) double y_[S][kLanes] = {};
+  bool failed_[kLanes] = {};
+};
+
+template <class Law>
+using OdeModel = KernelModel<OdeKernel<Law>>;
+
+}  // namespace dampbench

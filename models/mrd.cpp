@@ -1,0 +1,291 @@
+// Magnetorheological damper family (MODELS.md §3–§4):
+//   mrd.magic_formula    mfm eq. 3 (nesting of eq. 2)                         algebraic
+//   mrd.bingham          Bingham plastic, cited by the MR papers              algebraic
+//   mrd.bouc_wen         classic Bouc–Wen, cited by all MR papers             ODE, 1 state
+//   mrd.spencer          mfm eq. 1, Spencer et al. 1997 phenomenological      ODE, 2 states
+//   mrd.spencer_voltage  fdsp eqs. 1–7 (one end fixed)                         ODE, 3 states
+//   mrd.spencer_freq     fdsp eqs. 1–7 with a_c0(ω), a_c1(ω) of eqs. 13–15     ODE, 3 states
+// SI units throughout: x [m], v [m/s], F [N]. Hysteretic states z (Bouc–Wen, Spencer) and p (fdsp) are
+// in metres. z|z|^(n−1) is written sgn(z)|z|^n (MODELS.md §6: no 0·∞ at z = 0 when n < 1).
+#include <cmath>
+
+#include "engine/algebraic_kernel.hpp"
+#include "engine/ode_kernel.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench::mrd {
+namespace {
+
+struct XV {
+  double x, v, sgn_v;
+};
+XV prepare_xv(const Signals& s, std::size_t k) { return {s.x_m[k], s.v_m_s[k], sign(s.v_m_s[k])}; }
+
+/// |z|^n for n ≥ 0 (|0|^n = 0 for n > 0, 1 for n = 0); one vector exp and log per lane.
+inline double abs_pow(double z, double n) { return std::exp(n * log_abs_clamped(z)); }
+
+/// Bouc–Wen evolution shared by Bouc–Wen, Spencer and fdsp: dz/dt for relative velocity u.
+inline double bouc_wen_rate(double z, double u, double A, double beta, double gamma, double n) {
+  const double zn = abs_pow(z, n);
+  return -gamma * std::fabs(u) * sign(z) * zn - beta * u * zn + A * u;
+}
+
+/// mfm eq. 3 with the nesting of eq. 2: u = v + A|x|; F = D·sin(C·atan(B(1−E)u + E·atan(B·u))) + k_c·v + k·x + f0.
+struct MagicFormula {
+  static constexpr int kParams = 8;
+  using Sample = XV;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"mrd.magic_formula", "mfm eq. 3 (nesting of eq. 2)",
+                             "u = v + A|x|; F = D sin(C atan(B(1-E)u + E atan(B u))) + k_c v + k x + f0",
+                             {{"A", "1/s", 0.0, 0.1, "1/s"},
+                              {"B", "s/m", 0.0, 1000.0, "s/m"},
+                              {"C", "1", 0.0, 3.0, "1"},
+                              {"D", "N", 0.0, 5000.0, "N"},
+                              {"E", "1", -5.0, 1.0, "1"},
+                              {"k_c", "N*s/m", 0.0, 20000.0, "N*s/m"},
+                              {"k", "N/m", 0.0, 20000.0, "N/m"},
+                              {"f0", "N", -500.0, 500.0, "N"}}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_xv(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    const double A = p.p[0][l], B = p.p[1][l], C = p.p[2][l], D = p.p[3][l], E = p.p[4][l];
+    const double u = s.v + A * std::fabs(s.x);
+    const double Bu = B * u;
+    return D * std::sin(C * std::atan(Bu * (1.0 - E) + E * std::atan(Bu))) + p.p[5][l] * s.v + p.p[6][l] * s.x +
+           p.p[7][l];
+  }
+};
+
+/// Bingham plastic: F = f_c·sgn(v) + c0·v + f0.
+struct Bingham {
+  static constexpr int kParams = 3;
+  using Sample = XV;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"mrd.bingham", "Bingham model (Stanway et al. 1987), cited by mfm and fdsp",
+                             "F = f_c sgn(v) + c0 v + f0",
+                             {{"f_c", "N", 0.0, 5000.0, "N"}, {"c0", "N*s/m", 0.0, 20000.0, "N*s/m"}, {"f0", "N", -500.0, 500.0, "N"}}};
+    return i;
+  }
+  static Sample prepare(const Signals& s, std::size_t k) { return prepare_xv(s, k); }
+  template <class P>
+  static double force(const P& p, int l, const Sample& s) {
+    return p.p[0][l] * s.sgn_v + p.p[1][l] * s.v + p.p[2][l];
+  }
+};
+
+/// No per-record constants.
+struct NoContext {};
+
+/// Classic Bouc–Wen (Wen 1976): ż = −γ|v|·sgn(z)|z|^n − β·v·|z|^n + A·v; F = c0·v + k0(x − x0) + α·z.
+struct BoucWen {
+  static constexpr int kParams = 8, kStates = 1;
+  static constexpr double kSubstepsPerStroke = 600;
+  using Context = NoContext;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"mrd.bouc_wen", "Bouc-Wen model (Wen 1976), as cited by mfm and fdsp",
+                             "dz/dt = -gamma|v| sgn(z)|z|^n - beta v |z|^n + A v; F = c0 v + k0 (x - x0) + alpha z",
+                             {{"c0", "N*s/m", 0.0, 20000.0, "N*s/m"},
+                              {"k0", "N/m", 0.0, 20000.0, "N/m"},
+                              {"x0", "m", -0.05, 0.05, "m"},
+                              {"alpha", "N/m", 0.0, 1e6, "N/m"},
+                              {"beta", "1/m^n", 0.0, 1e5, "1/m^n"},
+                              {"gamma", "1/m^n", -1e5, 1e5, "1/m^n"},
+                              {"A", "1", 0.0, 100.0, "1"},
+                              {"n", "1", 0.5, 3.0, "1"}}};
+    return i;
+  }
+  static Context context(const Signals&) { return {}; }
+  template <class P>
+  static void rhs(const P& p, int l, const Context&, double, double v, const double* y, double* dy) {
+    dy[0] = bouc_wen_rate(y[0], v, p.p[6][l], p.p[4][l], p.p[5][l], p.p[7][l]);
+  }
+  template <class P>
+  static double force(const P& p, int l, const Context&, double x, double v, const double* y) {
+    return p.p[0][l] * v + p.p[1][l] * (x - p.p[2][l]) + p.p[3][l] * y[0];
+  }
+};
+
+/// mfm eq. 1 (Spencer et al. 1997), with c0·ẋ for the printed c0·x and the factor z restored:
+///   ẏ = (α z + c0 v + k0 (x − y)) / (c0 + c1)
+///   ż = −γ|v − ẏ| sgn(z)|z|^n − β (v − ẏ)|z|^n + A (v − ẏ)
+///   F = c1 ẏ + k1 (x − x0)
+struct Spencer {
+  static constexpr int kParams = 10, kStates = 2;  // states: y, z
+  static constexpr double kSubstepsPerStroke = 600;
+  using Context = NoContext;
+  static const ModelInfo& info() {
+    static const ModelInfo i{"mrd.spencer", "mfm eq. 1 (Spencer et al. 1997 phenomenological model)",
+                             "dy/dt = (alpha z + c0 v + k0 (x - y))/(c0 + c1); "
+                             "dz/dt = -gamma|v - dy/dt| sgn(z)|z|^n - beta (v - dy/dt)|z|^n + A (v - dy/dt); "
+                             "F = c1 dy/dt + k1 (x - x0)",
+                             {{"c0", "N*s/m", 0.0, 5e4, "N*s/m"},
+                              {"c1", "N*s/m", 0.0, 1e6, "N*s/m"},
+                              {"k0", "N/m", 0.0, 1e4, "N/m"},
+                              {"k1", "N/m", 0.0, 5e3, "N/m"},
+                              {"x0", "m", -0.1, 0.1, "m"},
+                              {"alpha", "N/m", 0.0, 1e5, "N/m"},
+                              {"beta", "1/m^n", 0.0, 1e7, "1/m^n"},
+                              {"gamma", "1/m^n", 0.0, 1e7, "1/m^n"},
+                              {"A", "1", 0.0, 1e6, "1"},
+                              {"n", "1", 0.5, 3.0, "1"}}};
+    return i;
+  }
+  static Context context(const Signals&) { return {}; }
+  template <class P>
+  static double ydot(const P& p, int l, double x, double v, const double* s) {
+    return (p.p[5][l] * s[1] + p.p[0][l] * v + p.p[2][l] * (x - s[0])) / (p.p[0][l] + p.p[1][l]);
+  }
+  template <class P>
+  static void rhs(const P& p, int l, const Context&, double x, double v, const double* s, double* ds) {
+    ds[0] = ydot(p, l, x, v, s);
+    ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l], p.p[9][l]);
+  }
+  template <class P>
+  static double force(const P& p, int l, const Context&, double x, double v, const double* s) {
+    return p.p[1][l] * ydot(p, l, x, v, s) + p.p[3][l] * (x - p.p[4][l]);
+  }
+};
+
+/// fdsp eqs. 1–7 with one end fixed: states q, p (hysteretic, m) and u (filtered voltage, V).
+///   u̇ = −η(u − V); C1 = a_c1 + b_c1 u; C0 = a_c0 + b_c0 u; α = a_α + b_α u
+///   q̇ = (α p + C0 v + K0 (x − q)) / (C0 + C1)
+///   ṗ = −γ|v − q̇| sgn(p)|p|^n − β (v − q̇)|p|^n + A (v − q̇)
+///   F = C1 q̇ + K1 (x − Z0)
+/// The applied voltage V comes from the record's operating variables (0 when absent).
+/// `Coefficients` supplies a_c0 and a_c1: parameters (spencer_voltage) or laws in ω (spencer_freq).
+struct FdspContext {
+  double V = 0;  ///< applied voltage [V]
+  double w = 0;  ///< fdsp eq. 15: ω = ΔŻ/(π ΔZ) [Hz]
+};
+FdspContext fdsp_context(const Signals& s) {
+  const auto it = s.operating.find("V");
+  return {it == s.operating.end() ? 0.0 : it->second, s.excitation_freq_hz};
+}
+
+/// The fdsp equations; `Layout` names the parameter slots and supplies a_c0 and a_c1: parameters
+/// (spencer_voltage) or laws in ω (spencer_freq).
+template <class Layout>
+struct FdspLaw {
+  static constexpr int kParams = Layout::kParams;
+  static constexpr int kStates = 3;  // q, p, u
+  static constexpr double kSubstepsPerStroke = 600;
+  using Context = FdspContext;
+  static const ModelInfo& info() { return Layout::info(); }
+  static Context context(const Signals& s) { return fdsp_context(s); }
+
+  template <class P>
+  static double qdot(const P& p, int l, const Context& c, double x, double v, const double* s, double& C1) {
+    using L = Layout;
+    const double u = s[2];
+    const double C0 = L::a_c0(p, l, c) + p.p[L::b_c0][l] * u;
+    C1 = L::a_c1(p, l, c) + p.p[L::b_c1][l] * u;
+    const double alpha = p.p[L::a_alpha][l] + p.p[L::b_alpha][l] * u;
+    return (alpha * s[1] + C0 * v + p.p[L::K0][l] * (x - s[0])) / (C0 + C1);
+  }
+  template <class P>
+  static void rhs(const P& p, int l, const Context& c, double x, double v, const double* s, double* ds) {
+    using L = Layout;
+    double C1;
+    ds[0] = qdot(p, l, c, x, v, s, C1);
+    ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[L::A][l], p.p[L::beta][l], p.p[L::gamma][l], p.p[L::n][l]);
+    ds[2] = -p.p[L::eta][l] * (s[2] - c.V);
+  }
+  template <class P>
+  static double force(const P& p, int l, const Context& c, double x, double v, const double* s) {
+    double C1;
+    const double q = qdot(p, l, c, x, v, s, C1);
+    return C1 * q + p.p[Layout::K1][l] * (x - p.p[Layout::Z0][l]);
+  }
+};
+
+/// Bounds: fdsp Table 1 values ±50 % (the paper's search box); n in [1, 3] around the paper's fixed 2.
+ParameterInfo fdsp_param(const char* name, const char* unit, double centre) {
+  return {name, unit, 0.5 * centre, 1.5 * centre, unit};
+}
+
+/// spencer_voltage: K0, K1, a_c0, a_c1, b_c0, b_c1, a_alpha, b_alpha, A, beta, gamma, n, eta, Z0 (MODELS.md §4).
+struct VoltageLayout {
+  static constexpr int kParams = 14;
+  static constexpr int K0 = 0, K1 = 1, ac0 = 2, ac1 = 3, b_c0 = 4, b_c1 = 5, a_alpha = 6, b_alpha = 7, A = 8,
+                       beta = 9, gamma = 10, n = 11, eta = 12, Z0 = 13;
+  template <class P>
+  static double a_c0(const P& p, int l, const FdspContext&) { return p.p[ac0][l]; }
+  template <class P>
+  static double a_c1(const P& p, int l, const FdspContext&) { return p.p[ac1][l]; }
+  static const ModelInfo& info() {
+    static const ModelInfo i{
+        "mrd.spencer_voltage", "fdsp eqs. 1-7 (Spencer model with voltage filter, one end fixed)",
+        "du/dt = -eta (u - V); dq/dt = (alpha p + C0 v + K0 (x - q))/(C0 + C1); "
+        "dp/dt = -gamma|v - dq/dt| sgn(p)|p|^n - beta (v - dq/dt)|p|^n + A (v - dq/dt); "
+        "F = C1 dq/dt + K1 (x - Z0); C_i = a_ci + b_ci u, alpha = a_alpha + b_alpha u",
+        {fdsp_param("K0", "N/m", 3610), fdsp_param("K1", "N/m", 840), fdsp_param("a_c0", "N*s/m", 784),
+         fdsp_param("a_c1", "N*s/m", 14649), fdsp_param("b_c0", "N*s/(V*m)", 1803),
+         fdsp_param("b_c1", "N*s/(V*m)", 34622), fdsp_param("a_alpha", "N/m", 12441),
+         fdsp_param("b_alpha", "N/(V*m)", 38430), fdsp_param("A", "1", 58), fdsp_param("beta", "1/m^n", 205902),
+         fdsp_param("gamma", "1/m^n", 136320), {"n", "1", 1.0, 3.0, "1"}, fdsp_param("eta", "1/s", 190),
+         fdsp_param("Z0", "m", 0.0245)}};
+    return i;
+  }
+};
+
+/// spencer_freq: spencer_voltage without a_c0 and a_c1, then the coefficients of fdsp eqs. 13–14,
+///   a_c0(ω) = ac0_k·ω^ac0_p + ac0_c;  a_c1(ω) = ac1_a1·exp(−((ω − ac1_w1)/ac1_s1)²) + ac1_a2·exp(−((ω − ac1_w2)/ac1_s2)²)
+/// (the printed exponents lack the minus sign: MODELS.md §4), ω from the record by eq. 15.
+struct FrequencyLayout {
+  static constexpr int kParams = 21;
+  static constexpr int K0 = 0, K1 = 1, b_c0 = 2, b_c1 = 3, a_alpha = 4, b_alpha = 5, A = 6, beta = 7, gamma = 8,
+                       n = 9, eta = 10, Z0 = 11, ac0_k = 12, ac0_p = 13, ac0_c = 14, ac1_a1 = 15, ac1_w1 = 16,
+                       ac1_s1 = 17, ac1_a2 = 18, ac1_w2 = 19, ac1_s2 = 20;
+  template <class P>
+  static double a_c0(const P& p, int l, const FdspContext& c) {
+    return p.p[ac0_k][l] * std::exp(p.p[ac0_p][l] * std::log(c.w)) + p.p[ac0_c][l];
+  }
+  template <class P>
+  static double a_c1(const P& p, int l, const FdspContext& c) {
+    const double g1 = (c.w - p.p[ac1_w1][l]) / p.p[ac1_s1][l], g2 = (c.w - p.p[ac1_w2][l]) / p.p[ac1_s2][l];
+    return p.p[ac1_a1][l] * std::exp(-g1 * g1) + p.p[ac1_a2][l] * std::exp(-g2 * g2);
+  }
+  static const ModelInfo& info() {
+    static const ModelInfo i = [] {
+      ModelInfo m = VoltageLayout::info();
+      m.id = "mrd.spencer_freq";
+      m.citation = "fdsp eqs. 1-7 with a_c0, a_c1 from eqs. 13-15";
+      m.law = "mrd.spencer_voltage with a_c0 = ac0_k w^ac0_p + ac0_c, "
+              "a_c1 = ac1_a1 exp(-((w - ac1_w1)/ac1_s1)^2) + ac1_a2 exp(-((w - ac1_w2)/ac1_s2)^2), "
+              "w = max|v|/(pi (max x - min x)) (fdsp eq. 15)";
+      m.parameters.erase(m.parameters.begin() + 2, m.parameters.begin() + 4);
+      // Bounds around the published laws (eqs. 13-14).
+      m.parameters.insert(m.parameters.end(),
+                          {{"ac0_k", "N*s/m", 700, 2100, "N*s/m"},   {"ac0_p", "1", -0.3, 0.0, "1"},
+                           {"ac0_c", "N*s/m", -100, 100, "N*s/m"},   {"ac1_a1", "N*s/m", 0, 15000, "N*s/m"},
+                           {"ac1_w1", "Hz", 2, 6, "Hz"},             {"ac1_s1", "Hz", 0.5, 3, "Hz"},
+                           {"ac1_a2", "N*s/m", 9000, 28000, "N*s/m"}, {"ac1_w2", "Hz", 0, 4, "Hz"},
+                           {"ac1_s2", "Hz", 1, 6, "Hz"}});
+      return m;
+    }();
+    return i;
+  }
+};
+
+using SpencerVoltage = FdspLaw<VoltageLayout>;
+using SpencerFreq = FdspLaw<FrequencyLayout>;
+
+}  // namespace
+}  // namespace dampbench::mrd
+
+namespace dampbench {
+
+std::vector<std::unique_ptr<Model>> make_mrd_models() {
+  std::vector<std::unique_ptr<Model>> models;
+  models.push_back(std::make_unique<AlgebraicModel<mrd::MagicFormula>>());
+  models.push_back(std::make_unique<OdeModel<mrd::Spencer>>());
+  models.push_back(std::make_unique<OdeModel<mrd::BoucWen>>());
+  models.push_back(std::make_unique<AlgebraicModel<mrd::Bingham>>());
+  models.push_back(std::make_unique<OdeModel<mrd::SpencerVoltage>>());
+  models.push_back(std::make_unique<OdeModel<mrd::SpencerFreq>>());
+  return models;
+}
+
+}  // namespace dampbench

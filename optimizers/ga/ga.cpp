@@ -1,0 +1,36 @@
+#include "optimizers/ga/ga.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/error.hpp"
+
+namespace dampbench {
+
+GaSettings GaSettings::lssvm() {
+  GaSettings s;
+  s.pc = 0.6;
+  s.pm = 0.03;
+  s.population = 50;
+  s.generations = 500;
+  return s;
+}
+
+void GaSettings::validate() const {
+  GeneticSettings::validate("ga");
+  if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga: pc must be in [0, 1], got {}", pc));
+  if (!(pm >= 0 && pm <= 1)) throw InputError(fmt::format("ga: pm must be in [0, 1], got {}", pm));
+}
+
+namespace {
+const GaSettings& validated(const GaSettings& s) {
+  s.validate();
+  return s;
+}
+}  // namespace
+
+Ga::Ga(const GaSettings& settings, const Bounds& bounds, std::uint64_t run_key)
+    : GeneticAlgorithm(validated(settings), bounds, run_key), pc_(settings.pc), pm_(settings.pm) {}
+
+GeneticAlgorithm::PairRates Ga::rates(double, double, const PopulationStats&) const { return {pc_, {pm_, pm_}}; }
+
+}  // namespace dampbench

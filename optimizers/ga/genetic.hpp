@@ -1,0 +1,117 @@
+#pragma once
+// The generational real-coded GA that `ga` (optimizers/ga/ga.hpp) and `aga` (optimizers/ga/aga.hpp) share:
+// initialization, tournament selection, SBX crossover, polynomial mutation, elitist replacement and the
+// ask/tell bookkeeping. The two algorithms differ only in how each pair's crossover probability and each
+// child's per-gene mutation probability are chosen (GeneticAlgorithm::rates).
+//
+// One generation, for pair k = 0 … ⌈N/2⌉ − 1 (children 2k and 2k + 1; an odd N drops the last second child):
+//   1. two parents by tournament selection (`tournament` entrants drawn uniformly with replacement; the
+//      lowest value wins, ties to the lowest index; Goldberg & Deb 1991);
+//   2. with probability pc, simulated binary crossover (SBX, Deb & Agrawal 1995) in its bounded form
+//      (Deb's NSGA-II reference code): each variable is crossed with probability 1/2, the spread factor
+//      is drawn so that children never leave [lower, upper], and the two children are swapped with
+//      probability 1/2; otherwise the children are copies of the parents;
+//   3. each gene of child c mutated with probability pm[c] by bounded polynomial mutation
+//      (Deb & Goyal 1996; Deb 2001, §4.2), whose perturbation also never leaves [lower, upper].
+//   4. after the offspring are evaluated, elitism: the `elites` best parents replace the `elites` worst
+//      offspring, each only where the parent is strictly better (so the best value never gets worse).
+// Bounds: the initial population is uniform in the box and both operators keep children inside it, so
+// no repair is needed; a parameter with lower == upper stays fixed.
+// Cost: every generation, including generation 0 (the initial population), evaluates exactly N
+// candidates, so a run costs N × generations evaluations; elites are carried over, not re-evaluated.
+// Failed candidates (+inf, NaN or −inf; all read as +inf) lose every tournament and elitism comparison
+// against a finite one.
+// Random numbers: initial member i from stream (run_key, 0, i); in generation g ≥ 1 pair k selects from
+// (run_key, g, k, "select"), crosses over from (run_key, g, k, "crossover"), and child c mutates from
+// (run_key, g, c, "mutate"). Nothing depends on evaluation order or batch layout.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "engine/optimizer.hpp"
+#include "engine/random.hpp"
+
+namespace dampbench {
+
+/// Settings shared by the GAs. Validated by validate(algorithm), whose messages start with `algorithm`.
+struct GeneticSettings {
+  int population = 50;    ///< N, candidates per generation (as the fvd paper's PSO; the lssvm preset also uses 50)
+  int generations = 100;  ///< evaluated generations including the initial one; budget N × generations
+  int tournament = 2;     ///< tournament size: binary tournament (Goldberg & Deb 1991)
+  int elites = 1;         ///< best parents kept over the worst offspring each generation (De Jong 1975)
+  double eta_c = 15;      ///< SBX distribution index (Deb & Agrawal 1995 use 2–5 for broad, Deb's
+                          ///< later codes 10–20 for local search; 15 as in pymoo's GA default)
+  double eta_m = 20;      ///< polynomial mutation distribution index (Deb & Goyal 1996; NSGA-II default)
+
+  /// Throws InputError: population < 4, generations < 1, tournament outside [2, population], elites
+  /// outside [0, population / 2], eta_c or eta_m negative or not finite.
+  void validate(std::string_view algorithm) const;
+};
+
+namespace genetic {
+
+/// Winner of one tournament over `values` (lowest value, ties to the lowest index); entrants uniform with
+/// replacement. Values must be NaN-free (+inf allowed).
+int tournament(std::span<const double> values, int size, RandomStream& rng);
+
+/// Bounded SBX on one pair of parents, writing both children (Deb & Agrawal 1995; NSGA-II code).
+void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
+         std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
+         double eta_c, RandomStream& rng);
+
+/// Bounded polynomial mutation of one gene in [lower, upper] (Deb & Goyal 1996; Deb 2001).
+double polynomial_mutation(double x, double lower, double upper, double eta_m, RandomStream& rng);
+
+}  // namespace genetic
+
+/// The generational GA; subclasses choose the rates.
+class GeneticAlgorithm : public Optimizer {
+ public:
+  [[nodiscard]] int batch_size() const override { return settings_.population; }
+  void ask(CandidateBatch& batch, int first) override;
+  void tell(std::span<const double> values) override;
+  [[nodiscard]] bool finished() const override { return generation_ >= settings_.generations; }
+  [[nodiscard]] std::span<const double> best_position() const override { return best_position_; }
+  [[nodiscard]] double best_value() const override { return best_value_; }
+
+ protected:
+  /// Objective values of the current population (failed candidates as +inf).
+  struct PopulationStats {
+    double best;          ///< lowest value (+inf if every member failed)
+    double mean_finite;   ///< mean of the finite values (+inf if there are none)
+  };
+  /// Probabilities used for one pair: crossover pc and per-gene mutation pm of each child.
+  struct PairRates {
+    double pc;
+    std::array<double, 2> pm;
+  };
+
+  GeneticAlgorithm(const GeneticSettings& settings, const Bounds& bounds, std::uint64_t run_key);
+  /// Rates for the pair of parents with these values (child c descends from parent c).
+  [[nodiscard]] virtual PairRates rates(double value_a, double value_b, const PopulationStats& stats) const = 0;
+
+ private:
+  void breed();
+  std::span<double> member(std::vector<double>& pool, int i) {
+    return {pool.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_)};
+  }
+
+  GeneticSettings settings_;
+  Bounds bounds_;
+  std::uint64_t run_key_;
+  int dim_;
+  int generation_ = 0;  ///< generations told so far
+  std::vector<double> population_, values_;  ///< parents, row-major N × dim, and their values
+  std::vector<double> offspring_;            ///< the generation being evaluated (generation ≥ 1)
+  std::vector<double> best_position_;
+  double best_value_;
+};
+
+/// A told value as the GAs read it: failures (NaN, ±inf) become +inf.
+inline double failure_as_inf(double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); }
+
+}  // namespace dampbench
