@@ -103,7 +103,7 @@ TEST(Cli, BadInputIsReportedClearly) {
                "--bounds C: lower bound 5 is greater than upper bound 1");
   expect_error("fit --model fvd.linear_viscous --bounds C=abc:1" + data, "--bounds C lower bound");
   expect_error("fit --model fvd.linear_viscous --metric r2" + data, "unknown metric 'r2'");
-  expect_error("fit --model fvd.linear_viscous --optimizer sa" + data, "unknown optimizer 'sa' (known: pso)");
+  expect_error("fit --model fvd.linear_viscous --optimizer sa" + data, "unknown optimizer 'sa' (known: pso");
   expect_error("fit --model fvd.linear_viscous --pop 1" + data, "pso: population must be at least 2, got 1");
   expect_error("fit --model fvd.linear_viscous --runs 0" + data, "runs must be at least 1, got 0");
   expect_error("fit --model fvd.linear_viscous --format xml" + data, "--format: expected md or json, got 'xml'");
