@@ -20,9 +20,10 @@
 //   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
 //   static const ModelInfo& info();
 //   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
-//   template <class P> static void rhs(const P&, int lane, const Context&, double x, double v,
-//                                      const double* y, double* dydt);
-//   template <class P> static double force(const P&, int lane, const Context&, double x, double v, const double* y);
+//   template <class P, class Y, class DY>
+//   static void rhs(const P&, int lane, const Context&, double x, double v, const Y& y, DY&& dydt);
+//   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
+// where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -40,6 +41,13 @@ inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_
   return std::max(1, static_cast<int>(std::min(n, 1e6)));
 }
 
+/// State j of one lane inside a [states][kLanes] block: y[j] is block[j][lane]. Indexing through it keeps
+/// the lane loop free of private arrays, which GCC's vectorizer cannot handle in `omp simd` loops.
+struct LaneState {
+  double* base;
+  double& operator[](int j) const { return base[j * kLanes]; }
+};
+
 template <class L>
 class OdeKernel {
  public:
@@ -53,13 +61,9 @@ class OdeKernel {
     if (k > 0) advance(k);
     const double x = data_.x_m[k], v = data_.v_m_s[k];
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) {
-      double yl[S];
-      for (int j = 0; j < S; ++j) yl[j] = y_[j][l];
-      f[l] = Law::force(p_, l, ctx_, x, v, yl);
-    }
+    for (int l = 0; l < kLanes; ++l) f[l] = Law::force(p_, l, ctx_, x, v, LaneState{&y_[0][l]});
   }
-  [[nodiscard]] const bool* failed() const { return failed_; }
+  [[nodiscard]] const bool* failed() const { return failed_flags_; }
 
   /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
   static std::vector<double> reference(std::span<const double> params, const Signals& data) {
@@ -101,19 +105,19 @@ class OdeKernel {
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
     for (int l = 0; l < kLanes; ++l) {
-      bool bad = false;
-      for (int j = 0; j < S; ++j) bad = bad || !(std::fabs(y_[j][l]) < kBlowUp);
-      failed_[l] = failed_[l] || bad;
-      for (int j = 0; j < S; ++j) y_[j][l] = bad ? 0.0 : y_[j][l];
+      double bad = 0.0;  // counts non-finite or huge states; doubles (not bools) keep the loop vectorized
+      for (int j = 0; j < S; ++j) bad += static_cast<double>(!(std::fabs(y_[j][l]) < kBlowUp));
+      failed_[l] += bad;
+      for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
     }
+    for (int l = 0; l < kLanes; ++l) failed_flags_[l] = failed_[l] > 0.0;
   }
 
   /// One RK4 step of size h with inputs at the step's start (xa, va), middle (xm, vm) and end (xb, vb).
   void step(double h, double xa, double va, double xm, double vm, double xb, double vb) {
 #pragma omp simd
     for (int l = 0; l < kLanes; ++l) {
-      double y[S], k1[S], k2[S], k3[S], k4[S], t[S];
-      for (int j = 0; j < S; ++j) y[j] = y_[j][l];
+      const LaneState y{&y_[0][l]}, t{&t_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
       Law::rhs(p_, l, ctx_, xa, va, y, k1);
       for (int j = 0; j < S; ++j) t[j] = y[j] + 0.5 * h * k1[j];
       Law::rhs(p_, l, ctx_, xm, vm, t, k2);
@@ -121,7 +125,7 @@ class OdeKernel {
       Law::rhs(p_, l, ctx_, xm, vm, t, k3);
       for (int j = 0; j < S; ++j) t[j] = y[j] + h * k3[j];
       Law::rhs(p_, l, ctx_, xb, vb, t, k4);
-      for (int j = 0; j < S; ++j) y_[j][l] = y[j] + (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+      for (int j = 0; j < S; ++j) y[j] = y[j] + (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
     }
   }
 
@@ -129,7 +133,10 @@ class OdeKernel {
   const Signals& data_;
   typename Law::Context ctx_;
   alignas(64) double y_[S][kLanes] = {};
-  bool failed_[kLanes] = {};
+  alignas(64) double t_[S][kLanes] = {};      // RK4 stage input
+  alignas(64) double k_[4][S][kLanes] = {};   // RK4 stage slopes
+  alignas(64) double failed_[kLanes] = {};  // > 0 once a lane has blown up
+  bool failed_flags_[kLanes] = {};
 };
 
 template <class Law>

@@ -18,8 +18,9 @@ __attribute__((simd("notinbranch"))) double atan(double) noexcept;
 
 namespace dampbench {
 
-/// sgn(v) with sgn(0) = 0 (MODELS.md notation).
-inline double sign(double v) { return static_cast<double>((v > 0.0) - (v < 0.0)); }
+/// sgn(v) with sgn(0) = 0 (MODELS.md notation). Written with bool→double conversions: the int
+/// difference (v > 0) − (v < 0) stops GCC from vectorizing a lane loop ("no vectype").
+inline double sign(double v) { return static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0); }
 
 /// log|v| clamped so that |v|^α = exp(α·log|v|) stays finite for v = 0 and any α ≥ 0; the caller
 /// multiplies by sgn(v) = 0 there, so the clamp never shows in a result.

@@ -120,14 +120,14 @@ struct Maxwell {
     return i;
   }
   static Context context(const Signals&) { return {}; }
-  template <class P>
-  static void rhs(const P& p, int l, const Context&, double, double v, const double* y, double* dy) {
+  template <class P, class Y, class DY>
+  static void rhs(const P& p, int l, const Context&, double, double v, const Y& y, DY&& dy) {
     // (|T|/c_r)^(1/α) = exp((log k_r + β log|θ_k| − log c_r)/α); sgn(T) = sgn(θ_k) for k_r > 0.
     const double log_ratio = std::log(p.p[1][l]) + p.p[3][l] * log_abs_clamped(y[0]) - std::log(p.p[0][l]);
     dy[0] = v - sign(y[0]) * std::exp(log_ratio / p.p[2][l]);
   }
-  template <class P>
-  static double force(const P& p, int l, const Context&, double, double, const double* y) {
+  template <class P, class Y>
+  static double force(const P& p, int l, const Context&, double, double, const Y& y) {
     return p.p[1][l] * sign(y[0]) * std::exp(p.p[3][l] * log_abs_clamped(y[0]));
   }
 };

@@ -97,12 +97,12 @@ struct BoucWen {
     return i;
   }
   static Context context(const Signals&) { return {}; }
-  template <class P>
-  static void rhs(const P& p, int l, const Context&, double, double v, const double* y, double* dy) {
+  template <class P, class Y, class DY>
+  static void rhs(const P& p, int l, const Context&, double, double v, const Y& y, DY&& dy) {
     dy[0] = bouc_wen_rate(y[0], v, p.p[6][l], p.p[4][l], p.p[5][l], p.p[7][l]);
   }
-  template <class P>
-  static double force(const P& p, int l, const Context&, double x, double v, const double* y) {
+  template <class P, class Y>
+  static double force(const P& p, int l, const Context&, double x, double v, const Y& y) {
     return p.p[0][l] * v + p.p[1][l] * (x - p.p[2][l]) + p.p[3][l] * y[0];
   }
 };
@@ -133,17 +133,17 @@ struct Spencer {
     return i;
   }
   static Context context(const Signals&) { return {}; }
-  template <class P>
-  static double ydot(const P& p, int l, double x, double v, const double* s) {
+  template <class P, class Y>
+  static double ydot(const P& p, int l, double x, double v, const Y& s) {
     return (p.p[5][l] * s[1] + p.p[0][l] * v + p.p[2][l] * (x - s[0])) / (p.p[0][l] + p.p[1][l]);
   }
-  template <class P>
-  static void rhs(const P& p, int l, const Context&, double x, double v, const double* s, double* ds) {
+  template <class P, class Y, class DY>
+  static void rhs(const P& p, int l, const Context&, double x, double v, const Y& s, DY&& ds) {
     ds[0] = ydot(p, l, x, v, s);
     ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l], p.p[9][l]);
   }
-  template <class P>
-  static double force(const P& p, int l, const Context&, double x, double v, const double* s) {
+  template <class P, class Y>
+  static double force(const P& p, int l, const Context&, double x, double v, const Y& s) {
     return p.p[1][l] * ydot(p, l, x, v, s) + p.p[3][l] * (x - p.p[4][l]);
   }
 };
@@ -175,8 +175,8 @@ struct FdspLaw {
   static const ModelInfo& info() { return Layout::info(); }
   static Context context(const Signals& s) { return fdsp_context(s); }
 
-  template <class P>
-  static double qdot(const P& p, int l, const Context& c, double x, double v, const double* s, double& C1) {
+  template <class P, class Y>
+  static double qdot(const P& p, int l, const Context& c, double x, double v, const Y& s, double& C1) {
     using L = Layout;
     const double u = s[2];
     const double C0 = L::a_c0(p, l, c) + p.p[L::b_c0][l] * u;
@@ -184,16 +184,16 @@ struct FdspLaw {
     const double alpha = p.p[L::a_alpha][l] + p.p[L::b_alpha][l] * u;
     return (alpha * s[1] + C0 * v + p.p[L::K0][l] * (x - s[0])) / (C0 + C1);
   }
-  template <class P>
-  static void rhs(const P& p, int l, const Context& c, double x, double v, const double* s, double* ds) {
+  template <class P, class Y, class DY>
+  static void rhs(const P& p, int l, const Context& c, double x, double v, const Y& s, DY&& ds) {
     using L = Layout;
     double C1;
     ds[0] = qdot(p, l, c, x, v, s, C1);
     ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[L::A][l], p.p[L::beta][l], p.p[L::gamma][l], p.p[L::n][l]);
     ds[2] = -p.p[L::eta][l] * (s[2] - c.V);
   }
-  template <class P>
-  static double force(const P& p, int l, const Context& c, double x, double v, const double* s) {
+  template <class P, class Y>
+  static double force(const P& p, int l, const Context& c, double x, double v, const Y& s) {
     double C1;
     const double q = qdot(p, l, c, x, v, s, C1);
     return C1 * q + p.p[Layout::K1][l] * (x - p.p[Layout::Z0][l]);

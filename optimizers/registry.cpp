@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -33,6 +34,10 @@ class SettingsReader {
   }
 
   void number(std::string_view key, double& field) const {
+    if (const std::string* t = text(key)) field = parse_number(trim(*t), what(key));
+  }
+
+  void optional_number(std::string_view key, std::optional<double>& field) const {
     if (const std::string* t = text(key)) field = parse_number(trim(*t), what(key));
   }
 
@@ -102,7 +107,7 @@ OptimizerFactory make_ga(const OptimizerSpec& spec) {
   s.generations = spec.iterations;
   if (read.choice("preset", {"lssvm"}) == "lssvm") s = GaSettings::lssvm();
   read.number("pc", s.pc);
-  read.number("pm", s.pm);
+  read.optional_number("pm", s.pm);
   read_genetic(read, s);
   return factory_of<Ga>(s);
 }
@@ -117,7 +122,7 @@ OptimizerFactory make_aga(const OptimizerSpec& spec) {
   read.number("k2", s.k2);
   read.number("k3", s.k3);
   read.number("k4", s.k4);
-  read.number("pm_min", s.pm_min);
+  read.optional_number("pm_min", s.pm_min);
   read_genetic(read, s);
   return factory_of<Aga>(s);
 }

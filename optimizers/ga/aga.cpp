@@ -18,7 +18,7 @@ void AgaSettings::validate() const {
   probability("k2", k2);
   probability("k3", k3);
   probability("k4", k4);
-  probability("pm_min", pm_min);
+  if (pm_min) probability("pm_min", *pm_min);
 }
 
 namespace {
@@ -38,19 +38,24 @@ double relative_rank(double f, double f_min, double f_avg) {
 
 }  // namespace
 
+double aga_crossover_probability(const AgaSettings& s, double f_pair, double f_min, double f_avg) {
+  const double r = relative_rank(f_pair, f_min, f_avg);
+  return r < 0 ? s.k3 : s.k1 * r;
+}
+
+double aga_mutation_probability(const AgaSettings& s, double f_parent, double f_min, double f_avg, int dim) {
+  const double r = relative_rank(f_parent, f_min, f_avg);
+  return std::max(r < 0 ? s.k4 : s.k2 * r, s.pm_min.value_or(0.5 / std::max(dim, 1)));
+}
+
 Aga::Aga(const AgaSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : GeneticAlgorithm(validated(settings), bounds, run_key), settings_(settings) {}
+    : GeneticAlgorithm(validated(settings), bounds, run_key), settings_(settings), dim_(bounds.dim()) {}
 
 GeneticAlgorithm::PairRates Aga::rates(double value_a, double value_b, const PopulationStats& stats) const {
-  const auto scaled = [&](double f, double k_good, double k_bad) {
-    const double r = relative_rank(f, stats.best, stats.mean_finite);
-    return r < 0 ? k_bad : k_good * r;
-  };
-  PairRates rates{};
-  rates.pc = scaled(std::min(value_a, value_b), settings_.k1, settings_.k3);
-  rates.pm[0] = std::max(scaled(value_a, settings_.k2, settings_.k4), settings_.pm_min);
-  rates.pm[1] = std::max(scaled(value_b, settings_.k2, settings_.k4), settings_.pm_min);
-  return rates;
+  const double f_min = stats.best, f_avg = stats.mean_finite;
+  return {aga_crossover_probability(settings_, std::min(value_a, value_b), f_min, f_avg),
+          {aga_mutation_probability(settings_, value_a, f_min, f_avg, dim_),
+           aga_mutation_probability(settings_, value_b, f_min, f_avg, dim_)}};
 }
 
 }  // namespace dampbench

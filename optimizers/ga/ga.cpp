@@ -1,5 +1,7 @@
 #include "optimizers/ga/ga.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "engine/error.hpp"
@@ -18,7 +20,7 @@ GaSettings GaSettings::lssvm() {
 void GaSettings::validate() const {
   GeneticSettings::validate("ga");
   if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga: pc must be in [0, 1], got {}", pc));
-  if (!(pm >= 0 && pm <= 1)) throw InputError(fmt::format("ga: pm must be in [0, 1], got {}", pm));
+  if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga: pm must be in [0, 1], got {}", *pm));
 }
 
 namespace {
@@ -29,7 +31,8 @@ const GaSettings& validated(const GaSettings& s) {
 }  // namespace
 
 Ga::Ga(const GaSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : GeneticAlgorithm(validated(settings), bounds, run_key), pc_(settings.pc), pm_(settings.pm) {}
+    : GeneticAlgorithm(validated(settings), bounds, run_key), pc_(settings.pc),
+      pm_(settings.pm.value_or(1.0 / std::max(bounds.dim(), 1))) {}
 
 GeneticAlgorithm::PairRates Ga::rates(double, double, const PopulationStats&) const { return {pc_, {pm_, pm_}}; }
 

@@ -8,6 +8,7 @@
 // Preset `lssvm` (GaSettings::lssvm()): the lssvm paper's GA — pc 0.6, pm 0.03, population 50,
 // 500 generations; every other field keeps its default.
 #include <cstdint>
+#include <optional>
 
 #include "optimizers/ga/genetic.hpp"
 
@@ -15,8 +16,8 @@ namespace dampbench {
 
 struct GaSettings : GeneticSettings {
   double pc = 0.9;  ///< crossover probability per pair (Deb 2001, §4.2 uses 0.9 with SBX; pymoo's default)
-  double pm = 0.1;  ///< mutation probability per gene: 1/d for d = 10 parameters, the usual 1/d rule
-                    ///< (Deb 2001) at the size of the larger damper models
+  std::optional<double> pm;  ///< mutation probability per gene; unset: 1/d for d parameters, so one gene
+                             ///< per child on average (Deb 2001, §4.2; pymoo's default)
 
   /// The lssvm paper's settings: pc 0.6, pm 0.03, population 50, 500 generations.
   static GaSettings lssvm();
@@ -31,7 +32,7 @@ class Ga final : public GeneticAlgorithm {
 
  private:
   [[nodiscard]] PairRates rates(double value_a, double value_b, const PopulationStats& stats) const override;
-  double pc_, pm_;
+  double pc_, pm_;  ///< pm_ resolved from the settings and the dimension
 };
 
 }  // namespace dampbench

@@ -1,0 +1,292 @@
+#pragma once
+// Helpers shared by the optimizer tests: standard test functions with known optima, the ask/tell loop that
+// runs one optimizer to the end, seeded success rates, and a retry helper that can fail.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/optimizer.hpp"
+#include "engine/random.hpp"
+
+namespace dampbench::testing {
+
+// ---- standard functions (minimum 0; at the origin, Rosenbrock at (1, …, 1)) ----------------------------
+
+inline double sphere(std::span<const double> x) {
+  double s = 0;
+  for (double v : x) s += v * v;
+  return s;
+}
+
+/// Rosenbrock (1960), chained form; minimum 0 at (1, …, 1).
+inline double rosenbrock(std::span<const double> x) {
+  double s = 0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i)
+    s += 100 * std::pow(x[i + 1] - x[i] * x[i], 2) + std::pow(1 - x[i], 2);
+  return s;
+}
+
+/// Rastrigin: 10 d + Σ (x² − 10 cos 2πx); a local minimum at every integer point.
+inline double rastrigin(std::span<const double> x) {
+  double s = 10.0 * static_cast<double>(x.size());
+  for (double v : x) s += v * v - 10 * std::cos(2 * std::numbers::pi * v);
+  return s;
+}
+
+/// Ackley (a = 20, b = 0.2, c = 2π).
+inline double ackley(std::span<const double> x) {
+  const double d = static_cast<double>(x.size());
+  double sq = 0, cs = 0;
+  for (double v : x) {
+    sq += v * v;
+    cs += std::cos(2 * std::numbers::pi * v);
+  }
+  return -20 * std::exp(-0.2 * std::sqrt(sq / d)) - std::exp(cs / d) + 20 + std::numbers::e;
+}
+
+/// Griewank: 1 + Σ x²/4000 − Π cos(x_i / √i), i = 1 … d.
+inline double griewank(std::span<const double> x) {
+  double s = 0, p = 1;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    s += x[i] * x[i] / 4000;
+    p *= std::cos(x[i] / std::sqrt(static_cast<double>(i + 1)));
+  }
+  return 1 + s - p;
+}
+
+using Objective = std::function<double(std::span<const double>)>;
+
+/// A standard function with its usual search box (the same bound in every dimension).
+struct TestFunction {
+  const char* name;
+  double (*f)(std::span<const double>);
+  double lower, upper;
+};
+inline constexpr TestFunction kSphere{"sphere", sphere, -5.12, 5.12};
+inline constexpr TestFunction kRosenbrock{"rosenbrock", rosenbrock, -2.048, 2.048};
+inline constexpr TestFunction kRastrigin{"rastrigin", rastrigin, -5.12, 5.12};
+inline constexpr TestFunction kAckley{"ackley", ackley, -32.768, 32.768};
+inline constexpr TestFunction kGriewank{"griewank", griewank, -600, 600};
+
+inline Bounds box(int dim, double lower, double upper) {
+  return {std::vector<double>(dim, lower), std::vector<double>(dim, upper)};
+}
+
+// ---- running an optimizer -------------------------------------------------------------------------
+
+/// A factory for an optimizer class constructed as Algorithm(settings, bounds, run_key).
+template <class Algorithm, class Settings>
+OptimizerFactory factory_of(const Settings& settings) {
+  return [settings](const Bounds& bounds, std::uint64_t run_key) -> std::unique_ptr<Optimizer> {
+    return std::make_unique<Algorithm>(settings, bounds, run_key);
+  };
+}
+
+struct Run {
+  double best_value = 0;
+  std::vector<double> best_position;
+  long long evaluations = 0;
+  int asks = 0;
+  std::vector<double> history;  ///< every asked candidate, in order (only when requested)
+};
+
+/// Runs one optimizer to the end through ask/tell, evaluating f on every asked candidate.
+inline Run minimize(Optimizer& opt, const Objective& f, int dim, bool keep_history = false) {
+  Run run;
+  CandidateBatch batch;
+  std::vector<double> values, x(dim);
+  while (!opt.finished()) {
+    const int n = opt.batch_size();
+    if (batch.count() != n) batch.resize(dim, n);
+    values.resize(n);
+    opt.ask(batch, 0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < dim; ++j) x[j] = batch.at(i, j);
+      if (keep_history) run.history.insert(run.history.end(), x.begin(), x.end());
+      values[i] = f(x);
+    }
+    opt.tell(values);
+    run.evaluations += n;
+    ++run.asks;
+  }
+  run.best_value = opt.best_value();
+  run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
+  return run;
+}
+
+inline Run minimize(const OptimizerFactory& make, const Objective& f, const Bounds& bounds, std::uint64_t seed,
+                    bool keep_history = false) {
+  const std::unique_ptr<Optimizer> opt = make(bounds, hash_key({seed}));
+  return minimize(*opt, f, bounds.dim(), keep_history);
+}
+
+/// One success-rate case: `repeats` seeded runs of f in `dim` dimensions; success = best value < target.
+struct SuccessCase {
+  TestFunction function;
+  int dim;
+  int population, iterations;
+  double target;
+  int min_successes;  ///< out of `repeats`
+  int repeats = 10;
+
+  [[nodiscard]] std::string name() const { return std::string(function.name) + std::to_string(dim); }
+};
+
+/// Runs the case's repeats with seeds first_seed, first_seed + 1, … and reports the success count with every
+/// best value, so a failure shows what was reached.
+inline ::testing::AssertionResult reaches_target(const SuccessCase& c, const std::function<OptimizerFactory(int, int)>& make,
+                                                 std::uint64_t first_seed) {
+  const OptimizerFactory factory = make(c.population, c.iterations);
+  const Bounds bounds = box(c.dim, c.function.lower, c.function.upper);
+  int successes = 0;
+  std::string bests;
+  for (int r = 0; r < c.repeats; ++r) {
+    const double best = minimize(factory, c.function.f, bounds, first_seed + r).best_value;
+    successes += best < c.target;
+    bests += (r ? ", " : "") + std::to_string(best);
+  }
+  if (successes >= c.min_successes) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << c.name() << ": " << successes << "/" << c.repeats << " runs below "
+                                       << c.target << " (need " << c.min_successes << "), seeds from "
+                                       << first_seed << "; best values: " << bests;
+}
+
+/// Retry for stochastic tests: runs trial(attempt) for attempt = 0, 1, … and stops at the first success, but
+/// the last allowed attempt is always asserted, so a trial that keeps failing fails the test (a retry
+/// loop whose guard swallows the last failure can never fail; STYLE.md). Each attempt should use
+/// different seeds. Returns the number of attempts used.
+template <class Trial>
+int retry(int max_attempts, Trial&& trial) {
+  for (int attempt = 0; attempt + 1 < max_attempts; ++attempt)
+    if (trial(attempt)) return attempt + 1;
+  EXPECT_TRUE(trial(max_attempts - 1)) << "(last of " << max_attempts << " attempts)";
+  return max_attempts;
+}
+
+/// A success-rate check with up to `max_attempts` disjoint seed blocks (attempt a uses seeds 1000·a + 1 …).
+inline void expect_success_rate(const SuccessCase& c, const std::function<OptimizerFactory(int, int)>& make,
+                                int max_attempts = 2) {
+  retry(max_attempts, [&](int attempt) { return reaches_target(c, make, 1000 * static_cast<std::uint64_t>(attempt) + 1); });
+}
+
+// ---- conformance checks every optimizer must pass ------------------------------------------------------
+
+/// Same key ⇒ the same candidates asked, bit for bit; another key ⇒ other candidates.
+inline void expect_keyed_history(const OptimizerFactory& make) {
+  const Bounds b = box(4, kRastrigin.lower, kRastrigin.upper);
+  const Run a = minimize(make, rastrigin, b, 9, true), again = minimize(make, rastrigin, b, 9, true),
+            other = minimize(make, rastrigin, b, 10, true);
+  ASSERT_FALSE(a.history.empty());
+  EXPECT_EQ(a.history, again.history);
+  EXPECT_EQ(a.best_value, again.best_value);
+  EXPECT_NE(a.history, other.history);
+}
+
+/// Two runs asked into one batch at different offsets and told their slices (the lockstep of
+/// engine/identification.cpp) ask exactly what each asks when run alone.
+inline void expect_lockstep_equals_alone(const OptimizerFactory& make) {
+  const int dim = 3;
+  const Bounds b = box(dim, kSphere.lower, kSphere.upper);
+  const std::uint64_t keys[2] = {hash_key({21}), hash_key({22})};
+  std::vector<double> alone[2];
+  for (int r = 0; r < 2; ++r) {
+    const auto opt = make(b, keys[r]);
+    alone[r] = minimize(*opt, sphere, dim, true).history;
+  }
+  std::unique_ptr<Optimizer> runs[2] = {make(b, keys[0]), make(b, keys[1])};
+  std::vector<double> together[2], x(dim);
+  const int n0 = runs[0]->batch_size(), n1 = runs[1]->batch_size();
+  CandidateBatch batch(dim, n0 + n1);
+  std::vector<double> values(n0 + n1);
+  while (!runs[0]->finished()) {
+    runs[1]->ask(batch, 0);  // the second run sits first in the batch
+    runs[0]->ask(batch, n1);
+    for (int i = 0; i < n0 + n1; ++i) {
+      for (int j = 0; j < dim; ++j) x[j] = batch.at(i, j);
+      values[i] = sphere(x);
+      std::vector<double>& h = together[i < n1 ? 1 : 0];
+      h.insert(h.end(), x.begin(), x.end());
+    }
+    runs[1]->tell(std::span<const double>(values.data(), n1));
+    runs[0]->tell(std::span<const double>(values.data() + n1, n0));
+  }
+  EXPECT_TRUE(runs[1]->finished());
+  EXPECT_EQ(together[0], alone[0]);
+  EXPECT_EQ(together[1], alone[1]);
+}
+
+/// Every asked candidate inside the box (including a parameter with lower == upper) while the
+/// optimum of the sphere lies outside it: the best ends near the nearest corner (1, −2.5, 0.5), value 7.5.
+inline void expect_stays_inside_bounds(const OptimizerFactory& make, double value_tolerance) {
+  const Bounds b{{1.0, -3.0, 0.5}, {2.0, -2.5, 0.5}};
+  const auto opt = make(b, 77);
+  const Run run = minimize(*opt, sphere, 3, true);
+  for (std::size_t k = 0; k < run.history.size(); ++k) {
+    const std::size_t j = k % 3;
+    ASSERT_GE(run.history[k], b.lower[j]) << "parameter " << j;
+    ASSERT_LE(run.history[k], b.upper[j]) << "parameter " << j;
+  }
+  EXPECT_GE(run.best_value, 7.5);
+  EXPECT_LT(run.best_value, 7.5 + value_tolerance);
+  EXPECT_EQ(run.best_position[2], 0.5);
+}
+
+/// A run costs batch_size × iterations evaluations in `iterations` asks of a constant size.
+inline void expect_budget(const OptimizerFactory& make, int population, int iterations) {
+  const Bounds b = box(2, -1, 1);
+  const auto opt = make(b, 3);
+  int asks = 0;
+  long long evaluations = 0;
+  CandidateBatch batch(2, population);
+  std::vector<double> values(population, 1.0);
+  while (!opt->finished()) {
+    ASSERT_EQ(opt->batch_size(), population);
+    opt->ask(batch, 0);
+    opt->tell(values);
+    evaluations += population;
+    ++asks;
+  }
+  EXPECT_EQ(asks, iterations);
+  EXPECT_EQ(evaluations, static_cast<long long>(population) * iterations);
+}
+
+/// Failed candidates: `failure` (+inf, NaN or −inf) on the half x0 < 0 of [−5, 5]^3; the shifted sphere
+/// Σ (x − 1)² elsewhere. The run must converge in the valid half (best < target) and never report a
+/// failure as its best.
+inline void expect_converges_beside_failures(const OptimizerFactory& make, double failure, double target) {
+  const auto f = [failure](std::span<const double> x) {
+    if (x[0] < 0) return failure;
+    double s = 0;
+    for (double v : x) s += (v - 1) * (v - 1);
+    return s;
+  };
+  const Run run = minimize(make, f, box(3, -5, 5), 5);
+  EXPECT_TRUE(std::isfinite(run.best_value));
+  EXPECT_LT(run.best_value, target);
+  EXPECT_GE(run.best_position[0], 0.0);
+}
+
+/// Every candidate fails: the run still ends, its best value is +inf and its best position is in the box.
+inline void expect_survives_all_failures(const OptimizerFactory& make) {
+  const Bounds b = box(2, -1, 1);
+  const Run run = minimize(make, [](std::span<const double>) { return std::numeric_limits<double>::infinity(); }, b, 4,
+                           true);
+  EXPECT_EQ(run.best_value, std::numeric_limits<double>::infinity());
+  for (double v : run.history) {
+    ASSERT_TRUE(std::isfinite(v));
+    ASSERT_GE(v, -1.0);
+    ASSERT_LE(v, 1.0);
+  }
+  ASSERT_EQ(run.best_position.size(), 2u);
+  for (double v : run.best_position) EXPECT_TRUE(v >= -1 && v <= 1);
+}
+
+}  // namespace dampbench::testing
