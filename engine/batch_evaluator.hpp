@@ -1,8 +1,14 @@
 #pragma once
-// Evaluates a whole batch of candidates of one model on one dataset: oneTBB splits the batch into lane
-// blocks across cores. Every block is computed the same way wherever it runs, and results land in
-// per-candidate slots, so the output is bit-identical for any thread count and any grain size.
+// Evaluates a whole batch of candidates of one model on one or more datasets: oneTBB splits the work
+// into (lane block, dataset) tasks across cores. Every block is computed the same way wherever it runs,
+// results land in per-candidate slots and datasets are combined in a fixed order, so the output is
+// bit-identical for any thread count and any grain size.
+//
+// Several datasets (conditions) are fitted at once by averaging the metric over them: each dataset's
+// metric is normalized by its own force statistics, so the mean weighs every condition alike.
+#include <array>
 #include <span>
+#include <vector>
 
 #include "engine/batch.hpp"
 #include "engine/metrics.hpp"
@@ -11,24 +17,33 @@
 
 namespace dampbench {
 
+using MetricRow = std::array<double, kMetricCount>;  ///< every metric, in the order of kAllMetrics
+
 class BatchEvaluator {
  public:
   /// `grain_blocks`: lane blocks handed to a task at once (tbb::simple_partitioner); any value gives the
   /// same results, it only changes how the batch is split across threads.
   BatchEvaluator(const Model& model, const Signals& data, int grain_blocks = 1);
+  /// Several datasets; the metric of a candidate is the mean of its metric on each dataset.
+  BatchEvaluator(const Model& model, std::vector<const Signals*> datasets, int grain_blocks = 1);
 
-  /// Metric sums of every candidate of the batch (out.size() == batch.count()).
-  void evaluate_sums(const CandidateBatch& batch, std::span<MetricSums> out) const;
-
-  /// One metric per candidate; +inf for candidates whose force is NaN or Inf.
+  /// One metric per candidate (mean over the datasets); +inf for candidates whose force is NaN or Inf.
   void evaluate(const CandidateBatch& batch, Metric metric, std::span<double> out) const;
 
+  /// Every metric per candidate (each the mean over the datasets).
+  void evaluate_all(const CandidateBatch& batch, std::span<MetricRow> out) const;
+
   [[nodiscard]] const Model& model() const { return model_; }
-  [[nodiscard]] const Signals& data() const { return data_; }
+  [[nodiscard]] const std::vector<const Signals*>& datasets() const { return datasets_; }
+  /// Samples per candidate evaluation (summed over the datasets).
+  [[nodiscard]] double samples() const;
 
  private:
+  /// Metric sums of every candidate on every dataset: sums[d * count + i].
+  std::vector<MetricSums> sums(const CandidateBatch& batch) const;
+
   const Model& model_;
-  const Signals& data_;
+  std::vector<const Signals*> datasets_;
   int grain_blocks_;
 };
 

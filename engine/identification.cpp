@@ -23,8 +23,28 @@ int Identification::best_run() const {
 
 Identification identify(const Model& model, const Signals& data, const Bounds& bounds,
                         const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
+  return identify(model, std::vector<const Signals*>{&data}, bounds, make_optimizer, settings);
+}
+
+namespace {
+
+/// The budget rule that stops a run now, or "" to go on.
+std::string budget_stop(const Budget& b, const RunResult& run, int stalled, double elapsed_s) {
+  if (b.max_evaluations > 0 && run.evaluations >= b.max_evaluations) return "max_evaluations";
+  if (!run.trace.empty() && run.trace.back() <= b.target) return "target";
+  if (b.stall_iterations > 0 && stalled >= b.stall_iterations) return "stall";
+  if (b.max_wall_time_s > 0 && elapsed_s >= b.max_wall_time_s) return "wall_time";
+  return "";
+}
+
+}  // namespace
+
+Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
   if (settings.runs < 1) throw InputError(fmt::format("runs must be at least 1, got {}", settings.runs));
-  if (!data.has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", data.name));
+  if (data.empty()) throw InputError("identification needs at least one dataset");
+  for (const Signals* d : data)
+    if (!d->has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d->name));
   validate_bounds(bounds, model);
   const auto start = std::chrono::steady_clock::now();
 
@@ -42,17 +62,23 @@ Identification identify(const Model& model, const Signals& data, const Bounds& b
   CandidateBatch batch(model.dim(), offset[R]);
   std::vector<double> values(offset[R]);
   std::vector<int> active;
+  std::vector<int> stalled(R, 0);
   long long evaluations = 0;
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
   // Lockstep: every unfinished run asks, one batch is evaluated, every run is told its slice.
   for (;;) {
     active.clear();
     int rows = 0;
-    for (int r = 0; r < R; ++r)
-      if (!runs[r]->finished()) {
-        active.push_back(r);
-        rows += runs[r]->batch_size();
-      }
+    for (int r = 0; r < R; ++r) {
+      RunResult& run = result.runs[r];
+      if (!run.stop_reason.empty()) continue;
+      if (runs[r]->finished()) run.stop_reason = "iterations";
+      else run.stop_reason = budget_stop(settings.budget, run, stalled[r], elapsed());
+      if (!run.stop_reason.empty()) continue;
+      active.push_back(r);
+      rows += runs[r]->batch_size();
+    }
     if (active.empty()) break;
     if (rows != batch.count()) batch.resize(model.dim(), rows);
     int row = 0;
@@ -64,10 +90,13 @@ Identification identify(const Model& model, const Signals& data, const Bounds& b
     evaluations += rows;
     row = 0;
     for (int r : active) {
+      RunResult& run = result.runs[r];
       const int n = runs[r]->batch_size();
       runs[r]->tell(std::span<const double>(values.data() + row, n));
-      result.runs[r].evaluations += n;
-      result.runs[r].trace.push_back(runs[r]->best_value());
+      run.evaluations += n;
+      stalled[r] = (!run.trace.empty() && !(runs[r]->best_value() < run.trace.back())) ? stalled[r] + 1 : 0;
+      run.trace.push_back(runs[r]->best_value());
+      run.trace_evaluations.push_back(run.evaluations);
       row += n;
     }
   }
@@ -75,16 +104,17 @@ Identification identify(const Model& model, const Signals& data, const Bounds& b
   // Every metric at each run's best parameters, as one more batch.
   CandidateBatch best(model.dim(), R);
   for (int r = 0; r < R; ++r) best.set_candidate(r, runs[r]->best_position());
-  std::vector<MetricSums> sums(R);
-  evaluator.evaluate_sums(best, sums);
+  std::vector<MetricRow> metrics(R);
+  evaluator.evaluate_all(best, metrics);
 
-  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.candidate_samples = static_cast<double>(evaluations) * static_cast<double>(data.size());
+  result.wall_time_s = elapsed();
+  result.candidate_samples = static_cast<double>(evaluations) * evaluator.samples();
+  const int metric_index = static_cast<int>(settings.metric);
   for (int r = 0; r < R; ++r) {
     RunResult& run = result.runs[r];
     run.best_params = best.candidate(r);
-    run.best_metrics = finish_all_metrics(sums[r], data);
-    run.best_value = finish_metric(settings.metric, sums[r], data);
+    run.best_metrics = metrics[r];
+    run.best_value = metrics[r][metric_index];
     run.wall_time_s = result.wall_time_s / R;
   }
   return result;

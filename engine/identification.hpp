@@ -2,7 +2,9 @@
 // Repeated identification runs of one (model, dataset): R independent optimizer runs advance in
 // lockstep, each iteration's R·N candidates evaluated as one batch across cores (DESIGN.md, data flow).
 #include <array>
+#include <string>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "engine/batch_evaluator.hpp"
@@ -12,12 +14,26 @@
 
 namespace dampbench {
 
+/// Stopping rules of a run, on top of the optimizer's own iteration count. A run stops at the end of
+/// the first iteration where any rule holds:
+///   evaluations ≥ max_evaluations;  best ≤ target;  no improvement of best for stall_iterations
+///   iterations;  wall time of the group ≥ max_wall_time_s.
+/// Zero (or -inf for target) switches a rule off. The wall-time rule depends on the machine's speed, so a
+/// run stopped by it is not reproducible bit for bit; every other rule is.
+struct Budget {
+  long long max_evaluations = 0;
+  double target = -std::numeric_limits<double>::infinity();
+  int stall_iterations = 0;
+  double max_wall_time_s = 0;
+};
+
 struct IdentificationSettings {
   int runs = 50;                ///< independent runs (fvd paper: 50)
   std::uint64_t seed = 1;       ///< sweep seed
   std::uint64_t task_key = 0;   ///< stable key of the task (see task_key()); runs are keyed (seed, task, run)
   Metric metric = Metric::of_abs;
   int grain_blocks = 1;         ///< lane blocks per oneTBB task; results do not depend on it
+  Budget budget;
 };
 
 /// Stable key of a (model, dataset, optimizer) task, from their names.
@@ -30,15 +46,20 @@ struct RunResult {
   long long evaluations = 0;
   double wall_time_s = 0;  ///< this run's share of the lockstep group's wall time (group time / runs)
   std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence)
+  std::vector<long long> trace_evaluations;  ///< evaluations spent at each trace point
+  std::string stop_reason;    ///< "iterations", "max_evaluations", "target", "stall" or "wall_time"
 };
 
 struct Identification {
   std::vector<RunResult> runs;
   double wall_time_s = 0;          ///< whole lockstep group
-  double candidate_samples = 0;    ///< Σ evaluations × samples
+  double candidate_samples = 0;    ///< Σ evaluations × samples (samples summed over the datasets)
   [[nodiscard]] int best_run() const;  ///< index of the run with the lowest best_value (first on ties)
 };
 
+/// Identifies the model on one or more datasets (the metric is the mean over them, engine/batch_evaluator.hpp).
+Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);
 Identification identify(const Model& model, const Signals& data, const Bounds& bounds,
                         const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);
 

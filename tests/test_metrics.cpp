@@ -27,14 +27,14 @@ Signals four_samples() {
   return prepare_signals(d);
 }
 
-std::array<double, kMetricCount> metrics_of(const Signals& s, double m, double C) {
+MetricRow metrics_of(const Signals& s, double m, double C) {
   const Model& model = find_model("fvd.linear_viscous");
   CandidateBatch batch(2, 1);
   batch.at(0, 0) = m;
   batch.at(0, 1) = C;
-  std::vector<MetricSums> sums(1);
-  BatchEvaluator(model, s).evaluate_sums(batch, sums);
-  return finish_all_metrics(sums[0], s);
+  std::vector<MetricRow> rows(1);
+  BatchEvaluator(model, s).evaluate_all(batch, rows);
+  return rows[0];
 }
 
 }  // namespace
@@ -95,6 +95,30 @@ TEST(Metrics, NonFiniteForceGivesPlusInfinityNeverNaN) {
   }
   // Finite parameters whose force overflows: 1e308 · v with |v| = 3 is +inf.
   for (double v : metrics_of(s, 0.0, 1e308)) EXPECT_EQ(v, std::numeric_limits<double>::infinity());
+}
+
+TEST(Metrics, SeveralDatasetsAverageTheirMetrics) {
+  // The same record twice with the force doubled on the second: of_abs is scale-free (1.625/(σ·2) on
+  // both), rmse doubles on the second, so the mean is 1.5 × the single-record value.
+  const Signals a = four_samples();
+  Dataset d;
+  d.name = "double";
+  d.t_s = a.t_s;
+  d.x_m = a.x_m;
+  d.v_m_s = {2, -4, 1, 6};
+  d.a_m_s2 = a.a_m_s2;
+  d.F_N = {4, -6, 2, 4};
+  const Signals b = prepare_signals(d);
+  const Model& model = find_model("fvd.linear_viscous");
+  CandidateBatch batch(2, 1);
+  batch.at(0, 1) = 1.0;
+  std::vector<MetricRow> rows(1);
+  BatchEvaluator(model, {&a, &b}).evaluate_all(batch, rows);
+  EXPECT_NEAR(rows[0][0], 1.625 / (std::sqrt(4.25) * 2.0), 1e-15);
+  EXPECT_NEAR(rows[0][2], 1.5 * std::sqrt(3.25 / 4.0), 1e-14);
+  std::vector<double> one(1);
+  BatchEvaluator(model, {&a, &b}).evaluate(batch, Metric::rmse, one);
+  EXPECT_EQ(one[0], rows[0][2]);
 }
 
 TEST(Metrics, NamesRoundTripAndUnknownNameIsRejected) {
