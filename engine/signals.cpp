@@ -29,6 +29,10 @@ Signals prepare_signals(const Dataset& data) {
     for (double v : s.v_m_s) s.velocity_max_abs = std::max(s.velocity_max_abs, std::fabs(v));
     s.excitation_freq_hz = s.displacement_ptp > 0 ? s.velocity_max_abs / (std::numbers::pi * s.displacement_ptp) : 0.0;
   }
+  s.law_variables = s.operating;
+  s.law_variables.try_emplace("amp", 0.5 * s.displacement_ptp);
+  s.law_variables.try_emplace("freq", s.excitation_freq_hz);
+  s.law_variables["w"] = s.excitation_freq_hz;
   if (!s.F_N.empty()) {
     double mean = 0;
     for (double f : s.F_N) mean += f;

@@ -22,6 +22,9 @@ struct Signals {
   /// fdsp eq. 15: ω = ΔŻ/(π·ΔZ), the excitation frequency [Hz] for a sinusoid, estimated from the record.
   double excitation_freq_hz = 0;
   std::map<std::string, double> operating;
+  /// Variables parameter laws may use (engine/parameter_law.hpp): `operating`, plus amp (ΔZ/2) and freq
+  /// (eq. 15 estimate) from the signals when the dataset does not state them.
+  std::map<std::string, double> law_variables;
 
   [[nodiscard]] std::size_t size() const { return t_s.size(); }
   [[nodiscard]] bool has_force() const { return !F_N.empty(); }

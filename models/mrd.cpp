@@ -4,12 +4,15 @@
 //   mrd.bouc_wen         classic Bouc–Wen, cited by all MR papers             ODE, 1 state
 //   mrd.spencer          mfm eq. 1, Spencer et al. 1997 phenomenological      ODE, 2 states
 //   mrd.spencer_voltage  fdsp eqs. 1–7 (one end fixed)                         ODE, 3 states
-//   mrd.spencer_freq     fdsp eqs. 1–7 with a_c0(ω), a_c1(ω) of eqs. 13–15     ODE, 3 states
+//   mrd.spencer_freq     fdsp eqs. 1–7 with a_c0(ω), a_c1(ω) of eqs. 13–15     spencer_voltage with two laws
 // SI units throughout: x [m], v [m/s], F [N]. Hysteretic states z (Bouc–Wen, Spencer) and p (fdsp) are
 // in metres. z|z|^(n−1) is written sgn(z)|z|^n (MODELS.md §6: no 0·∞ at z = 0 when n < 1).
 #include <cmath>
 
+#include <tuple>
+
 #include "engine/algebraic_kernel.hpp"
+#include "engine/law_model.hpp"
 #include "engine/ode_kernel.hpp"
 #include "models/registry.hpp"
 
@@ -164,8 +167,7 @@ FdspContext fdsp_context(const Signals& s) {
   return {it == s.operating.end() ? 0.0 : it->second, s.excitation_freq_hz};
 }
 
-/// The fdsp equations; `Layout` names the parameter slots and supplies a_c0 and a_c1: parameters
-/// (spencer_voltage) or laws in ω (spencer_freq).
+/// The fdsp equations; `Layout` names the parameter slots and supplies a_c0 and a_c1.
 template <class Layout>
 struct FdspLaw {
   static constexpr int kParams = Layout::kParams;
@@ -230,47 +232,7 @@ struct VoltageLayout {
   }
 };
 
-/// spencer_freq: spencer_voltage without a_c0 and a_c1, then the coefficients of fdsp eqs. 13–14,
-///   a_c0(ω) = ac0_k·ω^ac0_p + ac0_c;  a_c1(ω) = ac1_a1·exp(−((ω − ac1_w1)/ac1_s1)²) + ac1_a2·exp(−((ω − ac1_w2)/ac1_s2)²)
-/// (the printed exponents lack the minus sign: MODELS.md §4), ω from the record by eq. 15.
-struct FrequencyLayout {
-  static constexpr int kParams = 21;
-  static constexpr int K0 = 0, K1 = 1, b_c0 = 2, b_c1 = 3, a_alpha = 4, b_alpha = 5, A = 6, beta = 7, gamma = 8,
-                       n = 9, eta = 10, Z0 = 11, ac0_k = 12, ac0_p = 13, ac0_c = 14, ac1_a1 = 15, ac1_w1 = 16,
-                       ac1_s1 = 17, ac1_a2 = 18, ac1_w2 = 19, ac1_s2 = 20;
-  template <class P>
-  static double a_c0(const P& p, int l, const FdspContext& c) {
-    return p.p[ac0_k][l] * std::exp(p.p[ac0_p][l] * std::log(c.w)) + p.p[ac0_c][l];
-  }
-  template <class P>
-  static double a_c1(const P& p, int l, const FdspContext& c) {
-    const double g1 = (c.w - p.p[ac1_w1][l]) / p.p[ac1_s1][l], g2 = (c.w - p.p[ac1_w2][l]) / p.p[ac1_s2][l];
-    return p.p[ac1_a1][l] * std::exp(-g1 * g1) + p.p[ac1_a2][l] * std::exp(-g2 * g2);
-  }
-  static const ModelInfo& info() {
-    static const ModelInfo i = [] {
-      ModelInfo m = VoltageLayout::info();
-      m.id = "mrd.spencer_freq";
-      m.citation = "fdsp eqs. 1-7 with a_c0, a_c1 from eqs. 13-15";
-      m.law = "mrd.spencer_voltage with a_c0 = ac0_k w^ac0_p + ac0_c, "
-              "a_c1 = ac1_a1 exp(-((w - ac1_w1)/ac1_s1)^2) + ac1_a2 exp(-((w - ac1_w2)/ac1_s2)^2), "
-              "w = max|v|/(pi (max x - min x)) (fdsp eq. 15)";
-      m.parameters.erase(m.parameters.begin() + 2, m.parameters.begin() + 4);
-      // Bounds around the published laws (eqs. 13-14).
-      m.parameters.insert(m.parameters.end(),
-                          {{"ac0_k", "N*s/m", 700, 2100, "N*s/m"},   {"ac0_p", "1", -0.3, 0.0, "1"},
-                           {"ac0_c", "N*s/m", -100, 100, "N*s/m"},   {"ac1_a1", "N*s/m", 0, 15000, "N*s/m"},
-                           {"ac1_w1", "Hz", 2, 6, "Hz"},             {"ac1_s1", "Hz", 0.5, 3, "Hz"},
-                           {"ac1_a2", "N*s/m", 9000, 28000, "N*s/m"}, {"ac1_w2", "Hz", 0, 4, "Hz"},
-                           {"ac1_s2", "Hz", 1, 6, "Hz"}});
-      return m;
-    }();
-    return i;
-  }
-};
-
 using SpencerVoltage = FdspLaw<VoltageLayout>;
-using SpencerFreq = FdspLaw<FrequencyLayout>;
 
 }  // namespace
 }  // namespace dampbench::mrd
@@ -284,7 +246,18 @@ std::vector<std::unique_ptr<Model>> make_mrd_models() {
   models.push_back(std::make_unique<OdeModel<mrd::BoucWen>>());
   models.push_back(std::make_unique<AlgebraicModel<mrd::Bingham>>());
   models.push_back(std::make_unique<OdeModel<mrd::SpencerVoltage>>());
-  models.push_back(std::make_unique<OdeModel<mrd::SpencerFreq>>());
+  // fdsp eqs. 13–15: a_c0 and a_c1 as laws in ω, the record's own frequency estimate (variable w). The
+  // printed exponents of eq. 14 lack the minus sign (MODELS.md §4); gauss2 has it.
+  auto freq = std::make_unique<LawModel>(*models.back(),
+                                         parse_laws("a_c0=power(w);a_c1=gauss2(w)", "mrd.spencer_freq"),
+                                         "mrd.spencer_freq", "fdsp eqs. 1-7 with a_c0, a_c1 from eqs. 13-15");
+  // Bounds around the published laws (a_c0 = 1410.71 w^-0.102 - 0.6182; a_c1 = 7087 G(4.282, 1.197) + 18520 G(1.783, 3.25)).
+  for (const auto& [name, lo, hi] : std::vector<std::tuple<std::string, double, double>>{
+           {"a_c0_k", 700, 2100}, {"a_c0_p", -0.3, 0.0}, {"a_c0_c", -100, 100},
+           {"a_c1_a1", 0, 15000}, {"a_c1_b1", 2, 6},    {"a_c1_c1", 0.5, 3},
+           {"a_c1_a2", 9000, 28000}, {"a_c1_b2", 0, 4}, {"a_c1_c2", 1, 6}})
+    freq->set_default_bounds(name, lo, hi);
+  models.push_back(std::move(freq));
   return models;
 }
 

@@ -104,10 +104,10 @@ TEST(MrdModels, SpencerFreqWithPublishedLawsEqualsSpencerVoltageAtTheLawValues) 
   s.fs_hz = 1000;
   const Signals data = prepare_signals(make_sine(s));
   const std::vector<double> common{3361.58, 420.0, 1803.0, 34622.0, 6515.13, 38430.0, 87.0, 307269.41, 182842.99, 2.0, 190.0, 0.01225};
-  std::vector<double> freq = common;
-  freq.insert(freq.end(), {1410.71, -0.102, -0.6182, 7087, 4.282, 1.197, 18520, 1.783, 3.25});
   std::vector<double> volt = common;
   volt.insert(volt.begin() + 2, {a_c0, a_c1});
+  std::vector<double> freq = common;  // spencer_freq: the law coefficients stand where a_c0 and a_c1 were
+  freq.insert(freq.begin() + 2, {1410.71, -0.102, -0.6182, 7087, 4.282, 1.197, 18520, 1.783, 3.25});
   const auto f1 = find_model("mrd.spencer_freq").simulate(freq, data);
   const auto f2 = find_model("mrd.spencer_voltage").simulate(volt, data);
   for (std::size_t k = 0; k < f1.size(); ++k) EXPECT_NEAR(f1[k], f2[k], 1e-9 * (1 + std::fabs(f2[k])));
