@@ -33,7 +33,7 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
     case ParameterLaw::Kind::polynomial:
       for (std::size_t f = 0; f < law.factors.size(); ++f) {
         const auto& [var, degree] = law.factors[f];
-        const double s = variable_scale(var), m = f == 0 ? M : 2.0;
+        const double s = variable_scale(var), m = f == 0 ? 2 * M : 2.0;
         for (int k = 0; k <= degree; ++k) {
           if (k == 0) f == 0 ? add(p.lower, p.upper) : add(0.0, 2.0);
           else add(-m / std::pow(s, k), m / std::pow(s, k));

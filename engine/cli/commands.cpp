@@ -1,6 +1,7 @@
 #include "engine/cli/commands.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -12,6 +13,9 @@
 #include "engine/excitation.hpp"
 #include "engine/identification.hpp"
 #include "engine/key_values.hpp"
+#include "engine/law_model.hpp"
+#include "engine/record_transforms.hpp"
+#include "models/fixtures.hpp"
 #include "engine/random.hpp"
 #include "engine/statistics.hpp"
 #include "engine/table.hpp"
@@ -20,12 +24,45 @@
 
 namespace dampbench::cli {
 
+void set_operating(Dataset& data, const std::string& text, std::string_view option) {
+  for (const auto& [name, value] : parse_key_values(text, option)) {
+    if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
+      throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", option, name));
+    data.operating[name] = parse_number(value, fmt::format("{} {}", option, name));
+  }
+}
+
 Dataset load_data(const DataOptions& options, bool require_force) {
   CsvOptions csv;
   csv.require_force = require_force;
   if (!options.units.empty()) csv.units = parse_units_option(options.units);
   if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
-  return load_csv(options.path, csv);
+  Dataset data = load_csv(options.path, csv);
+  if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
+    SliderCrank rig;
+    rig.printed_torque = options.transform == "slider-crank-printed";
+    data = to_rotary(data, rig);
+  } else if (!options.transform.empty()) {
+    throw InputError(fmt::format("--transform: expected slider-crank or slider-crank-printed, got '{}'", options.transform));
+  }
+  if (!options.average.empty()) {
+    int cycles = 0, drop = 0;
+    for (const auto& [key, value] : parse_key_values(options.average, "--average-cycles")) {
+      const double n = parse_number(value, "--average-cycles " + key);
+      if (n != std::floor(n) || n < 0) throw InputError(fmt::format("--average-cycles {}: expected a whole number, got '{}'", key, value));
+      if (key == "cycles") cycles = static_cast<int>(n);
+      else if (key == "drop") drop = static_cast<int>(n);
+      else throw InputError(fmt::format("--average-cycles: unknown key '{}' (expected cycles, drop)", key));
+    }
+    data = average_cycles(data, cycles, drop);
+  }
+  if (options.conditions == "utfsm") {
+    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) data.operating[k] = v;
+  } else if (!options.conditions.empty()) {
+    throw InputError(fmt::format("--conditions: expected utfsm, got '{}'", options.conditions));
+  }
+  if (!options.set.empty()) set_operating(data, options.set);
+  return data;
 }
 
 namespace {
@@ -38,15 +75,41 @@ void check_format(const std::string& format) {
     throw InputError(fmt::format("--format: expected md or json, got '{}'", format));
 }
 
-/// Every parameter of the model from "name=value,..." (all required, SI).
-std::vector<double> parse_params(const Model& model, const std::string& text) {
-  std::vector<double> values(model.dim(), std::nan(""));
+/// Every parameter of the model from "name=value,..." (SI); all required unless `defaults` gives them.
+std::vector<double> parse_params(const Model& model, const std::string& text, const std::vector<double>& defaults = {}) {
+  std::vector<double> values = defaults.empty() ? std::vector<double>(model.dim(), std::nan("")) : defaults;
   for (const auto& [name, value] : parse_key_values(text, "--params"))
     values[model.parameter_index(name)] = parse_number(value, "--params " + name);
   for (int j = 0; j < model.dim(); ++j)
     if (std::isnan(values[j]))
       throw InputError(fmt::format("--params: missing parameter '{}' of model {}", model.parameters()[j].name, model.id()));
   return values;
+}
+
+/// A model from the command line: a registered model, optionally with parameter laws.
+struct ResolvedModel {
+  std::unique_ptr<LawModel> owned;  ///< set when laws or a fixture built a law model
+  const Model* model = nullptr;
+  std::vector<double> defaults;     ///< a fixture's published coefficients
+};
+
+ResolvedModel resolve_model(const std::string& id, const std::string& laws) {
+  ResolvedModel r;
+  r.model = &find_model(id);
+  if (!laws.empty()) {
+    r.owned = std::make_unique<LawModel>(*r.model, parse_laws(laws, "--laws"));
+    r.model = r.owned.get();
+  }
+  return r;
+}
+
+ResolvedModel resolve_fixture(const std::string& name) {
+  FixtureModel fx = make_fixture_model(find_fixture(name));
+  ResolvedModel r;
+  r.owned = std::move(fx.model);
+  r.model = r.owned.get();
+  r.defaults = std::move(fx.coefficients);
+  return r;
 }
 
 }  // namespace
@@ -76,14 +139,18 @@ int models_command(const std::string& format) {
 }
 
 int simulate_command(const SimulateOptions& o) {
-  const Model& model = find_model(o.model);
-  const std::vector<double> params = parse_params(model, o.params);
+  if (o.model.empty() == o.fixture.empty()) throw InputError("simulate: give exactly one of --model M or --fixture NAME");
   if (o.sine.empty() == o.input.path.empty())
     throw InputError("simulate: give exactly one of --input FILE or --sine amp=...,freq=...,cycles=...,fs=...");
   if (!(o.noise_rel >= 0) || !std::isfinite(o.noise_rel))
     throw InputError(fmt::format("--noise-rel: expected a number >= 0, got {}", o.noise_rel));
-  const Dataset data = o.sine.empty() ? load_data(o.input, false) : make_sine(parse_sine_option(o.sine));
+  const ResolvedModel resolved = o.fixture.empty() ? resolve_model(o.model, o.laws) : resolve_fixture(o.fixture);
+  const Model& model = *resolved.model;
+  const std::vector<double> params = parse_params(model, o.params, resolved.defaults);
+  Dataset data = o.sine.empty() ? load_data(o.input, false) : make_sine(parse_sine_option(o.sine));
+  if (!o.sine.empty() && !o.input.set.empty()) set_operating(data, o.input.set);
   const Signals signals = prepare_signals(data);
+  if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(signals);
   std::vector<double> force = model.simulate(params, signals);
 
   if (o.noise_rel > 0) {  // Gaussian noise, std = noise_rel × RMS of the simulated force
@@ -109,20 +176,33 @@ int simulate_command(const SimulateOptions& o) {
 
 int fit_command(const FitOptions& o) {
   check_format(o.format);
-  const Model& model = find_model(o.model);
+  const ResolvedModel resolved = resolve_model(o.model, o.laws);
+  const Model& model = *resolved.model;
   const Metric metric = parse_metric(o.metric);
   Bounds bounds = default_bounds(model);
   if (!o.bounds.empty()) override_bounds(bounds, model, o.bounds);
   const OptimizerFactory factory = make_optimizer_factory({o.optimizer, o.population, o.iterations});
-  const Dataset data = load_data(o.data, true);
-  const Signals signals = prepare_signals(data);
+  if (o.paths.empty()) throw InputError("fit: give at least one --data FILE");
+  std::vector<Signals> signals;
+  std::string names;
+  for (const auto& path : o.paths) {
+    DataOptions d = o.data;
+    d.path = path;
+    signals.push_back(prepare_signals(load_data(d, true)));
+    if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(signals.back());
+    names += (names.empty() ? "" : "+") + signals.back().name;
+  }
+  std::vector<const Signals*> data;
+  for (const auto& s : signals) data.push_back(&s);
+  double samples = 0;
+  for (const auto& s : signals) samples += static_cast<double>(s.size());
 
   IdentificationSettings settings;
   settings.runs = o.runs;
   settings.seed = o.seed;
   settings.metric = metric;
-  settings.task_key = task_key(model.id(), data.name, o.optimizer);
-  const Identification id = identify(model, signals, bounds, factory, settings);
+  settings.task_key = task_key(model.id(), names, o.optimizer);
+  const Identification id = identify(model, data, bounds, factory, settings);
 
   const RunResult& best = id.runs[id.best_run()];
   std::vector<double> values;
@@ -138,8 +218,8 @@ int fit_command(const FitOptions& o) {
   if (o.format == "json") {
     nlohmann::ordered_json j;
     j["model"] = model.id();
-    j["data"] = o.data.path;
-    j["samples"] = data.size();
+    j["data"] = o.paths;
+    j["samples"] = samples;
     j["metric"] = o.metric;
     j["optimizer"] = {{"name", o.optimizer}, {"population", o.population}, {"iterations", o.iterations}};
     j["seed"] = o.seed;
@@ -158,7 +238,7 @@ int fit_command(const FitOptions& o) {
     return 0;
   }
   const auto paper = model.to_paper_units(best.best_params);
-  Table p{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), data.name, o.runs),
+  Table p{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, o.runs),
           {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit"}, {}};
   for (int i = 0; i < model.dim(); ++i)
     p.rows.push_back({params[i].name, format_number(best.best_params[i]), params[i].unit, format_number(paper[i]),
@@ -170,7 +250,7 @@ int fit_command(const FitOptions& o) {
           {{format_number(s.min), format_number(s.max), format_number(s.mean), format_number(s.std)}}};
   std::cout << p.to_markdown() << "\n" << m.to_markdown() << "\n" << r.to_markdown() << "\n";
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", evaluations,
-                           data.size(), id.wall_time_s, rate);
+                           samples, id.wall_time_s, rate);
   return 0;
 }
 

@@ -4,23 +4,34 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "engine/csv_loader.hpp"
 #include "engine/dataset.hpp"
 
 namespace dampbench::cli {
 
-/// Where a record comes from: --input/--data file with --units and --columns.
+/// Where a record comes from and how it is prepared (the loader options of fit, simulate and presets).
 struct DataOptions {
   std::string path;
-  std::string units;    ///< "x=mm,F=kN"
-  std::string columns;  ///< "t,x,v,F"
+  std::string units;       ///< "x=mm,F=kN"
+  std::string columns;     ///< "t,x,v,F"
+  std::string transform;   ///< "" | "slider-crank" | "slider-crank-printed" (crfd rig, eqs. 2.1–2.2)
+  std::string average;     ///< "cycles=10,drop=3": average the kept cycles into one
+  std::string conditions;  ///< "" | "utfsm": operating variables from the file name
+  std::string set;         ///< "I=1,amp=0.01,freq=1": operating variables (override the others)
 };
+/// Loads and prepares one record: CSV → slider-crank transform → cycle averaging → operating variables.
 Dataset load_data(const DataOptions& options, bool require_force);
+/// Applies "I=1,amp=0.01" to a dataset's operating variables (InputError for unknown names).
+void set_operating(Dataset& data, const std::string& text, std::string_view option = "--set");
 
 struct SimulateOptions {
   std::string model;
-  std::string params;  ///< "name=value,..." in SI
+  std::string fixture;  ///< a published law fixture instead of --model (models/fixtures.hpp)
+  std::string laws;     ///< "c0=poly(I,1);..." laws on the model's parameters
+  std::string params;   ///< "name=value,..." in SI (the fixture's values by default)
   DataOptions input;   ///< used when sine is empty
   std::string sine;    ///< "amp=...,freq=...,cycles=...,fs=..."
   double noise_rel = 0;
@@ -30,7 +41,9 @@ struct SimulateOptions {
 
 struct FitOptions {
   std::string model;
-  DataOptions data;
+  std::string laws;                 ///< parameter laws; with several --data, one set of coefficients for all
+  std::vector<std::string> paths;   ///< one or more records (the metric is averaged over them)
+  DataOptions data;                 ///< loader options shared by every record (path unused)
   std::string metric = "of_abs";
   std::string optimizer = "pso";
   int population = 50;

@@ -16,6 +16,10 @@ namespace {
 void add_data_options(CLI::App* cmd, dampbench::cli::DataOptions& d) {
   cmd->add_option("--units", d.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
   cmd->add_option("--columns", d.columns, "column names of a file without header, e.g. t,x,v,F");
+  cmd->add_option("--transform", d.transform, "slider-crank or slider-crank-printed: crfd rig MTS record to angle and torque");
+  cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
+  cmd->add_option("--conditions", d.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
+  cmd->add_option("--set", d.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
 }
 
 }  // namespace
@@ -34,8 +38,10 @@ int main(int argc, char** argv) {
 
   SimulateOptions sim;
   auto* simulate = app.add_subcommand("simulate", "force of a model with given parameters under a displacement");
-  simulate->add_option("--model", sim.model, "model id (see `dampbench models`)")->required();
-  simulate->add_option("--params", sim.params, "parameter values in SI, name=value,...")->required();
+  simulate->add_option("--model", sim.model, "model id (see `dampbench models`)");
+  simulate->add_option("--fixture", sim.fixture, "published law fixture instead of --model, e.g. mfm.table3");
+  simulate->add_option("--laws", sim.laws, "parameter laws, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
+  simulate->add_option("--params", sim.params, "parameter (or law coefficient) values in SI, name=value,...");
   simulate->add_option("--input", sim.input.path, "displacement record (CSV); t and x are used");
   add_data_options(simulate, sim.input);
   simulate->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
@@ -46,7 +52,8 @@ int main(int argc, char** argv) {
   FitOptions fit;
   auto* fitc = app.add_subcommand("fit", "identify a model's parameters on a record with repeated optimizer runs");
   fitc->add_option("--model", fit.model, "model id")->required();
-  fitc->add_option("--data", fit.data.path, "test record (CSV)")->required();
+  fitc->add_option("--data", fit.paths, "test record (CSV); repeat for several conditions fitted at once")->required();
+  fitc->add_option("--laws", fit.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
   add_data_options(fitc, fit.data);
   fitc->add_option("--metric", fit.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
   fitc->add_option("--optimizer", fit.optimizer, "pso (default)");
