@@ -20,7 +20,8 @@ double variable_scale(const std::string& v) {
 }
 
 /// Default bounds of a law's coefficients from the base parameter's bounds [lo, hi]: the leading
-/// factor's constant term keeps [lo, hi], a term of degree k gets ±M/scale^k (M = max|lo|, |hi|);
+/// factor's constant term keeps [lo, hi], a term of degree k gets ±2M/scale^k (M = max|lo|, |hi|: the
+/// parameter may move by twice its range over the variable's typical span);
 /// further factors of a product are near 1; power and Gaussian terms are bounded around the same range.
 std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const ParameterLaw& law) {
   const double M = std::max(std::fabs(p.lower), std::fabs(p.upper));

@@ -108,7 +108,15 @@ TEST(Cli, BadInputIsReportedClearly) {
   expect_error("fit --model fvd.linear_viscous --runs 0" + data, "runs must be at least 1, got 0");
   expect_error("fit --model fvd.linear_viscous --format xml" + data, "--format: expected md or json, got 'xml'");
   expect_error("fit --model fvd.linear_viscous --data " + (dir / "missing.csv").string(), "cannot open data file");
-  expect_error("simulate --model fvd.linear_viscous --params m=1", "--params: missing parameter 'C'");
+  expect_error("simulate --model fvd.linear_viscous --params m=1 --sine amp=0.01,freq=1,fs=100",
+               "--params: missing parameter 'C'");
+  expect_error("simulate --params m=1 --sine amp=0.01,freq=1,fs=100", "give exactly one of --model M or --fixture NAME");
+  expect_error("simulate --fixture mfm.table3 --sine amp=0.01,freq=1,fs=100",
+               "dataset 'sine' has no operating variable 'I' (needed by the law of c0");
+  expect_error("fit --model mrd.bingham --laws 'f_c=poly(Q,1)'" + data, "--laws f_c: unknown operating variable 'Q'");
+  expect_error("fit --model fvd.linear_viscous --transform crank" + data, "--transform: expected slider-crank");
+  expect_error("fit --model fvd.linear_viscous --conditions utfsm" + data, "'good': expected a UTFSM file name");
+  expect_error("fit --model fvd.linear_viscous --set T=3" + data, "--set: unknown operating variable 'T'");
   expect_error("simulate --model fvd.linear_viscous --params m=1,C=2,Q=3 --sine amp=0.01,freq=1,fs=100",
                "has no parameter 'Q'");
   expect_error("simulate --model fvd.linear_viscous --params m=1,C=2", "give exactly one of --input FILE or --sine");
