@@ -15,6 +15,7 @@
 #include "engine/key_values.hpp"
 #include "engine/law_model.hpp"
 #include "engine/record_transforms.hpp"
+#include "engine/sensitivity.hpp"
 #include "models/fixtures.hpp"
 #include "engine/random.hpp"
 #include "engine/statistics.hpp"
@@ -251,6 +252,77 @@ int fit_command(const FitOptions& o) {
   std::cout << p.to_markdown() << "\n" << m.to_markdown() << "\n" << r.to_markdown() << "\n";
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", evaluations,
                            samples, id.wall_time_s, rate);
+  return 0;
+}
+
+int sensitivity_command(const SensitivityOptions& o) {
+  check_format(o.format);
+  const Model& model = find_model(o.model);
+  const std::size_t cases = o.params.size();
+  const auto& inputs = o.sines.empty() ? o.paths : o.sines;
+  if (cases == 0) throw InputError("sensitivity: give --params (once per case)");
+  if (o.sines.empty() == o.paths.empty())
+    throw InputError("sensitivity: give --sine or --data (not both), once or once per --params");
+  if (inputs.size() != 1 && inputs.size() != cases)
+    throw InputError(fmt::format("sensitivity: {} --params but {} inputs; give one input or one per case", cases, inputs.size()));
+  SensitivitySettings settings;
+  settings.points = o.points;
+  settings.range = o.range;
+  settings.normalized = o.normalized;
+  if (o.objective != "rms") settings.metric = parse_metric(o.objective);
+
+  std::vector<std::vector<double>> values;
+  std::vector<Sensitivity> results;
+  for (std::size_t c = 0; c < cases; ++c) {
+    const std::string& input = inputs[inputs.size() == 1 ? 0 : c];
+    Dataset data;
+    if (o.sines.empty()) {
+      DataOptions d = o.data;
+      d.path = input;
+      data = load_data(d, settings.metric.has_value());
+    } else {
+      data = make_sine(parse_sine_option(input));
+    }
+    values.push_back(parse_params(model, o.params[c]));
+    results.push_back(differential_sensitivity(model, values.back(), prepare_signals(data), settings));
+  }
+  const auto params = model.parameters();
+  std::vector<std::string> cols{"parameter"};
+  for (std::size_t c = 0; c < cases; ++c) {
+    cols.push_back(fmt::format("value ({})", c + 1));
+    cols.push_back(fmt::format("S_z ({})", c + 1));
+    cols.push_back(fmt::format("SP_z % ({})", c + 1));
+  }
+  cols.push_back("SP_z % (mean)");
+  Table t{"sensitivity",
+          fmt::format("Differential sensitivity of {} (crfd eqs. 4.1-4.3), f = {}, ±{:g} %, {} points{}", model.id(),
+                      o.objective == "rms" ? "RMS of the model force" : o.objective, 100 * o.range, o.points,
+                      o.normalized ? ", S_z·|z|" : ""),
+          cols, {}};
+  for (int j = 0; j < model.dim(); ++j) {
+    std::vector<std::string> row{params[j].name};
+    double mean = 0;
+    for (std::size_t c = 0; c < cases; ++c) {
+      row.push_back(format_number(values[c][j]));
+      row.push_back(format_number(results[c].S[j]));
+      row.push_back(fmt::format("{:.2f}", results[c].SP[j]));
+      mean += results[c].SP[j] / static_cast<double>(cases);
+    }
+    row.push_back(fmt::format("{:.2f}", mean));
+    t.rows.push_back(std::move(row));
+  }
+  if (o.format == "json") {
+    nlohmann::ordered_json j;
+    j["model"] = model.id();
+    for (int p = 0; p < model.dim(); ++p) {
+      double mean = 0;
+      for (const auto& r : results) mean += r.SP[p] / static_cast<double>(cases);
+      j["SP_mean_percent"][params[p].name] = mean;
+    }
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << t.to_markdown();
+  }
   return 0;
 }
 

@@ -68,7 +68,19 @@ int main(int argc, char** argv) {
   auto* runc = app.add_subcommand("run", "run a preset (datasets/presets/*.toml) and write its tables");
   runc->add_option("preset", run.preset, "preset file")->required();
   runc->add_option("-o,--output", run.output_dir, "output folder (default results/<preset name>)");
-  for (auto* cmd : {simulate, fitc, runc})
+  SensitivityOptions sens;
+  auto* sensc = app.add_subcommand("sensitivity", "differential sensitivity of a model's parameters (crfd eqs. 4.1-4.3)");
+  sensc->add_option("--model", sens.model, "model id")->required();
+  sensc->add_option("--params", sens.params, "parameter values in SI (repeat for several cases)")->required();
+  sensc->add_option("--sine", sens.sines, "sinusoid input (once, or once per --params)");
+  sensc->add_option("--data", sens.paths, "record input instead of --sine (once, or once per --params)");
+  add_data_options(sensc, sens.data);
+  sensc->add_option("--points", sens.points, "grid points per parameter (default 21)");
+  sensc->add_option("--range", sens.range, "relative half-range (default 0.5 = ±50 %)");
+  sensc->add_option("--objective", sens.objective, "rms (of the model force, default) or a metric name");
+  sensc->add_flag("--normalized", sens.normalized, "report S_z·|z| (elasticity) instead of S_z as printed");
+  sensc->add_option("--format", sens.format, "md (default) or json");
+  for (auto* cmd : {simulate, fitc, runc, sensc})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
 
   try {
@@ -84,6 +96,7 @@ int main(int argc, char** argv) {
     if (simulate->parsed()) return simulate_command(sim);
     if (fitc->parsed()) return fit_command(fit);
     if (runc->parsed()) return run_command(run);
+    if (sensc->parsed()) return sensitivity_command(sens);
   } catch (const dampbench::InputError& e) {
     std::fprintf(stderr, "dampbench: error: %s\n", e.what());
     return 2;
