@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "engine/cli/commands.hpp"
+#include "engine/cli/lssvm_command.hpp"
 #include "engine/error.hpp"
 
 namespace {
@@ -83,6 +84,11 @@ int main(int argc, char** argv) {
   for (auto* cmd : {simulate, fitc, runc, sensc})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
 
+  LssvmOptions lss;
+  auto* lssvmc = app.add_subcommand("lssvm", "LS-SVM damper model (lssvm paper): GA-tuned, one-step and free-run test metrics");
+  add_lssvm_options(lssvmc, lss);
+  lssvmc->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -97,6 +103,7 @@ int main(int argc, char** argv) {
     if (fitc->parsed()) return fit_command(fit);
     if (runc->parsed()) return run_command(run);
     if (sensc->parsed()) return sensitivity_command(sens);
+    if (lssvmc->parsed()) return lssvm_command(lss);
   } catch (const dampbench::InputError& e) {
     std::fprintf(stderr, "dampbench: error: %s\n", e.what());
     return 2;

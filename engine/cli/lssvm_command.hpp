@@ -1,0 +1,35 @@
+#pragma once
+// `dampbench lssvm`: train an LS-SVM damper model (lssvm paper) on some records, tune (c, σ) by GA and
+// report one-step-ahead and free-run metrics on other records.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/cli/commands.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+struct LssvmOptions {
+  std::vector<std::string> train;  ///< training records
+  std::vector<std::string> test;   ///< test records
+  std::string lags;                ///< "d=…,v=…,y=…" lag orders (defaults documented in models/lssvm)
+  int max_train = 0;               ///< at most this many training samples (0: all)
+  std::uint64_t seed = 1;
+  std::string fitness;             ///< hyperparameter fitness (validation by default; the paper's is selectable)
+  int population = 50;             ///< GA population (lssvm paper)
+  int generations = 500;           ///< GA generations (lssvm paper)
+  std::string format = "md";       ///< md or json
+  DataOptions data;                ///< loader options shared by every record (path unused)
+};
+
+/// Declares the subcommand's options on `cmd` (created by main).
+void add_lssvm_options(CLI::App* cmd, LssvmOptions& options);
+
+/// Runs it; bad input throws InputError (reported by main).
+int lssvm_command(const LssvmOptions& options);
+
+}  // namespace dampbench::cli
