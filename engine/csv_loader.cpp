@@ -57,16 +57,35 @@ std::string join_quoted(const std::vector<std::string>& names) {
 }
 
 /// Content lines of the stream: comment ('#') and blank lines dropped, a UTF-8 byte-order mark removed.
-std::vector<Line> read_content_lines(std::istream& in) {
+/// Comments of the form "# operating: I=0.5,amp=0.01" are kept in `operating` (their text after the colon).
+std::vector<Line> read_content_lines(std::istream& in, std::vector<Line>& operating) {
   std::vector<Line> lines;
   std::string text;
+  constexpr std::string_view kOperating = "operating:";
   for (std::size_t number = 1; std::getline(in, text); ++number) {
     if (number == 1 && text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);
     const std::string_view content = trim(text);
-    if (content.empty() || content.front() == '#') continue;
+    if (!content.empty() && content.front() == '#') {
+      const std::string_view comment = trim(content.substr(1));
+      if (comment.starts_with(kOperating)) operating.push_back({number, std::string(trim(comment.substr(kOperating.size())))});
+      continue;
+    }
+    if (content.empty()) continue;
     lines.push_back({number, std::string(content)});
   }
   return lines;
+}
+
+/// Operating variables from "# operating: I=0.5,amp=0.01,freq=1" comments (SI: A, V, deg, m, Hz).
+void read_operating(const std::vector<Line>& comments, const std::string& source, Dataset& data) {
+  for (const Line& c : comments) {
+    const std::string where = fmt::format("{}:{}: operating", source, c.number);
+    for (const auto& [name, value] : parse_key_values(c.text, where)) {
+      if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
+        throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", where, name));
+      data.operating[name] = parse_number(value, fmt::format("{} {}", where, name));
+    }
+  }
 }
 
 /// Cells of a line: comma-separated (each trimmed) or separated by runs of whitespace.
@@ -251,7 +270,8 @@ std::map<std::string, std::string> parse_units_option(std::string_view text) {
 }
 
 Dataset parse_csv(std::istream& in, const std::string& source, const CsvOptions& options) {
-  const std::vector<Line> lines = read_content_lines(in);
+  std::vector<Line> operating;
+  const std::vector<Line> lines = read_content_lines(in, operating);
   if (lines.empty()) throw InputError(fmt::format("{}: no data (the file is empty or has only comments)", source));
   const bool comma_separated = lines.front().text.find(',') != std::string::npos;
   std::optional<Line> header;
@@ -271,7 +291,9 @@ Dataset parse_csv(std::istream& in, const std::string& source, const CsvOptions&
   const std::size_t needed = std::max(options.min_samples, kMinSamplesForDerivatives);
   if (samples < needed)
     throw InputError(fmt::format("{}: {} samples; at least {} are needed", source, samples, needed));
-  return make_dataset(columns, values, source);
+  Dataset data = make_dataset(columns, values, source);
+  read_operating(operating, source, data);
+  return data;
 }
 
 Dataset load_csv(const std::string& path, const CsvOptions& options) {

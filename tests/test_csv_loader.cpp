@@ -55,6 +55,17 @@ std::string linear_rows(int n) {
 
 // ---- formats and units -----------------------------------------------------------------------------------
 
+TEST(CsvLoader, OperatingCommentSetsOperatingVariables) {
+  const Dataset d = parse("# test at 1 A\n# operating: I=1,amp=0.01, freq = 2\nt,x,F\n" + linear_rows(10));
+  EXPECT_DOUBLE_EQ(d.operating.at("I"), 1.0);
+  EXPECT_DOUBLE_EQ(d.operating.at("amp"), 0.01);
+  EXPECT_DOUBLE_EQ(d.operating.at("freq"), 2.0);
+  EXPECT_TRUE(HasText(parse_error("# operating: T=3\nt,x,F\n" + linear_rows(10)),
+                      "data.csv:1: operating: unknown operating variable 'T'"));
+  EXPECT_TRUE(HasText(parse_error("# operating: I=one\nt,x,F\n" + linear_rows(10)),
+                      "data.csv:1: operating I: expected a number, got 'one'"));
+}
+
 TEST(CsvLoader, HeaderUnitsAreConvertedToSi) {
   const Dataset data = parse("t[s],x[mm],F[kN]\n" + linear_rows(10));
   ASSERT_EQ(data.size(), 10u);
