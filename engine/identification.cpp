@@ -1,6 +1,9 @@
 #include "engine/identification.hpp"
 
 #include <chrono>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
 #include <string>
 
 #include <fmt/format.h>
@@ -36,6 +39,35 @@ std::string budget_stop(const Budget& b, const RunResult& run, int stalled, doub
   if (b.max_wall_time_s > 0 && elapsed_s >= b.max_wall_time_s) return "wall_time";
   return "";
 }
+
+/// The problem one run's refinement sees: batch metric through the evaluator, residuals through simulate.
+class RunProblem final : public LocalProblem {
+ public:
+  RunProblem(const BatchEvaluator& evaluator, Metric metric, const Bounds& bounds)
+      : evaluator_(evaluator), metric_(metric), bounds_(bounds) {}
+  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    evaluator_.evaluate(batch, metric_, values);
+    evaluations_ += batch.count();
+  }
+  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    std::vector<double> r;
+    for (const Signals* d : evaluator_.datasets()) {
+      const auto F = evaluator_.model().simulate(params, *d);
+      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+      for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
+    }
+    ++evaluations_;
+    return r;
+  }
+  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
+  [[nodiscard]] long long evaluations() const { return evaluations_; }
+
+ private:
+  const BatchEvaluator& evaluator_;
+  Metric metric_;
+  const Bounds& bounds_;
+  mutable long long evaluations_ = 0;
+};
 
 }  // namespace
 
@@ -100,6 +132,13 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
       row += n;
     }
   }
+
+  // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
+  tbb::parallel_for(0, R, [&](int r) {
+    RunProblem problem(evaluator, settings.metric, bounds);
+    runs[r]->refine(problem);
+    result.runs[r].evaluations += problem.evaluations();
+  });
 
   // Every metric at each run's best parameters, as one more batch.
   CandidateBatch best(model.dim(), R);

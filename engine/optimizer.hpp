@@ -6,11 +6,25 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "engine/batch.hpp"
 #include "engine/bounds.hpp"
 
 namespace dampbench {
+
+/// What a local refinement (the SQP or least-squares stage of a hybrid) may ask of the problem; the
+/// identification loop provides one per run and counts its evaluations.
+class LocalProblem {
+ public:
+  virtual ~LocalProblem() = default;
+  /// The optimized metric of every candidate of the batch (one batch across cores; +inf for failures).
+  virtual void evaluate(const CandidateBatch& batch, std::span<double> values) const = 0;
+  /// Residuals F_model − F_measured of one candidate at every sample of every dataset, each dataset's
+  /// residuals divided by sqrt(N_d)·max|F_d| so that ‖r‖² = Σ_d nrmse_d² (least-squares stages).
+  [[nodiscard]] virtual std::vector<double> residuals(std::span<const double> params) const = 0;
+  [[nodiscard]] virtual const Bounds& bounds() const = 0;
+};
 
 class Optimizer {
  public:
@@ -24,6 +38,10 @@ class Optimizer {
   [[nodiscard]] virtual bool finished() const = 0;
   [[nodiscard]] virtual std::span<const double> best_position() const = 0;
   [[nodiscard]] virtual double best_value() const = 0;
+  /// Local refinement after the population phase has finished (hybrids: GA → SQP, GA → least squares).
+  /// It may evaluate through `problem` and must leave best_position()/best_value() updated (best_value in
+  /// the metric's terms). Default: nothing.
+  virtual void refine(const LocalProblem& /*problem*/) {}
 };
 
 /// Makes the optimizer of one run. `run_key` keys every random number the run draws

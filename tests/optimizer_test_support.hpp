@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <sstream>
 #include <span>
 #include <string>
 #include <vector>
@@ -147,16 +148,17 @@ inline ::testing::AssertionResult reaches_target(const SuccessCase& c, const std
   const OptimizerFactory factory = make(c.population, c.iterations);
   const Bounds bounds = box(c.dim, c.function.lower, c.function.upper);
   int successes = 0;
-  std::string bests;
+  std::ostringstream bests;
+  bests.precision(3);
   for (int r = 0; r < c.repeats; ++r) {
     const double best = minimize(factory, c.function.f, bounds, first_seed + r).best_value;
     successes += best < c.target;
-    bests += (r ? ", " : "") + std::to_string(best);
+    bests << (r ? ", " : "") << best;
   }
   if (successes >= c.min_successes) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << c.name() << ": " << successes << "/" << c.repeats << " runs below "
                                        << c.target << " (need " << c.min_successes << "), seeds from "
-                                       << first_seed << "; best values: " << bests;
+                                       << first_seed << "; best values: " << bests.str();
 }
 
 /// Retry for stochastic tests: runs trial(attempt) for attempt = 0, 1, … and stops at the first success, but
@@ -272,6 +274,19 @@ inline void expect_converges_beside_failures(const OptimizerFactory& make, doubl
   EXPECT_TRUE(std::isfinite(run.best_value));
   EXPECT_LT(run.best_value, target);
   EXPECT_GE(run.best_position[0], 0.0);
+}
+
+/// A run stopped before its first tell (engine budgets stop runs between generations) still reports a best
+/// position of the right size inside the box, with value +inf.
+inline void expect_best_position_before_first_tell(const OptimizerFactory& make) {
+  const Bounds b{{1.0, -3.0}, {2.0, -2.5}};  // the origin is outside
+  const auto opt = make(b, 6);
+  EXPECT_EQ(opt->best_value(), std::numeric_limits<double>::infinity());
+  ASSERT_EQ(opt->best_position().size(), 2u);
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GE(opt->best_position()[j], b.lower[j]);
+    EXPECT_LE(opt->best_position()[j], b.upper[j]);
+  }
 }
 
 /// Every candidate fails: the run still ends, its best value is +inf and its best position is in the box.

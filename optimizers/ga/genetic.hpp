@@ -12,7 +12,7 @@
 //      is drawn so that children never leave [lower, upper], and the two children are swapped with
 //      probability 1/2; otherwise the children are copies of the parents;
 //   3. each gene of child c mutated with probability pm[c] by bounded polynomial mutation
-//      (Deb & Goyal 1996; Deb 2001, §4.2), whose perturbation also never leaves [lower, upper].
+//      (Deb & Goyal 1996), bounded form of Deb's NSGA-II code, whose perturbation never leaves the box.
 //   4. after the offspring are evaluated, elitism: the `elites` best parents replace the `elites` worst
 //      offspring, each only where the parent is strictly better (so the best value never gets worse).
 // Bounds: the initial population is uniform in the box and both operators keep children inside it, so
@@ -43,9 +43,9 @@ struct GeneticSettings {
   int generations = 100;  ///< evaluated generations including the initial one; budget N × generations
   int tournament = 2;     ///< tournament size: binary tournament (Goldberg & Deb 1991)
   int elites = 1;         ///< best parents kept over the worst offspring each generation (De Jong 1975)
-  double eta_c = 15;      ///< SBX distribution index (Deb & Agrawal 1995 use 2–5 for broad, Deb's
-                          ///< later codes 10–20 for local search; 15 as in pymoo's GA default)
-  double eta_m = 20;      ///< polynomial mutation distribution index (Deb & Goyal 1996; NSGA-II default)
+  double eta_c = 15;      ///< SBX distribution index: larger keeps children nearer their parents; NSGA-II
+                          ///< (Deb et al. 2002) uses 20, pymoo's GA 15 — the broader of the two
+  double eta_m = 20;      ///< polynomial mutation distribution index (NSGA-II, Deb et al. 2002)
 
   /// Throws InputError: population < 4, generations < 1, tournament outside [2, population], elites
   /// outside [0, population / 2], eta_c or eta_m negative or not finite.
@@ -63,7 +63,7 @@ void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std
          std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
          double eta_c, RandomStream& rng);
 
-/// Bounded polynomial mutation of one gene in [lower, upper] (Deb & Goyal 1996; Deb 2001).
+/// Bounded polynomial mutation of one gene in [lower, upper] (Deb & Goyal 1996; NSGA-II code).
 double polynomial_mutation(double x, double lower, double upper, double eta_m, RandomStream& rng);
 
 }  // namespace genetic

@@ -53,12 +53,14 @@ Pso::Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_ke
   v_.assign(x_.size(), 0.0);
   pbest_.resize(x_.size());
   pbest_value_.assign(n, std::numeric_limits<double>::infinity());
-  gbest_.assign(dim_, 0.0);
   gbest_value_ = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
     RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
     for (int j = 0; j < dim_; ++j) x(i, j) = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
   }
+  // Until the first tell, the best position is the first particle: inside the box even if a run is stopped
+  // (engine budgets) before any evaluation.
+  gbest_.assign(x_.begin(), x_.begin() + dim_);
 }
 
 void Pso::ask(CandidateBatch& batch, int first) {
