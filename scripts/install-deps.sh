@@ -5,7 +5,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libtbb-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev
+  libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev libnlopt-cxx-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -9,7 +9,9 @@
 #include <tbb/global_control.h>
 
 #include "engine/cli/commands.hpp"
+#include "engine/cli/compare_command.hpp"
 #include "engine/cli/lssvm_command.hpp"
+#include "engine/cli/sweep_commands.hpp"
 #include "engine/error.hpp"
 
 namespace {
@@ -66,9 +68,17 @@ int main(int argc, char** argv) {
   fitc->add_option("--format", fit.format, "md (default) or json");
 
   RunOptions run;
-  auto* runc = app.add_subcommand("run", "run a preset (datasets/presets/*.toml) and write its tables");
-  runc->add_option("preset", run.preset, "preset file")->required();
-  runc->add_option("-o,--output", run.output_dir, "output folder (default results/<preset name>)");
+  auto* runc = app.add_subcommand("run", "run a preset or sweep (datasets/presets/*.toml) and write its tables");
+  add_run_options(runc, run);
+  TableOptions tab;
+  auto* tablec = app.add_subcommand("table", "print a table from a sweep's store");
+  add_table_options(tablec, tab);
+  VerifyOptions ver;
+  auto* verifyc = app.add_subcommand("verify", "re-run stored tasks and compare bit for bit");
+  add_verify_options(verifyc, ver);
+  CompareOptions cmp;
+  auto* comparec = app.add_subcommand("compare", "compare optimizers on the same model and data");
+  add_compare_options(comparec, cmp);
   SensitivityOptions sens;
   auto* sensc = app.add_subcommand("sensitivity", "differential sensitivity of a model's parameters (crfd eqs. 4.1-4.3)");
   sensc->add_option("--model", sens.model, "model id")->required();
@@ -81,7 +91,7 @@ int main(int argc, char** argv) {
   sensc->add_option("--objective", sens.objective, "rms (of the model force, default) or a metric name");
   sensc->add_flag("--normalized", sens.normalized, "report S_z·|z| (elasticity) instead of S_z as printed");
   sensc->add_option("--format", sens.format, "md (default) or json");
-  for (auto* cmd : {simulate, fitc, runc, sensc})
+  for (auto* cmd : {simulate, fitc, runc, sensc, verifyc, comparec})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
 
   LssvmOptions lss;
@@ -104,6 +114,9 @@ int main(int argc, char** argv) {
     if (runc->parsed()) return run_command(run);
     if (sensc->parsed()) return sensitivity_command(sens);
     if (lssvmc->parsed()) return lssvm_command(lss);
+    if (tablec->parsed()) return table_command(tab);
+    if (verifyc->parsed()) return verify_command(ver);
+    if (comparec->parsed()) return compare_command(cmp);
   } catch (const dampbench::InputError& e) {
     std::fprintf(stderr, "dampbench: error: %s\n", e.what());
     return 2;
