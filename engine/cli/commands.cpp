@@ -182,7 +182,9 @@ int fit_command(const FitOptions& o) {
   const Metric metric = parse_metric(o.metric);
   Bounds bounds = default_bounds(model);
   if (!o.bounds.empty()) override_bounds(bounds, model, o.bounds);
-  const OptimizerFactory factory = make_optimizer_factory({o.optimizer, o.population, o.iterations});
+  OptimizerSpec spec{o.optimizer, o.population, o.iterations};
+  for (const auto& [key, value] : parse_key_values(o.optimizer_settings, "--optimizer-settings")) spec.settings[key] = value;
+  const OptimizerFactory factory = make_optimizer_factory(spec);
   if (o.paths.empty()) throw InputError("fit: give at least one --data FILE");
   std::vector<Signals> signals;
   std::string names;
@@ -222,7 +224,8 @@ int fit_command(const FitOptions& o) {
     j["data"] = o.paths;
     j["samples"] = samples;
     j["metric"] = o.metric;
-    j["optimizer"] = {{"name", o.optimizer}, {"population", o.population}, {"iterations", o.iterations}};
+    j["optimizer"] = {{"name", o.optimizer}, {"population", o.population}, {"iterations", o.iterations},
+                      {"settings", spec.settings}};
     j["seed"] = o.seed;
     nlohmann::ordered_json bp = nlohmann::ordered_json::object();
     for (int i = 0; i < model.dim(); ++i) bp[params[i].name] = best.best_params[i];

@@ -46,6 +46,7 @@ struct FitOptions {
   DataOptions data;                 ///< loader options shared by every record (path unused)
   std::string metric = "of_abs";
   std::string optimizer = "pso";
+  std::string optimizer_settings;  ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
   int population = 50;
   int iterations = 100;
   int runs = 50;

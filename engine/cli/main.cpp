@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   fitc->add_option("--laws", fit.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
   add_data_options(fitc, fit.data);
   fitc->add_option("--metric", fit.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
-  fitc->add_option("--optimizer", fit.optimizer, "pso (default)");
+  fitc->add_option("--optimizer", fit.optimizer, "pso (default), ga, aga, de, ...");
+  fitc->add_option("--optimizer-settings", fit.optimizer_settings, "algorithm settings, e.g. pc=0.6,pm=0.03 or variant=constriction");
   fitc->add_option("--pop", fit.population, "population size (default 50)");
   fitc->add_option("--iters", fit.iterations, "iterations (default 100)");
   fitc->add_option("--runs", fit.runs, "independent runs (default 50)");
