@@ -8,25 +8,24 @@
 
 namespace dampbench {
 
-template <class L>
+template <class Law, int W>
 class AlgebraicKernel {
  public:
-  using Law = L;
-  AlgebraicKernel(const LaneParams<Law::kParams>& p, const Signals& data) : p_(p), data_(data) {}
+  AlgebraicKernel(const LaneParams<Law::kParams, W>& p, const Signals& data) : p_(p), data_(data) {}
 
   void forces(std::size_t k, double* f) const {
     const auto s = Law::prepare(data_, k);
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) f[l] = Law::force(p_, l, s);
+    for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, s);
   }
   [[nodiscard]] const bool* failed() const { return nullptr; }
 
  private:
-  LaneParams<Law::kParams> p_;
+  LaneParams<Law::kParams, W> p_;
   const Signals& data_;
 };
 
 template <class Law>
-using AlgebraicModel = KernelModel<AlgebraicKernel<Law>>;
+using AlgebraicModel = KernelModel<Law, AlgebraicKernel>;
 
 }  // namespace dampbench

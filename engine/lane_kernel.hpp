@@ -29,39 +29,41 @@ struct ModelInfo {
   std::vector<ParameterInfo> parameters;
 };
 
-/// Parameters of one lane block: p[j][lane].
-template <int D>
+/// Parameters of one block of W lanes: p[j][lane]. Kernels run with W = kLanes; W = 1 gives the plain
+/// scalar loop of the same law, the reference `dampbench bench` compares against.
+template <int D, int W = kLanes>
 struct LaneParams {
-  alignas(64) double p[D][kLanes];
+  alignas(64) double p[D][W];
 };
 
 /// Copies candidates [first, first + count) into a lane block; lanes past count repeat the first one.
-template <int D>
-LaneParams<D> gather_lanes(const CandidateBatch& batch, int first, int count) {
-  LaneParams<D> lanes;
+template <int D, int W = kLanes>
+LaneParams<D, W> gather_lanes(const CandidateBatch& batch, int first, int count) {
+  LaneParams<D, W> lanes;
   for (int j = 0; j < D; ++j) {
     const double* row = batch.param_row(j);
-    for (int l = 0; l < kLanes; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
   }
   return lanes;
 }
 
 /// One candidate in every lane (simulate).
-template <int D>
-LaneParams<D> broadcast_lanes(std::span<const double> params) {
-  LaneParams<D> lanes;
+template <int D, int W = kLanes>
+LaneParams<D, W> broadcast_lanes(std::span<const double> params) {
+  LaneParams<D, W> lanes;
   for (int j = 0; j < D; ++j)
-    for (int l = 0; l < kLanes; ++l) lanes.p[j][l] = params[j];
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = params[j];
   return lanes;
 }
 
-/// The four metric sums of a lane block, accumulated sample by sample.
+/// The four metric sums of a block of W lanes, accumulated sample by sample.
+template <int W = kLanes>
 struct LaneSums {
-  alignas(64) double abs_w[kLanes] = {}, sq_w[kLanes] = {}, abs_e[kLanes] = {}, sq_e[kLanes] = {};
+  alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {};
 
   void add(const double* force, double measured, double w) {
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < W; ++l) {
       const double e = measured - force[l];
       const double ae = std::fabs(e);
       abs_w[l] += w * ae;
@@ -78,14 +80,28 @@ struct LaneSums {
   }
 };
 
-/// A Model from a Kernel type. A Kernel has:
-///   using Law = ...;                          (Law::kParams, Law::info(), optional Law::to_paper_units)
-///   Kernel(const LaneParams<Law::kParams>&, const Signals&);
+/// A Model from a Law and a kernel template KernelT<Law, W>, which has:
+///   KernelT(const LaneParams<Law::kParams, W>&, const Signals&);
 ///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
-template <class Kernel>
+///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
+/// Law provides kParams, info() and optionally to_paper_units.
+template <class Law, template <class, int> class KernelT>
 class KernelModel final : public Model {
-  using Law = typename Kernel::Law;
+  using Kernel = KernelT<Law, kLanes>;
+
+  /// Metric sums of a block of W lanes (count ≤ W candidates).
+  template <int W>
+  static void run_block(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) {
+    KernelT<Law, W> kernel(gather_lanes<Law::kParams, W>(batch, first, count), data);
+    LaneSums<W> sums;
+    alignas(64) double f[W];
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      kernel.forces(k, f);
+      sums.add(f, data.F_N[k], data.w_trapz_s[k]);
+    }
+    sums.store(out, count, kernel.failed());
+  }
 
  public:
   [[nodiscard]] std::string_view id() const override { return Law::info().id; }
@@ -95,18 +111,16 @@ class KernelModel final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override {
-    Kernel kernel(gather_lanes<Law::kParams>(batch, first, count), data);
-    LaneSums sums;
-    alignas(64) double f[kLanes];
-    for (std::size_t k = 0; k < data.size(); ++k) {
-      kernel.forces(k, f);
-      sums.add(f, data.F_N[k], data.w_trapz_s[k]);
-    }
-    sums.store(out, count, kernel.failed());
+    run_block<kLanes>(batch, first, count, data, out);
+  }
+
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                       MetricSums* out) const override {
+    for (int i = 0; i < count; ++i) run_block<1>(batch, first + i, 1, data, out + i);
   }
 
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
-    Kernel kernel(broadcast_lanes<Law::kParams>(params), data);
+    Kernel kernel(broadcast_lanes<Law::kParams, kLanes>(params), data);
     std::vector<double> force(data.size());
     alignas(64) double f[kLanes];
     for (std::size_t k = 0; k < data.size(); ++k) {

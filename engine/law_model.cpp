@@ -100,19 +100,28 @@ void LawModel::check_variables(const Signals& data) const {
   }
 }
 
-void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
-                              MetricSums* out) const {
+const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const {
   // Per-thread scratch: the base parameters of this block (grows once, never shrinks).
   thread_local CandidateBatch scratch;
-  if (scratch.dim() != base_.dim() || scratch.count() != count) scratch.resize(base_.dim(), count);
   thread_local std::vector<double> c;
+  if (scratch.dim() != base_.dim() || scratch.count() != count) scratch.resize(base_.dim(), count);
   c.resize(coefficients_.size());
   for (int i = 0; i < count; ++i) {
     for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
     for (std::size_t j = 0; j < laws_.size(); ++j)
       scratch.at(i, static_cast<int>(j)) = laws_[j].evaluate(c.data() + offsets_[j], data.law_variables);
   }
-  base_.evaluate_block(scratch, 0, count, data, out);
+  return scratch;
+}
+
+void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+                              MetricSums* out) const {
+  base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, out);
+}
+
+void LawModel::evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                               MetricSums* out) const {
+  base_.evaluate_scalar(base_block(batch, first, count, data), 0, count, data, out);
 }
 
 std::vector<double> LawModel::simulate(std::span<const double> coefficients, const Signals& data) const {

@@ -29,6 +29,8 @@ class LawModel final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override;
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                       MetricSums* out) const override;
   [[nodiscard]] std::vector<double> simulate(std::span<const double> coefficients, const Signals& data) const override;
   [[nodiscard]] std::optional<std::vector<double>> simulate_reference(std::span<const double> coefficients,
                                                                       const Signals& data) const override;
@@ -41,6 +43,9 @@ class LawModel final : public Model {
   [[nodiscard]] const Model& base() const { return base_; }
 
  private:
+  /// The base parameters of candidates [first, first + count) under the record's variables (thread scratch).
+  const CandidateBatch& base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const;
+
   const Model& base_;
   std::vector<ParameterLaw> laws_;   ///< one per base parameter
   std::vector<int> offsets_;         ///< first coefficient of each base parameter

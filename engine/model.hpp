@@ -37,6 +37,13 @@ class Model {
   virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                               MetricSums* out) const = 0;
 
+  /// The same sums computed by a plain scalar loop, one candidate at a time (the reference `dampbench
+  /// bench` measures the lane kernels against). Default: evaluate_block.
+  virtual void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                               MetricSums* out) const {
+    evaluate_block(batch, first, count, data, out);
+  }
+
   /// Force of one candidate at every sample, computed by the same kernel as evaluate_block, so the
   /// bits are those the batch path sees.
   [[nodiscard]] virtual std::vector<double> simulate(std::span<const double> params, const Signals& data) const = 0;

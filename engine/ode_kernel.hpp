@@ -41,33 +41,34 @@ inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_
   return std::max(1, static_cast<int>(std::min(n, 1e6)));
 }
 
-/// State j of one lane inside a [states][kLanes] block: y[j] is block[j][lane]. Indexing through it keeps
+/// State j of one lane inside a [states][W] block: y[j] is block[j][lane]. Indexing through it keeps
 /// the lane loop free of private arrays, which GCC's vectorizer cannot handle in `omp simd` loops.
+template <int W>
 struct LaneState {
   double* base;
-  double& operator[](int j) const { return base[j * kLanes]; }
+  double& operator[](int j) const { return base[j * W]; }
 };
 
-template <class L>
+template <class Law, int W>
 class OdeKernel {
  public:
-  using Law = L;
   static constexpr int S = Law::kStates;
+  using State = LaneState<W>;
 
-  OdeKernel(const LaneParams<Law::kParams>& p, const Signals& data)
+  OdeKernel(const LaneParams<Law::kParams, W>& p, const Signals& data)
       : p_(p), data_(data), ctx_(Law::context(data)) {}
 
   void forces(std::size_t k, double* f) {
     if (k > 0) advance(k);
     const double x = data_.x_m[k], v = data_.v_m_s[k];
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) f[l] = Law::force(p_, l, ctx_, x, v, LaneState{&y_[0][l]});
+    for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, ctx_, x, v, State{&y_[0][l]});
   }
   [[nodiscard]] const bool* failed() const { return failed_flags_; }
 
   /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
   static std::vector<double> reference(std::span<const double> params, const Signals& data) {
-    const auto P = broadcast_lanes<Law::kParams>(params);
+    const auto P = broadcast_lanes<Law::kParams, 1>(params);
     const auto ctx = Law::context(data);
     std::size_t interval = 0;  // last interval used; times only move forward within one CVODE call
     auto input = [&](double t, double& x, double& v) {
@@ -104,20 +105,20 @@ class OdeKernel {
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < W; ++l) {
       double bad = 0.0;  // counts non-finite or huge states; doubles (not bools) keep the loop vectorized
       for (int j = 0; j < S; ++j) bad += static_cast<double>(!(std::fabs(y_[j][l]) < kBlowUp));
       failed_[l] += bad;
       for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
     }
-    for (int l = 0; l < kLanes; ++l) failed_flags_[l] = failed_[l] > 0.0;
+    for (int l = 0; l < W; ++l) failed_flags_[l] = failed_[l] > 0.0;
   }
 
   /// One RK4 step of size h with inputs at the step's start (xa, va), middle (xm, vm) and end (xb, vb).
   void step(double h, double xa, double va, double xm, double vm, double xb, double vb) {
 #pragma omp simd
-    for (int l = 0; l < kLanes; ++l) {
-      const LaneState y{&y_[0][l]}, t{&t_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
+    for (int l = 0; l < W; ++l) {
+      const State y{&y_[0][l]}, t{&t_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
       Law::rhs(p_, l, ctx_, xa, va, y, k1);
       for (int j = 0; j < S; ++j) t[j] = y[j] + 0.5 * h * k1[j];
       Law::rhs(p_, l, ctx_, xm, vm, t, k2);
@@ -129,17 +130,17 @@ class OdeKernel {
     }
   }
 
-  LaneParams<Law::kParams> p_;
+  LaneParams<Law::kParams, W> p_;
   const Signals& data_;
   typename Law::Context ctx_;
-  alignas(64) double y_[S][kLanes] = {};
-  alignas(64) double t_[S][kLanes] = {};      // RK4 stage input
-  alignas(64) double k_[4][S][kLanes] = {};   // RK4 stage slopes
-  alignas(64) double failed_[kLanes] = {};  // > 0 once a lane has blown up
-  bool failed_flags_[kLanes] = {};
+  alignas(64) double y_[S][W] = {};
+  alignas(64) double t_[S][W] = {};      // RK4 stage input
+  alignas(64) double k_[4][S][W] = {};   // RK4 stage slopes
+  alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up
+  bool failed_flags_[W] = {};
 };
 
 template <class Law>
-using OdeModel = KernelModel<OdeKernel<Law>>;
+using OdeModel = KernelModel<Law, OdeKernel>;
 
 }  // namespace dampbench

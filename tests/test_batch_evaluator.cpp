@@ -104,3 +104,40 @@ TEST(BatchEvaluator, MetricOfSimulatedForceMatchesBatchPath) {
 }
 
 }  // namespace dampbench
+
+namespace dampbench {
+
+// Every model's lane kernel against the plain scalar loop of the same law (Model::evaluate_scalar):
+// the same sums up to rounding of the vector math library (libmvec lanes vs scalar libm).
+TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
+  Dataset d = testing::two_sine_record(300);
+  for (const Model* m : all_models()) {
+    const Signals input = prepare_signals(d);
+    const Bounds b = default_bounds(*m);
+    CandidateBatch batch(m->dim(), 21);
+    RandomStream rng(hash_key({17, hash_name(m->id())}));
+    for (int i = 0; i < batch.count(); ++i)
+      for (int j = 0; j < m->dim(); ++j)  // central half of the bounds: mostly well-behaved candidates
+        batch.at(i, j) = b.lower[j] + (0.25 + 0.5 * rng.uniform()) * (b.upper[j] - b.lower[j]);
+    Dataset with_force = d;
+    with_force.F_N = m->simulate(batch.candidate(0), input);
+    for (double& f : with_force.F_N) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
+    const Signals data = prepare_signals(with_force);
+    std::vector<MetricSums> lanes(21), scalar(21);
+    for (int first = 0; first < 21; first += kLanes) {
+      const int count = std::min(kLanes, 21 - first);
+      m->evaluate_block(batch, first, count, data, lanes.data() + first);
+      m->evaluate_scalar(batch, first, count, data, scalar.data() + first);
+    }
+    for (int i = 0; i < 21; ++i) {
+      const double a = lanes[i].abs_weighted, s = scalar[i].abs_weighted;
+      if (std::isinf(a) || std::isinf(s) || std::isnan(a) || std::isnan(s)) {
+        EXPECT_EQ(std::isfinite(a), std::isfinite(s)) << m->id() << " candidate " << i;
+        continue;
+      }
+      EXPECT_NEAR(a, s, 1e-9 * std::fabs(s) + 1e-300) << m->id() << " candidate " << i;
+    }
+  }
+}
+
+}  // namespace dampbench

@@ -2,6 +2,7 @@
 // `dampbench lssvm`: train an LS-SVM damper model (lssvm paper) on some records, tune (c, σ) by GA and
 // report one-step-ahead and free-run metrics on other records.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct LssvmOptions {
   std::string fitness;             ///< hyperparameter fitness (validation by default; the paper's is selectable)
   int population = 50;             ///< GA population (lssvm paper)
   int generations = 500;           ///< GA generations (lssvm paper)
+  double validation = 0.2;         ///< held-out tail of each training record (fitness validation)
+  double c = std::numeric_limits<double>::quiet_NaN();      ///< fixed c (with sigma): no GA; NaN: tune
+  double sigma = std::numeric_limits<double>::quiet_NaN();  ///< fixed σ (with c): no GA; NaN: tune
   std::string format = "md";       ///< md or json
   DataOptions data;                ///< loader options shared by every record (path unused)
 };

@@ -1,0 +1,237 @@
+#include "engine/sweep/runner.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <memory>
+
+#include <fmt/format.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include "engine/batch_evaluator.hpp"
+#include "engine/error.hpp"
+#include "engine/law_model.hpp"
+#include "engine/sensitivity.hpp"
+#include "engine/sweep/fingerprint.hpp"
+#include "engine/sweep/progress.hpp"
+
+namespace dampbench::sweep {
+namespace {
+
+/// The trace points where the best-so-far improved, the last iteration, and a final point for a local
+/// refinement that improved on the population phase.
+std::vector<TracePoint> compress_trace(const RunResult& run) {
+  std::vector<TracePoint> t;
+  for (std::size_t i = 0; i < run.trace.size(); ++i)
+    if (i == 0 || run.trace[i] < run.trace[i - 1] || i + 1 == run.trace.size())
+      t.push_back({run.trace_evaluations[i], run.trace[i]});
+  if (!t.empty() && (run.best_value < t.back().value || run.evaluations != t.back().evaluations))
+    t.push_back({run.evaluations, std::min(run.best_value, t.back().value)});
+  return t;
+}
+
+}  // namespace
+
+GroupRecord run_group(const Plan& plan, long long index) {
+  const GroupRef g = plan.group(index);
+  const PartPlan& part = plan.parts()[g.part];
+  const FitSet& fs = part.splits[g.split].fitsets[g.fitset];
+  GroupRecord rec;
+  rec.index = index;
+  rec.part = g.part;
+  rec.split = g.split;
+  rec.fitset = g.fitset;
+  rec.model = g.model;
+  rec.optimizer = g.optimizer;
+  rec.metric = g.metric;
+  rec.runs = g.runs;
+  rec.task_key = g.key;
+  rec.dampbench_version = dampbench_version();
+  rec.build_flags = build_flags();
+  rec.spec_hash = plan.spec().hash;
+  rec.dataset_hash = plan.group_dataset_hash(g);
+  try {
+    const ResolvedModel& resolved = part.models[g.model];
+    const Model& model = *resolved.model;
+    const auto* law = dynamic_cast<const LawModel*>(&model);
+    auto signals_of = [&](int d) -> const Signals& {
+      const LoadedDataset& ld = part.datasets[d];
+      if (!ld.ok()) throw InputError(fmt::format("dataset '{}': {}", ld.signals.name, ld.error));
+      if (law) law->check_variables(ld.signals);
+      return ld.signals;
+    };
+    std::vector<const Signals*> data;
+    for (int d : fs.fit) data.push_back(&signals_of(d));
+    for (int d : fs.predict) (void)signals_of(d);
+
+    const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
+    IdentificationSettings settings;
+    settings.runs = g.runs;
+    settings.seed = part.spec->seed;
+    settings.task_key = g.key;
+    settings.metric = g.metric;
+    settings.budget = opt.budget;
+    const Identification id = identify(model, data, resolved.bounds, part.factories[g.optimizer], settings);
+
+    rec.wall_time_s = id.wall_time_s;
+    rec.candidate_samples = id.candidate_samples;
+    CandidateBatch best(model.dim(), g.runs);
+    for (int r = 0; r < g.runs; ++r) {
+      const RunResult& run = id.runs[r];
+      rec.evaluations += run.evaluations;
+      rec.run_results.push_back({r, run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
+                                 compress_trace(run)});
+      best.set_candidate(r, run.best_params);
+    }
+
+    // Each fit dataset of a joint fit, and each predicted dataset, on its own.
+    std::vector<std::pair<int, bool>> singles;
+    if (fs.fit.size() > 1)
+      for (int d : fs.fit) singles.emplace_back(d, false);
+    for (int d : fs.predict) singles.emplace_back(d, true);
+    std::vector<MetricRow> rows(g.runs);
+    for (const auto& [d, predicted] : singles) {
+      BatchEvaluator(model, part.datasets[d].signals).evaluate_all(best, rows);
+      for (int r = 0; r < g.runs; ++r) rec.dataset_metrics.push_back({r, d, predicted, rows[r]});
+    }
+
+    const SensitivitySpec& sens = part.spec->splits[g.split].sensitivity;
+    if (sens.enabled && fs.fit.size() == 1 &&
+        sens.where.matches(part.datasets[fs.fit[0]].signals.name, part.datasets[fs.fit[0]].signals.law_variables)) {
+      SensitivitySettings ss;
+      ss.points = sens.points;
+      ss.range = sens.range;
+      ss.normalized = sens.normalized;
+      if (sens.objective != "rms") ss.metric = parse_metric(sens.objective);
+      const Sensitivity s = differential_sensitivity(model, id.runs[id.best_run()].best_params, *data[0], ss);
+      rec.sensitivity = SensitivityRecord{fs.fit[0], s.S, s.SP};
+    }
+  } catch (const std::exception& e) {
+    rec.failed = true;
+    rec.message = e.what();
+    rec.run_results.clear();
+    rec.dataset_metrics.clear();
+    rec.sensitivity.reset();
+    rec.evaluations = 0;
+    rec.candidate_samples = 0;
+  }
+  return rec;
+}
+
+StoreHeader make_store_header(const Plan& plan, const std::string& spec_path) {
+  StoreHeader h;
+  h.name = plan.spec().name;
+  h.spec_hash = plan.spec().hash;
+  h.spec_path = spec_path;
+  h.dampbench_version = dampbench_version();
+  h.build_flags = build_flags();
+  h.groups = plan.groups();
+  h.tasks = plan.tasks();
+  for (int p = 0; p < static_cast<int>(plan.parts().size()); ++p) {
+    const PartPlan& part = plan.parts()[p];
+    const PartSpec& s = *part.spec;
+    h.parts.push_back({s.name, s.title, s.path, s.source, s.seed, s.runs});
+    for (int m = 0; m < static_cast<int>(s.models.size()); ++m) {
+      StoreModel sm{p, s.models[m].name, s.models[m].model, s.models[m].fixture, s.models[m].laws, s.models[m].bounds, {}};
+      for (const auto& info : part.models[m].model->parameters()) sm.params.push_back(info.name);
+      h.models.push_back(std::move(sm));
+    }
+    for (const auto& o : s.optimizers)
+      h.optimizers.push_back({p, o.label, o.spec.name, o.spec.population, o.spec.iterations, o.spec.settings});
+    for (const auto& sp : s.splits) h.splits.emplace_back(p, sp.name);
+    for (int d = 0; d < static_cast<int>(s.datasets.size()); ++d) {
+      const auto& ds = s.datasets[d];
+      const auto& ld = part.datasets[d];
+      h.datasets.push_back({p, ds.name, ds.collection, ds.label, ds.load.path, ld.hash, ld.error,
+                            static_cast<long long>(ld.signals.size()), ld.signals.law_variables});
+    }
+    for (int sp = 0; sp < static_cast<int>(part.splits.size()); ++sp)
+      for (const auto& f : part.splits[sp].fitsets) h.fitsets.push_back({p, sp, f.label, f.fit, f.predict});
+  }
+  return h;
+}
+
+RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options) {
+  RunnerSummary sum;
+  sum.groups = plan.groups();
+  sum.tasks = plan.tasks();
+  const std::vector<char> done = store.finished();
+  long long tasks_done = 0;
+  for (long long i = 0; i < plan.groups(); ++i)
+    if (done[static_cast<std::size_t>(i)]) {
+      ++sum.stored_before;
+      tasks_done += plan.group(i).runs;
+    }
+  ProgressBar bar(options.progress, sum.tasks, tasks_done);
+  const auto start = std::chrono::steady_clock::now();
+
+  long long next = 0;
+  const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
+  using Record = std::shared_ptr<GroupRecord>;
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
+                                        [&](tbb::flow_control& fc) -> long long {
+                                          while (next < plan.groups() && done[static_cast<std::size_t>(next)]) ++next;
+                                          if (next >= plan.groups()) {
+                                            fc.stop();
+                                            return -1;
+                                          }
+                                          if (options.stop && options.stop->load()) {
+                                            sum.interrupted = true;
+                                            fc.stop();
+                                            return -1;
+                                          }
+                                          return next++;
+                                        }) &
+          tbb::make_filter<long long, Record>(tbb::filter_mode::parallel,
+                                              [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i)); }) &
+          tbb::make_filter<Record, void>(tbb::filter_mode::serial_out_of_order, [&](const Record& r) {
+            store.write(*r);
+            ++sum.ran;
+            sum.ran_tasks += r->runs;
+            sum.failed += r->failed;
+            sum.evaluations += r->evaluations;
+            sum.candidate_samples += r->candidate_samples;
+            if (r->failed) bar.log(fmt::format("failed: {}: {}", plan.describe(plan.group(r->index)), r->message));
+            if (options.on_group) options.on_group(*r, plan.describe(plan.group(r->index)));
+            bar.advance(r->runs, r->evaluations);
+          }));
+  bar.finish();
+  sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.stop && options.stop->load() && sum.stored_before + sum.ran < sum.groups) sum.interrupted = true;
+  return sum;
+}
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_sigint(int) {
+  if (g_interrupted.exchange(true)) _exit(130);
+  const char msg[] = "\ndampbench: interrupted: finishing the task groups in flight (Ctrl-C again to quit now)\n";
+  const ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+  (void)ignored;
+}
+
+}  // namespace
+
+std::atomic<bool>& interrupt_flag() { return g_interrupted; }
+
+void install_interrupt_handler() {
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+void restore_interrupt_handler() {
+  struct sigaction sa {};
+  sa.sa_handler = SIG_DFL;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+}  // namespace dampbench::sweep

@@ -1,0 +1,50 @@
+#pragma once
+// Running a sweep: every task group not yet in the store is identified and written to it.
+//
+// Scheduling: a oneTBB pipeline hands out group numbers in order (skipping stored ones), runs up to
+// 2 × threads groups at once (each group's batch is itself split across cores by identify()), and writes
+// finished groups to the store one transaction each, in whatever order they finish. Only groups in flight
+// are held in memory. A group's result depends only on its number and the plan, never on what ran beside
+// it, so resumed sweeps are bit-identical to uninterrupted ones.
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "engine/sweep/plan.hpp"
+#include "engine/sweep/store.hpp"
+
+namespace dampbench::sweep {
+
+/// Identifies one group (every run, per-dataset metrics of joint fits and predictions, sensitivity).
+/// Never throws for bad data or a model error: the record is marked failed with the message.
+GroupRecord run_group(const Plan& plan, long long index);
+
+/// The store header (plan, datasets, fingerprint) of a plan.
+StoreHeader make_store_header(const Plan& plan, const std::string& spec_path);
+
+struct RunnerOptions {
+  bool progress = false;                       ///< draw a progress bar on stderr
+  const std::atomic<bool>* stop = nullptr;     ///< checked between groups: no new group starts once set
+  /// Called (serially) for each group written, with its description; e.g. to report failures.
+  std::function<void(const GroupRecord&, const std::string&)> on_group;
+};
+
+struct RunnerSummary {
+  long long groups = 0, tasks = 0;                 ///< in the sweep
+  long long stored_before = 0;                     ///< groups already in the store
+  long long ran = 0, ran_tasks = 0, failed = 0;    ///< this session
+  long long evaluations = 0;                       ///< this session
+  double candidate_samples = 0;                    ///< this session
+  double wall_time_s = 0;                          ///< this session
+  bool interrupted = false;
+};
+
+RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options = {});
+
+/// SIGINT handling for `dampbench run`: the first Ctrl-C sets the flag (no new group starts; groups in flight
+/// finish and are stored), a second one ends the process at once (the store stays valid).
+std::atomic<bool>& interrupt_flag();
+void install_interrupt_handler();
+void restore_interrupt_handler();
+
+}  // namespace dampbench::sweep

@@ -1,0 +1,179 @@
+#pragma once
+// Sweep files (`dampbench run SWEEP.toml`): which models to identify on which datasets with which optimizers,
+// how often, on which conditions to fit and which to predict, and which tables to write. The presets in
+// datasets/presets/*.toml are sweep files; the format is documented in datasets/presets/README.md.
+//
+// A file is read whole and validated before anything runs: every error names the file, the line, the key
+// and what was expected ("crfd.toml:12: key 'models[2]': unknown model 'crfd.x' (known: ...)").
+// A file may instead `include` other sweep files; each included file is one part of the sweep with its own
+// models, datasets and tables (all.toml runs every paper's preset in one store).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/bounds.hpp"
+#include "engine/identification.hpp"
+#include "engine/metrics.hpp"
+#include "engine/model.hpp"
+#include "optimizers/registry.hpp"
+
+namespace dampbench::sweep {
+
+/// How one record is read and prepared (mirrors the loader options of `dampbench fit`).
+struct LoadOptions {
+  std::string path;        ///< resolved file path
+  std::string units;       ///< "x=mm,F=kN"
+  std::string columns;     ///< "t,x,v,F"
+  std::string transform;   ///< "" | "slider-crank" | "slider-crank-printed"
+  std::string average;     ///< "cycles=10,drop=3"
+  std::string conditions;  ///< "" | "utfsm"
+  std::string set;         ///< "I=1,amp=0.01"
+};
+
+struct DatasetSpec {
+  std::string name;        ///< unique in the part: the entry's name (one file) or the file stem (files, glob)
+  std::string collection;  ///< name of the [[datasets]] entry it came from
+  std::string label;       ///< longer description for tables
+  LoadOptions load;
+};
+
+/// A model to identify: a registered model or a published law fixture, optionally with parameter laws.
+struct ModelSpec {
+  std::string name;     ///< label, unique in the part (default: the model id)
+  std::string model;    ///< registered model id (models/registry.hpp) ...
+  std::string fixture;  ///< ... or a law fixture (models/fixtures.hpp)
+  std::string laws;     ///< parse_laws text on the model's parameters
+  std::string bounds;   ///< "name=lo:hi,..." overrides (SI)
+  std::vector<std::string> optimizers;  ///< optimizer labels this model is identified with (empty: all)
+};
+
+struct OptimizerEntry {
+  std::string label;  ///< unique in the part (default: the optimizer name)
+  OptimizerSpec spec;
+  Budget budget;      ///< max_evaluations, target, stall_iterations (no wall-time rule: it is not reproducible)
+  int runs = 0;       ///< runs per task group (0: the part's runs)
+};
+
+/// One condition: every listed variable takes one of its values and the dataset name is one of `names`
+/// (when given). Values match with a relative tolerance of 1e-9.
+struct Condition {
+  std::vector<std::pair<std::string, std::vector<double>>> variables;
+  std::vector<std::string> names;
+};
+
+/// A set of datasets: those matching any of the conditions (no condition: every dataset).
+struct Selection {
+  std::vector<Condition> any;
+  [[nodiscard]] bool everything() const { return any.empty(); }
+  [[nodiscard]] bool matches(const std::string& name, const std::map<std::string, double>& variables) const;
+};
+
+/// Differential sensitivity (crfd eqs. 4.1–4.3) of each identified parameter set of a split.
+struct SensitivitySpec {
+  bool enabled = false;
+  int points = 21;
+  double range = 0.5;
+  std::string objective = "rms";  ///< rms or a metric name
+  bool normalized = false;
+  Selection where;                ///< conditions (fit datasets) it is computed on
+};
+
+/// Which tasks a part runs. Fit datasets (`fit` within `collections`) are grouped `by`: each dataset alone
+/// (per-condition identification), all together (one law model over every condition), or by the values of
+/// some operating variables (one fit per current, say). Each fit predicts the `predict` datasets that share
+/// its values of the `by` variables (all of them for by = "each" or "all").
+struct SplitSpec {
+  enum class By { each, all, variables };
+  std::string name;
+  std::vector<std::string> collections, models, optimizers;  ///< empty: all
+  Selection fit;
+  std::optional<Selection> predict;
+  By by = By::each;
+  std::vector<std::string> by_variables;
+  SensitivitySpec sensitivity;
+};
+
+/// A table the sweep writes (kinds: engine/sweep/tables.hpp).
+struct TableSpec {
+  std::string kind;
+  std::string title;   ///< optional replacement title
+  std::string paper;   ///< the paper's table it reproduces, for summary.md ("crfd Table 8")
+  std::string split;   ///< restrict to one split (empty: all)
+  std::vector<std::string> models, optimizers;  ///< restrict (empty: all)
+  std::string metric;  ///< metric shown (empty: the optimized metric)
+  std::string role;    ///< errors: "fit", "predict" or "" (both)
+  Selection where;     ///< restrict conditions
+  double target_rel = 0.01;  ///< runtime: target = best known + max(target_rel·|best known|, 1e-12)
+};
+
+/// Regression of identified per-condition parameters on operating variables (crfd Tables 5–7, mfm eqs. 5–11,
+/// fdsp eqs. 13–14): each law's coefficients fitted by least squares.
+struct RegressionSpec {
+  std::string name;
+  std::string model;      ///< model label whose per-condition fits are regressed
+  std::string split;      ///< only fits of this split (empty: any)
+  std::string optimizer;  ///< only this optimizer's fits (empty: any; the lowest metric per condition wins)
+  std::string laws;       ///< "c_r=poly(phi,3);..." (engine/parameter_law.hpp)
+  std::string paper;
+  Selection where;
+};
+
+struct PartSpec {
+  std::string path;    ///< file the part came from
+  std::string source;  ///< its text (stored with the results; tables are re-read from it)
+  std::string name, title;
+  std::uint64_t seed = 1;
+  int runs = 50;
+  std::vector<Metric> metrics{Metric::of_abs};  ///< each metric is optimized in its own tasks
+  std::vector<ModelSpec> models;
+  std::vector<OptimizerEntry> optimizers;
+  std::vector<DatasetSpec> datasets;
+  std::vector<std::string> collections;  ///< [[datasets]] entry names, in order
+  std::vector<SplitSpec> splits;         ///< at least one (default: every dataset, by = "each")
+  std::vector<TableSpec> tables;
+  std::vector<RegressionSpec> regressions;
+  std::string canonical;  ///< canonical JSON of what determines results (hashed)
+
+  [[nodiscard]] int model_index(std::string_view name) const;      ///< -1 if absent
+  [[nodiscard]] int optimizer_index(std::string_view label) const; ///< -1 if absent
+  [[nodiscard]] int split_index(std::string_view name) const;      ///< -1 if absent
+};
+
+struct SweepSpec {
+  std::string path, name, title;
+  std::vector<PartSpec> parts;
+  std::string hash;  ///< 16 hex digits over the parts' canonical forms: a store belongs to one hash
+  std::vector<std::string> notes;  ///< optional datasets skipped because their files are missing
+};
+
+struct SpecOptions {
+  /// Check that files exist and expand globs. Off when re-reading a stored spec for its tables.
+  bool check_files = true;
+};
+
+/// Reads and validates a sweep file; InputError names file, line, key and what was expected.
+SweepSpec load_sweep(const std::string& path, const SpecOptions& options = {});
+/// Same from text; `path` names the file in messages and anchors relative paths.
+SweepSpec parse_sweep(std::string_view text, const std::string& path, const SpecOptions& options = {});
+
+/// "@generated/..." → the build's generated datasets folder (env DAMPBENCH_GENERATED_DIR overrides the
+/// compiled-in default), "@shared/..." → the shared data folder (env DAMPBENCH_SHARED_DATA_DIR), a relative
+/// path → relative to `folder`.
+std::string resolve_path(std::string_view text, const std::string& folder);
+std::string generated_dir();
+std::string shared_data_dir();
+
+/// A model of a sweep made ready to identify: the model object (owned when it is a law model) and its bounds.
+struct ResolvedModel {
+  std::vector<std::shared_ptr<const Model>> keep;  ///< law models (and a fixture under them) owned here
+  const Model* model = nullptr;
+  Bounds bounds;
+};
+/// Builds the model of a spec entry; InputError for unknown names, bad laws or bounds.
+ResolvedModel resolve_model(const ModelSpec& spec);
+
+}  // namespace dampbench::sweep

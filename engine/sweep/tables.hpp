@@ -1,0 +1,85 @@
+#pragma once
+// Tables from a sweep's store (DESIGN.md, "Outputs users expect"), in Markdown, CSV, LaTeX or JSON.
+//
+// A series is every group of one (split, model, optimizer, optimized metric); its rows are the split's fit
+// sets (conditions). Kinds:
+//   runs          repeated-run statistics of the metric per condition: Mean, Max, Min, Std (fvd Tables 3–6)
+//   param-stats   each parameter's mean, max, min, std over the runs per condition (fvd Tables 7–10)
+//   variability   per parameter: p̄ = mean over conditions of the per-condition mean, Δp̄ = max − min, Δp̄/p̄
+//                 (fvd Tables 11–14)
+//   ranking       best metric per model and condition
+//   fvd           runs, param-stats, variability numbered as the fvd paper's Tables 3–14, then ranking
+//   params        identified parameters of the best run per condition, paper units (crfd Tables 2–3,
+//                 mfm Table 2, fdsp Table 2)
+//   errors        metric of each model's best run on each dataset, fitted and predicted (crfd Table 8,
+//                 mfm Tables 4–5, fdsp Table 3)
+//   regression    the sweep's [[regressions]]: law coefficients, R², residuals (crfd Tables 5–7, mfm eqs.
+//                 5–11, fdsp eqs. 13–14)
+//   sensitivity   SP_z per parameter and condition and their mean (crfd eqs. 4.1–4.3, Fig. 9)
+//   ranksum       Mann–Whitney p-values between optimizers (same model and condition) and between models
+//   bootstrap     bootstrap 95 % interval of the mean metric per condition
+//   runtime       fixed-target runtime: success rate and expected running time per optimizer and problem,
+//                 and the ECDF of runtimes over conditions and runs
+//   failures      failed task groups and datasets that did not load, with their messages
+//   overview      groups, tasks, failures, wall time and candidate-samples/s
+//   sweep         (command line) every table the sweep file asks for
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/model.hpp"
+#include "engine/sweep/spec.hpp"
+#include "engine/sweep/store.hpp"
+
+namespace dampbench::sweep {
+
+/// The table kinds a sweep file may ask for (`sweep` is only for the command line).
+std::vector<std::string> table_kinds();
+
+struct Cell {
+  std::string text;
+  std::optional<double> value;  ///< the number behind the text (JSON output keeps full precision)
+};
+
+struct Report {
+  std::string id;      ///< file stem
+  std::string title;
+  std::string paper;   ///< the paper's table it reproduces ("" when beyond the papers)
+  std::string note;    ///< one line under the table
+  std::vector<std::string> columns;
+  std::vector<std::vector<Cell>> rows;
+};
+
+/// Everything tables need, read once from a store: its header, groups (with runs; traces on request), the
+/// sweep file's table requests per part, and the models rebuilt for paper units.
+class StoreResults {
+ public:
+  explicit StoreResults(const Store& store, bool traces = false);
+
+  const StoreHeader header;
+  std::vector<GroupRecord> groups;
+  std::vector<PartSpec> parts;  ///< each part's spec re-read from the stored text (tables, regressions)
+
+  [[nodiscard]] const Model& model(int part, int model) const;
+  [[nodiscard]] int part_count() const { return static_cast<int>(header.parts.size()); }
+
+ private:
+  std::vector<std::vector<ResolvedModel>> models_;
+};
+
+/// The tables of one kind for one part, filtered by `request` (kind, split, models, optimizers, metric,
+/// role, where, target_rel; paper and title label them).
+std::vector<Report> make_tables(const StoreResults& results, int part, const TableSpec& request);
+
+/// Every table a part's sweep file asks for (its `tables`), regression and failures included when present.
+std::vector<Report> sweep_tables(const StoreResults& results, int part);
+
+/// Output formats. `to_json` gives {"tables": [{id, title, paper, note, columns, rows}]}, numbers as numbers.
+std::string to_markdown(const Report& r);
+std::string to_csv(const Report& r);
+std::string to_latex(const Report& r);
+std::string to_json(const std::vector<Report>& reports);
+/// All reports in one format ("md", "csv", "latex", "json"); InputError for another format.
+std::string format_reports(const std::vector<Report>& reports, const std::string& format);
+
+}  // namespace dampbench::sweep
