@@ -1,0 +1,174 @@
+// The `dampbench bench` workload (docs/performance.md):
+//   record     x = X·sin(2π·1 Hz·t), 2 cycles at 1024 samples per cycle (2049 samples), exact v and a;
+//              X = 0.02 m (rotary crfd models: 0.02 rad); measured force = the model's own force at the
+//              centre of its default bounds, plus 1 % so that the metric sums are non-trivial
+//   candidates 4096, uniform in the central half of each parameter's default bounds (keyed stream)
+//   metric     of_abs through BatchEvaluator (the same path as identification)
+//   1 thread / 2 threads   tbb::task_arena of that size, repeated until min_time_s
+//   scalar     Model::evaluate_scalar (the same law, one candidate at a time, no lanes), 1 thread, 256 candidates
+//   limit      a vector-exp probe: exp over a 4096-element array (libmvec lanes), 1 thread, elements/s
+// Ratios: scalar_ratio = 1-thread lanes / scalar; limit_ratio = 1-thread candidate-samples/s ÷ exp/s
+// (a model with one exp per candidate-sample and nothing else would reach 1).
+#include "engine/cli/bench_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
+
+#include "engine/batch_evaluator.hpp"
+#include "engine/bounds.hpp"
+#include "engine/error.hpp"
+#include "engine/key_values.hpp"
+#include "engine/random.hpp"
+#include "engine/table.hpp"
+#include "engine/vector_math.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench::cli {
+namespace {
+
+constexpr int kCandidates = 4096, kScalarCandidates = 256, kSamplesPerCycle = 1024;
+
+Signals bench_record(const Model& model) {
+  Dataset d;
+  d.name = "bench";
+  const double X = 0.02, w = 2 * std::numbers::pi;
+  for (int k = 0; k <= 2 * kSamplesPerCycle; ++k) {
+    const double t = static_cast<double>(k) / kSamplesPerCycle;
+    d.t_s.push_back(t);
+    d.x_m.push_back(X * std::sin(w * t));
+    d.v_m_s.push_back(X * w * std::cos(w * t));
+    d.a_m_s2.push_back(-X * w * w * std::sin(w * t));
+  }
+  const Bounds b = default_bounds(model);
+  std::vector<double> centre(model.dim());
+  for (int j = 0; j < model.dim(); ++j) centre[j] = 0.5 * (b.lower[j] + b.upper[j]);
+  d.F_N = model.simulate(centre, prepare_signals(d));
+  for (double& f : d.F_N) f = std::isfinite(f) ? 1.01 * f : 0.0;
+  return prepare_signals(d);
+}
+
+CandidateBatch bench_candidates(const Model& model, int count) {
+  const Bounds b = default_bounds(model);
+  CandidateBatch batch(model.dim(), count);
+  RandomStream rng(hash_key({2024, hash_name(model.id())}));
+  for (int i = 0; i < count; ++i)
+    for (int j = 0; j < model.dim(); ++j) batch.at(i, j) = b.lower[j] + (0.25 + 0.5 * rng.uniform()) * (b.upper[j] - b.lower[j]);
+  return batch;
+}
+
+/// Repeats `work` (which processes `items` items) until min_time_s has passed; items per second.
+template <class Work>
+double rate(double items, double min_time_s, Work&& work) {
+  work();  // warm-up
+  const auto start = std::chrono::steady_clock::now();
+  long long reps = 0;
+  double elapsed = 0;
+  do {
+    work();
+    ++reps;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } while (elapsed < min_time_s);
+  return items * static_cast<double>(reps) / elapsed;
+}
+
+/// The vector-exp probe: elements of exp per second on one thread.
+double exp_rate(double min_time_s) {
+  std::vector<double> in(4096), out(4096);
+  for (std::size_t i = 0; i < in.size(); ++i) in[i] = -5.0 + 10.0 * static_cast<double>(i) / in.size();
+  return rate(static_cast<double>(in.size()), min_time_s, [&] {
+    double* __restrict o = out.data();
+    const double* __restrict x = in.data();
+#pragma omp simd
+    for (std::size_t i = 0; i < 4096; ++i) o[i] = std::exp(x[i]);
+    asm volatile("" : : "r"(o) : "memory");
+  });
+}
+
+struct ModelRates {
+  double one = 0, two = 0, scalar = 0;
+};
+
+ModelRates measure(const Model& model, double min_time_s) {
+  const Signals data = bench_record(model);
+  const CandidateBatch batch = bench_candidates(model, kCandidates);
+  const CandidateBatch few = bench_candidates(model, kScalarCandidates);
+  const BatchEvaluator evaluator(model, data);
+  std::vector<double> out(kCandidates);
+  const double n = static_cast<double>(data.size());
+  ModelRates r;
+  for (int threads : {1, 2}) {
+    tbb::task_arena arena(threads);
+    const double v = arena.execute(
+        [&] { return rate(kCandidates * n, min_time_s, [&] { evaluator.evaluate(batch, Metric::of_abs, out); }); });
+    (threads == 1 ? r.one : r.two) = v;
+  }
+  std::vector<MetricSums> sums(kScalarCandidates);
+  r.scalar = rate(kScalarCandidates * n, min_time_s, [&] { model.evaluate_scalar(few, 0, kScalarCandidates, data, sums.data()); });
+  return r;
+}
+
+std::string vector_isa() {
+#if defined(__AVX512F__)
+  return "avx512";
+#elif defined(__AVX2__)
+  return "avx2";
+#elif defined(__AVX__)
+  return "avx";
+#else
+  return "sse2";
+#endif
+}
+
+}  // namespace
+
+void add_bench_options(CLI::App* cmd, BenchOptions& o) {
+  cmd->add_option("--format", o.format, "md (default) or json");
+  cmd->add_option("--models", o.models, "comma-separated model ids (default: every model)");
+  cmd->add_option("--min-time", o.min_time_s, "seconds per measurement (default 0.3)")->check(CLI::PositiveNumber);
+}
+
+int bench_command(const BenchOptions& o) {
+  if (o.format != "md" && o.format != "json") throw InputError(fmt::format("--format: expected md or json, got '{}'", o.format));
+  std::vector<const Model*> models;
+  if (o.models.empty()) models.assign(all_models().begin(), all_models().end());
+  else for (const auto& id : split_list(o.models, "--models")) models.push_back(&find_model(id));
+
+  const double exp_per_s = exp_rate(o.min_time_s);
+  nlohmann::ordered_json j;
+  Table t{"bench", "Candidate-samples per second (dampbench bench workload, docs/performance.md)",
+          {"model", "1 thread", "2 threads", "2t/1t", "scalar loop", "lanes/scalar", "limit ratio"}, {}};
+  for (const Model* m : models) {
+    const ModelRates r = measure(*m, o.min_time_s);
+    j["models"][std::string(m->id())] = {{"cand_samples_per_s_1t", r.one},
+                                         {"cand_samples_per_s_2t", r.two},
+                                         {"scalar_ratio", r.one / r.scalar},
+                                         {"limit_ratio", r.one / exp_per_s},
+                                         {"cand_samples_per_s_scalar", r.scalar}};
+    t.rows.push_back({std::string(m->id()), fmt::format("{:.3g}", r.one), fmt::format("{:.3g}", r.two),
+                      fmt::format("{:.2f}", r.two / r.one), fmt::format("{:.3g}", r.scalar),
+                      fmt::format("{:.2f}", r.one / r.scalar), fmt::format("{:.3f}", r.one / exp_per_s)});
+    if (o.format == "md") std::cerr << fmt::format("  {} done\n", m->id());
+  }
+  j["machine"] = {{"hardware_threads", std::thread::hardware_concurrency()},
+                  {"vector_isa", vector_isa()},
+                  {"lanes_per_block", kLanes},
+                  {"exp_per_s_1t", exp_per_s},
+                  {"build", DAMPBENCH_BUILD_FLAGS},
+                  {"version", DAMPBENCH_VERSION}};
+  if (o.format == "json") {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << t.to_markdown() << fmt::format("\nvector-exp probe: {:.3g} exp/s on 1 thread; build {} ({})\n", exp_per_s,
+                                                DAMPBENCH_BUILD_FLAGS, vector_isa());
+  }
+  return 0;
+}
+
+}  // namespace dampbench::cli

@@ -1,0 +1,21 @@
+#pragma once
+// `dampbench bench`: a fixed, documented workload measuring every model's batch throughput with 1 and 2
+// threads, against the plain scalar loop of the same law and a vector-exp throughput probe.
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+struct BenchOptions {
+  std::string format = "md";   ///< md or json
+  std::string models;          ///< comma-separated model ids (default: all)
+  double min_time_s = 0.3;     ///< each measurement repeats until it has run this long
+};
+
+void add_bench_options(CLI::App* cmd, BenchOptions& options);
+int bench_command(const BenchOptions& options);
+
+}  // namespace dampbench::cli
