@@ -33,12 +33,13 @@ def fit(exe, model, files, args, laws=None):
 
 
 def per_file_nrmse(exe, model, coefficients, path):
-    """nrmse of given law coefficients on one file: a fit whose bounds pin every coefficient."""
-    bounds = ",".join(f"{k}={v!r}:{v!r}" for k, v in coefficients.items())
-    cmd = [exe, "fit", "--model", model[0], "--laws", model[1], *LOADER, "--data", path, "--runs", "1",
-           "--pop", "4", "--iters", "1", "--bounds", bounds, "--format", "json"]
+    """nrmse of given law coefficients on one file (`dampbench evaluate`)."""
+    params = ",".join(f"{k}={v!r}" for k, v in coefficients.items())
+    loader = [a for a in LOADER if a not in ("--metric", "nrmse")]
+    cmd = [exe, "evaluate", "--model", model[0], "--laws", model[1], *loader, "--data", path, "--params", params,
+           "--format", "json"]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
-    return json.loads(out)["metrics"]["nrmse"]
+    return json.loads(out)[path]["nrmse"]
 
 
 def main():

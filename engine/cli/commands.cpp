@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/batch_evaluator.hpp"
 #include "engine/bounds.hpp"
 #include "engine/error.hpp"
 #include "engine/excitation.hpp"
@@ -255,6 +256,37 @@ int fit_command(const FitOptions& o) {
   std::cout << p.to_markdown() << "\n" << m.to_markdown() << "\n" << r.to_markdown() << "\n";
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", evaluations,
                            samples, id.wall_time_s, rate);
+  return 0;
+}
+
+int evaluate_command(const EvaluateOptions& o) {
+  check_format(o.format);
+  const ResolvedModel resolved = resolve_model(o.model, o.laws);
+  const Model& model = *resolved.model;
+  const std::vector<double> params = parse_params(model, o.params);
+  if (o.paths.empty()) throw InputError("evaluate: give at least one --data FILE");
+  CandidateBatch batch(model.dim(), 1);
+  batch.set_candidate(0, params);
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  std::vector<std::string> cols{"record"};
+  for (Metric m : kAllMetrics) cols.emplace_back(metric_name(m));
+  Table t{"evaluate", fmt::format("{} at the given parameters", model.id()), cols, {}};
+  for (const auto& path : o.paths) {
+    DataOptions d = o.data;
+    d.path = path;
+    const Signals s = prepare_signals(load_data(d, true));
+    if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(s);
+    std::vector<MetricRow> row(1);
+    BatchEvaluator(model, s).evaluate_all(batch, row);
+    std::vector<std::string> cells{s.name};
+    for (int m = 0; m < kMetricCount; ++m) {
+      j[path][std::string(metric_name(kAllMetrics[m]))] = json_number(row[0][m]);
+      cells.push_back(format_number(row[0][m]));
+    }
+    t.rows.push_back(std::move(cells));
+  }
+  if (o.format == "json") std::cout << j.dump(2) << "\n";
+  else std::cout << t.to_markdown();
   return 0;
 }
 

@@ -70,6 +70,16 @@ struct SensitivityOptions {
   std::string format = "md";
 };
 
+/// Metrics of given parameters on one or more records (no optimization).
+struct EvaluateOptions {
+  std::string model;
+  std::string laws;
+  std::string params;
+  std::vector<std::string> paths;
+  DataOptions data;
+  std::string format = "md";
+};
+
 struct RunOptions {
   std::string preset;
   std::string output_dir;  ///< default: results/<preset name>
@@ -80,5 +90,6 @@ int simulate_command(const SimulateOptions& options);
 int fit_command(const FitOptions& options);
 int run_command(const RunOptions& options);
 int sensitivity_command(const SensitivityOptions& options);
+int evaluate_command(const EvaluateOptions& options);
 
 }  // namespace dampbench::cli

@@ -9,6 +9,7 @@
 #include <tbb/global_control.h>
 
 #include "engine/cli/commands.hpp"
+#include "engine/cli/bench_command.hpp"
 #include "engine/cli/compare_command.hpp"
 #include "engine/cli/lssvm_command.hpp"
 #include "engine/cli/sweep_commands.hpp"
@@ -92,6 +93,17 @@ int main(int argc, char** argv) {
   sensc->add_option("--objective", sens.objective, "rms (of the model force, default) or a metric name");
   sensc->add_flag("--normalized", sens.normalized, "report S_z·|z| (elasticity) instead of S_z as printed");
   sensc->add_option("--format", sens.format, "md (default) or json");
+  EvaluateOptions eval;
+  auto* evalc = app.add_subcommand("evaluate", "metrics of given parameters on one or more records");
+  evalc->add_option("--model", eval.model, "model id")->required();
+  evalc->add_option("--laws", eval.laws, "parameter laws (then --params gives their coefficients)");
+  evalc->add_option("--params", eval.params, "parameter values in SI, name=value,...")->required();
+  evalc->add_option("--data", eval.paths, "record(s)")->required();
+  add_data_options(evalc, eval.data);
+  evalc->add_option("--format", eval.format, "md (default) or json");
+  BenchOptions bench;
+  auto* benchc = app.add_subcommand("bench", "throughput of every model with 1 and 2 threads (docs/performance.md)");
+  add_bench_options(benchc, bench);
   for (auto* cmd : {simulate, fitc, runc, sensc, verifyc, comparec})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
 
@@ -118,6 +130,8 @@ int main(int argc, char** argv) {
     if (tablec->parsed()) return table_command(tab);
     if (verifyc->parsed()) return verify_command(ver);
     if (comparec->parsed()) return compare_command(cmp);
+    if (benchc->parsed()) return bench_command(bench);
+    if (evalc->parsed()) return evaluate_command(eval);
   } catch (const dampbench::InputError& e) {
     std::fprintf(stderr, "dampbench: error: %s\n", e.what());
     return 2;
