@@ -27,18 +27,7 @@ void write_fdsp(const std::filesystem::path& dir, std::uint64_t seed) {
         "13-14, Table 2), 1 % noise (datasets/README.md)",
         f, kCycles);
     r.operating = {{"V", 0.0}, {"amp", kAmp}, {"freq", f}};
-    Dataset d;
-    d.name = r.file;
-    d.operating = r.operating;
-    for (int k = 0; k <= kCycles * kSamplesPerCycle; ++k) {
-      const double t = k / (f * kSamplesPerCycle), w = 2 * std::numbers::pi * f;
-      d.t_s.push_back(t);
-      d.x_m.push_back(kAmp * std::sin(w * t));
-      d.v_m_s.push_back(kAmp * w * std::cos(w * t));
-      d.a_m_s2.push_back(-kAmp * w * w * std::sin(w * t));
-      r.t_s.push_back(t);
-      r.x.push_back(d.x_m.back() * 1e3);
-    }
+    const Dataset d = sine_record(kAmp, f, kCycles, kSamplesPerCycle, r);
     r.F = truth.model->simulate(truth.coefficients, prepare_signals(d));
     add_noise(r.F, 0.01, seed, r.file);
     write_record(dir, r);

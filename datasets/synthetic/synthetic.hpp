@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/dataset.hpp"
+
 namespace dampbench::synthetic {
 
 /// A record to write: t [s], x in `x_unit`, F in `F_unit`, with a description and operating variables.
@@ -23,6 +25,10 @@ void write_record(const std::filesystem::path& dir, const Record& record);
 
 /// Adds Gaussian noise of `relative` × RMS(F) from the stream (seed, file name).
 void add_noise(std::vector<double>& F, double relative, std::uint64_t seed, const std::string& file);
+
+/// A sinusoidal record x = amp·sin(2πft) with exact v and a, `cycles` cycles at `per_cycle` samples per
+/// cycle (both ends included), and the same t and x (in mm) in `record`.
+Dataset sine_record(double amp_m, double freq_hz, int cycles, int per_cycle, Record& record);
 
 void write_fvd(const std::filesystem::path& dir, std::uint64_t seed);
 void write_crfd(const std::filesystem::path& dir, std::uint64_t seed);
