@@ -18,14 +18,7 @@ namespace dampbench {
 namespace {
 
 Signals sine(double amp, double freq, std::map<std::string, double> operating, double cycles = 2, double fs = 500) {
-  SineSpec s;
-  s.amplitude_m = amp;
-  s.freq_hz = freq;
-  s.cycles = cycles;
-  s.fs_hz = fs;
-  Dataset d = make_sine(s);
-  for (const auto& [k, v] : operating) d.operating[k] = v;
-  return prepare_signals(d);
+  return testing::sine_signals(amp, freq, cycles, fs, operating);
 }
 
 double peak(const std::vector<double>& f) {

@@ -8,6 +8,7 @@
 
 #include "engine/excitation.hpp"
 #include "models/registry.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
@@ -22,14 +23,7 @@ Signals one_sample(double x, double v) {
   return prepare_signals(d);
 }
 
-Signals sine_10mm_1Hz() {
-  SineSpec s;
-  s.amplitude_m = 0.01;
-  s.freq_hz = 1;
-  s.cycles = 2;
-  s.fs_hz = 1000;
-  return prepare_signals(make_sine(s));
-}
+Signals sine_10mm_1Hz() { return testing::sine_signals(0.01, 1, 2, 1000); }
 
 double peak(const std::vector<double>& f) {
   double m = 0;
@@ -82,12 +76,7 @@ TEST(MrdModels, BoucWenIsBoundedByItsHystereticLimit) {
 }
 
 TEST(MrdModels, FrequencyEstimateOfEquation15IsTheSineFrequency) {
-  SineSpec s;
-  s.amplitude_m = 0.00635;
-  s.freq_hz = 3.5;
-  s.cycles = 3;
-  s.fs_hz = 2000;
-  EXPECT_NEAR(prepare_signals(make_sine(s)).excitation_freq_hz, 3.5, 3.5 * 1e-5);
+  EXPECT_NEAR(testing::sine_signals(0.00635, 3.5, 3, 2000).excitation_freq_hz, 3.5, 3.5 * 1e-5);
 }
 
 TEST(MrdModels, SpencerFreqWithPublishedLawsEqualsSpencerVoltageAtTheLawValues) {
@@ -97,12 +86,7 @@ TEST(MrdModels, SpencerFreqWithPublishedLawsEqualsSpencerVoltageAtTheLawValues) 
   const double a_c0 = 1410.71 * std::pow(w, -0.102) - 0.6182;
   const double a_c1 = 7087 * std::exp(-std::pow((w - 4.282) / 1.197, 2)) + 18520 * std::exp(-std::pow((w - 1.783) / 3.25, 2));
   EXPECT_NEAR(a_c1, 18400, 400);  // MODELS.md: ≈ 18 400 with the sign corrected
-  SineSpec s;
-  s.amplitude_m = 0.00635;
-  s.freq_hz = w;
-  s.cycles = 2;
-  s.fs_hz = 1000;
-  const Signals data = prepare_signals(make_sine(s));
+  const Signals data = testing::sine_signals(0.00635, w, 2, 1000);
   const std::vector<double> common{3361.58, 420.0, 1803.0, 34622.0, 6515.13, 38430.0, 87.0, 307269.41, 182842.99, 2.0, 190.0, 0.01225};
   std::vector<double> volt = common;
   volt.insert(volt.begin() + 2, {a_c0, a_c1});

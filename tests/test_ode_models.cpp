@@ -10,19 +10,13 @@
 #include "engine/batch_evaluator.hpp"
 #include "engine/excitation.hpp"
 #include "models/registry.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
 
 Signals sine(double amp_m, double freq_hz, double cycles, double fs_hz, double V = 0) {
-  SineSpec spec;
-  spec.amplitude_m = amp_m;
-  spec.freq_hz = freq_hz;
-  spec.cycles = cycles;
-  spec.fs_hz = fs_hz;
-  Dataset d = make_sine(spec);
-  d.operating["V"] = V;
-  return prepare_signals(d);
+  return testing::sine_signals(amp_m, freq_hz, cycles, fs_hz, {{"V", V}});
 }
 
 double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
@@ -114,14 +108,12 @@ TEST(OdeModels, StartAtZeroWithExponentBelowOneIsFinite) {
 
 TEST(OdeModels, BlownUpCandidateIsMaskedWithoutTouchingNeighbours) {
   const Model& m = find_model("mrd.bouc_wen");
-  Dataset d = make_sine([] {
-    SineSpec s;
-    s.amplitude_m = 0.01;
-    s.freq_hz = 1;
-    s.cycles = 1;
-    s.fs_hz = 200;
-    return s;
-  }());
+  SineSpec spec;
+  spec.amplitude_m = 0.01;
+  spec.freq_hz = 1;
+  spec.cycles = 1;
+  spec.fs_hz = 200;
+  Dataset d = make_sine(spec);
   const Signals input = prepare_signals(d);
   const auto good = params(m, {{"c0", 3000}, {"k0", 500}, {"x0", 0.0}, {"alpha", 4e4}, {"beta", 6e3},
                                {"gamma", 1e4}, {"A", 120.0}, {"n", 1.0}});

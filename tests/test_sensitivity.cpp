@@ -13,14 +13,7 @@
 namespace dampbench {
 namespace {
 
-Signals record() {
-  SineSpec s;
-  s.amplitude_m = 0.02;
-  s.freq_hz = 1.0;
-  s.cycles = 1;
-  s.fs_hz = 400;
-  return prepare_signals(make_sine(s));
-}
+Signals record() { return testing::sine_signals(0.02, 1.0, 1, 400); }
 
 double rms(const std::vector<double>& v) {
   double s = 0;

@@ -8,6 +8,8 @@
 
 #include "engine/dataset.hpp"
 #include "engine/error.hpp"
+#include "engine/excitation.hpp"
+#include "engine/signals.hpp"
 
 namespace dampbench::testing {
 
@@ -36,6 +38,19 @@ std::string error_of(Fn&& fn) {
     return error.what();
   }
   return "no error";
+}
+
+/// Prepared signals of a sinusoid (engine/excitation.hpp) with the given operating variables.
+inline Signals sine_signals(double amp_m, double freq_hz, double cycles, double fs_hz,
+                            const std::map<std::string, double>& operating = {}) {
+  SineSpec spec;
+  spec.amplitude_m = amp_m;
+  spec.freq_hz = freq_hz;
+  spec.cycles = cycles;
+  spec.fs_hz = fs_hz;
+  Dataset d = make_sine(spec);
+  for (const auto& [k, v] : operating) d.operating[k] = v;
+  return prepare_signals(d);
 }
 
 struct CommandResult {
