@@ -10,6 +10,10 @@
 #include "engine/csv_loader.hpp"
 #include "engine/dataset.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace dampbench::cli {
 
 /// Where a record comes from and how it is prepared (the loader options of fit, simulate and presets).
@@ -22,6 +26,10 @@ struct DataOptions {
   std::string conditions;  ///< "" | "utfsm": operating variables from the file name
   std::string set;         ///< "I=1,amp=0.01,freq=1": operating variables (override the others)
 };
+/// Declares the loader options (--units, --columns, --transform, --average-cycles, --conditions, --set) on a
+/// subcommand.
+void add_data_options(CLI::App* cmd, DataOptions& data);
+
 /// Loads and prepares one record: CSV → slider-crank transform → cycle averaging → operating variables.
 Dataset load_data(const DataOptions& options, bool require_force);
 /// Applies "I=1,amp=0.01" to a dataset's operating variables (InputError for unknown names).
@@ -80,9 +88,13 @@ struct EvaluateOptions {
   std::string format = "md";
 };
 
+/// `dampbench run SWEEP.toml` (engine/cli/preset.cpp, engine/sweep).
 struct RunOptions {
-  std::string preset;
-  std::string output_dir;  ///< default: results/<preset name>
+  std::string preset;      ///< sweep file (presets are sweep files)
+  std::string output_dir;  ///< default: results/<sweep name>
+  std::string store;       ///< SQLite store; default: <output_dir>/store.sqlite (resumed when it exists)
+  bool quiet = false;      ///< no progress bar
+  bool fresh = false;      ///< delete an existing store first
 };
 
 int models_command(const std::string& format);

@@ -68,13 +68,7 @@ void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
   cmd->add_option("--c", o.c, "fixed c (with --sigma): no GA");
   cmd->add_option("--sigma", o.sigma, "fixed sigma (with --c): no GA");
   cmd->add_option("--format", o.format, "md (default) or json");
-  DataOptions& d = o.data;
-  cmd->add_option("--units", d.units, "units of the files' columns, e.g. x=mm,v=mm/s (default: header, else SI)");
-  cmd->add_option("--columns", d.columns, "column names of files without header, e.g. t,x,v,F");
-  cmd->add_option("--transform", d.transform, "slider-crank or slider-crank-printed (crfd rig)");
-  cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles into one");
-  cmd->add_option("--conditions", d.conditions, "utfsm: operating variables (I, amp, freq) from the file name");
-  cmd->add_option("--set", d.set, "operating variables for every record, e.g. I=0.5");
+  add_data_options(cmd, o.data);
 }
 
 int lssvm_command(const LssvmOptions& o) {

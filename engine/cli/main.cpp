@@ -17,14 +17,6 @@
 
 namespace {
 
-void add_data_options(CLI::App* cmd, dampbench::cli::DataOptions& d) {
-  cmd->add_option("--units", d.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
-  cmd->add_option("--columns", d.columns, "column names of a file without header, e.g. t,x,v,F");
-  cmd->add_option("--transform", d.transform, "slider-crank or slider-crank-printed: crfd rig MTS record to angle and torque");
-  cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
-  cmd->add_option("--conditions", d.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
-  cmd->add_option("--set", d.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
-}
 
 }  // namespace
 

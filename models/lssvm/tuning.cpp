@@ -1,0 +1,197 @@
+// Hyperparameters (c, σ) of the LS-SVM model by the project's GA (lssvm paper §3; models/lssvm/lssvm.hpp).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "engine/batch.hpp"
+#include "engine/error.hpp"
+#include "engine/random.hpp"
+#include "models/lssvm/lssvm.hpp"
+#include "optimizers/registry.hpp"
+
+namespace dampbench::lssvm {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Memory for the eigendecompositions kept between generations (least recently used dropped first). A
+/// validation factor holds (2 + M) × N doubles, ~2 MB for N = 1008, M = 252: about 120 of them fit; a
+/// paper-fitness factor holds 2 × N, so every grid σ fits.
+constexpr std::size_t kCacheBytes = std::size_t{256} << 20;
+
+int sigma_grid_index(double sigma, int per_decade) {
+  return static_cast<int>(std::lround(per_decade * std::log10(sigma)));
+}
+
+double sigma_of_grid_index(int k, int per_decade) { return std::pow(10.0, static_cast<double>(k) / per_decade); }
+
+void validate(const TuneSettings& s) {
+  auto positive_range = [](double lo, double hi, const char* name) {
+    if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi))
+      throw InputError(fmt::format("lssvm: {} bounds must satisfy 0 < lower ≤ upper, got [{}, {}]", name, lo, hi));
+  };
+  positive_range(s.c_min, s.c_max, "c");
+  positive_range(s.sigma_min, s.sigma_max, "sigma");
+  if (s.fitness == Fitness::validation && !(s.validation_fraction > 0 && s.validation_fraction < 1))
+    throw InputError(fmt::format("--validation: expected a fraction in (0, 1), got {}", s.validation_fraction));
+  if (s.sigma_per_decade < 1)
+    throw InputError(fmt::format("lssvm: sigma grid needs at least 1 point per decade, got {}", s.sigma_per_decade));
+}
+
+/// The data a fitness needs, normalized once with the statistics of all training rows.
+class Objective {
+ public:
+  Objective(const TrainingRows& rows, const TuneSettings& s) : settings_(s) {
+    validate(s);
+    if (rows.size() == 0) throw InputError("lssvm: empty training set (no regressor rows)");
+    const Eigen::MatrixXd X = Normalizer::fit(rows.X).apply(rows.X);
+    if (s.fitness == Fitness::paper) {
+      X_fit_ = X;
+      y_fit_ = rows.y;
+      return;
+    }
+    // Per record, its columns are in time order: the last ⌊fraction·n⌋ are held out.
+    std::map<int, int> per_record;
+    for (int r : rows.record) ++per_record[r];
+    std::map<int, int> seen;
+    std::vector<Eigen::Index> fit, val;
+    for (Eigen::Index j = 0; j < rows.size(); ++j) {
+      const int r = rows.record[static_cast<std::size_t>(j)];
+      const int n = per_record[r];
+      const int held = static_cast<int>(std::floor(s.validation_fraction * n));
+      (seen[r]++ < n - held ? fit : val).push_back(j);
+    }
+    if (val.empty())
+      throw InputError(fmt::format(
+          "lssvm: the validation split is empty ({} training samples; each record needs at least {} for a held-out "
+          "fraction of {}); use more data or --fitness paper",
+          rows.size(), static_cast<int>(std::ceil(1.0 / s.validation_fraction)), s.validation_fraction));
+    if (fit.size() < 2) throw InputError("lssvm: fewer than 2 training samples remain after the validation split");
+    X_fit_ = X(Eigen::all, fit);
+    y_fit_ = rows.y(fit);
+    X_val_ = X(Eigen::all, val);
+    y_val_ = rows.y(val);
+  }
+
+  [[nodiscard]] int fit_rows() const { return static_cast<int>(y_fit_.size()); }
+  [[nodiscard]] int validation_rows() const { return static_cast<int>(y_val_.size()); }
+
+  [[nodiscard]] std::shared_ptr<const SpectralFactor> factor(double sigma) const {
+    const Eigen::MatrixXd K = rbf_kernel(X_fit_, sigma);
+    if (settings_.fitness == Fitness::paper) return std::make_shared<const SpectralFactor>(K, y_fit_);
+    return std::make_shared<const SpectralFactor>(K, y_fit_, rbf_kernel(X_val_, X_fit_, sigma));
+  }
+
+  /// Validation MSE [N²] or training SSE [N²]; +inf for a failed factor or a non-finite value.
+  [[nodiscard]] double value(const SpectralFactor& f, double c) const {
+    if (!f.ok()) return kInf;
+    const double v = settings_.fitness == Fitness::paper ? f.training_sse(c)
+                                                        : f.cross_sse(c, y_val_) / static_cast<double>(y_val_.size());
+    return std::isfinite(v) ? v : kInf;
+  }
+
+ private:
+  TuneSettings settings_;
+  Eigen::MatrixXd X_fit_, X_val_;
+  Eigen::VectorXd y_fit_, y_val_;
+};
+
+}  // namespace
+
+double snap_sigma(double sigma, int per_decade) {
+  return sigma_of_grid_index(sigma_grid_index(sigma, per_decade), per_decade);
+}
+
+double objective(const TrainingRows& rows, const TuneSettings& settings, double c, double sigma) {
+  if (!(sigma > 0) || !std::isfinite(sigma)) throw InputError(fmt::format("lssvm: sigma must be positive, got {}", sigma));
+  if (!(c > 0) || !std::isfinite(c)) throw InputError(fmt::format("lssvm: c must be positive, got {}", c));
+  const Objective obj(rows, settings);
+  return obj.value(*obj.factor(snap_sigma(sigma, settings.sigma_per_decade)), c);
+}
+
+TuneResult tune(const TrainingRows& rows, const TuneSettings& s) {
+  const Objective obj(rows, s);
+  const OptimizerSpec spec{"ga", s.population, s.generations, {{"pc", fmt::format("{}", s.pc)}, {"pm", fmt::format("{}", s.pm)}}};
+  const Bounds bounds{{s.c_min, s.sigma_min}, {s.c_max, s.sigma_max}};
+  const auto optimizer = make_optimizer_factory(spec)(bounds, hash_key({s.seed, hash_name("lssvm.tune")}));
+
+  struct Cached {
+    std::shared_ptr<const SpectralFactor> factor;
+    long long last_used = 0;
+  };
+  std::map<int, Cached> cache;  // grid index of σ → factor
+  std::size_t cache_bytes = 0;
+  TuneResult result;
+  result.fit_rows = obj.fit_rows();
+  result.validation_rows = s.fitness == Fitness::validation ? obj.validation_rows() : 0;
+
+  const int n = optimizer->batch_size();
+  CandidateBatch batch(2, n);
+  std::vector<double> values(static_cast<std::size_t>(n));
+  std::vector<int> keys(static_cast<std::size_t>(n));
+  std::vector<const SpectralFactor*> factors(static_cast<std::size_t>(n));
+  for (long long generation = 0; !optimizer->finished(); ++generation) {
+    optimizer->ask(batch, 0);
+    // 1. The grid σ of this batch that are not cached, in increasing order, decomposed in parallel.
+    std::vector<int> missing;
+    for (int i = 0; i < n; ++i) {
+      keys[static_cast<std::size_t>(i)] = sigma_grid_index(batch.at(i, 1), s.sigma_per_decade);
+      if (!cache.contains(keys[static_cast<std::size_t>(i)])) missing.push_back(keys[static_cast<std::size_t>(i)]);
+    }
+    std::ranges::sort(missing);
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+    std::vector<std::shared_ptr<const SpectralFactor>> made(missing.size());
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, missing.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t k = range.begin(); k != range.end(); ++k)
+            made[k] = obj.factor(sigma_of_grid_index(missing[k], s.sigma_per_decade));
+        },
+        tbb::simple_partitioner());
+    for (std::size_t k = 0; k < missing.size(); ++k) {
+      cache_bytes += made[k]->memory_bytes();
+      cache[missing[k]].factor = std::move(made[k]);
+    }
+    result.factorizations += static_cast<int>(missing.size());
+
+    // 2. Every candidate from its factor, in parallel; a value depends only on (c, grid σ).
+    for (int i = 0; i < n; ++i) {
+      Cached& entry = cache.at(keys[static_cast<std::size_t>(i)]);
+      entry.last_used = generation;
+      factors[static_cast<std::size_t>(i)] = entry.factor.get();
+    }
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, n, 1),
+        [&](const tbb::blocked_range<int>& range) {
+          for (int i = range.begin(); i != range.end(); ++i)
+            values[static_cast<std::size_t>(i)] = obj.value(*factors[static_cast<std::size_t>(i)], batch.at(i, 0));
+        },
+        tbb::simple_partitioner());
+    optimizer->tell(values);
+    result.evaluations += n;
+    result.best_history.push_back(optimizer->best_value());
+
+    // 3. Bound the cache: drop the least recently used (ties: lowest grid index), never one used just now.
+    while (cache_bytes > kCacheBytes) {
+      auto oldest = cache.begin();
+      for (auto it = cache.begin(); it != cache.end(); ++it)
+        if (it->second.last_used < oldest->second.last_used) oldest = it;
+      if (oldest->second.last_used == generation) break;
+      cache_bytes -= oldest->second.factor->memory_bytes();
+      cache.erase(oldest);
+    }
+  }
+  const auto best = optimizer->best_position();
+  result.c = best[0];
+  result.sigma = snap_sigma(best[1], s.sigma_per_decade);
+  result.objective = optimizer->best_value();
+  return result;
+}
+
+}  // namespace dampbench::lssvm
