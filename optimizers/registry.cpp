@@ -138,11 +138,54 @@ OptimizerFactory make_de(const OptimizerSpec& spec) {
   return factory_of<De>(s);
 }
 
+OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
+  const SettingsReader read("ga-sqp", spec.settings,
+                            {"pc", "pm", "eta_c", "eta_m", "tournament", "elites", "constraint", "sqp_iterations",
+                             "fd_step", "xtol", "ftol"});
+  GaSqpSettings s;
+  s.population = spec.population;
+  s.generations = spec.iterations;
+  read.number("pc", s.pc);
+  read.optional_number("pm", s.pm);
+  read_genetic(read, s);
+  if (const std::string* t = read.text("constraint"); t && (trim(*t) == "off" || trim(*t) == "none"))
+    s.constraint = std::numeric_limits<double>::infinity();
+  else
+    read.number("constraint", s.constraint);
+  read.whole("sqp_iterations", s.sqp_iterations);
+  read.number("fd_step", s.fd_step);
+  read.number("xtol", s.xtol);
+  read.number("ftol", s.ftol);
+  return factory_of<GaSqp>(s);
+}
+
+OptimizerFactory make_ga_lm(const OptimizerSpec& spec) {
+  const SettingsReader read("ga-lm", spec.settings,
+                            {"pc", "pm", "eta_c", "eta_m", "tournament", "elites", "lm_iterations", "fd_step", "ftol",
+                             "xtol", "gtol", "lambda0", "geodesic", "geodesic_ratio"});
+  GaLmSettings s;
+  s.population = spec.population;
+  s.generations = spec.iterations;
+  read.number("pc", s.pc);
+  read.optional_number("pm", s.pm);
+  read_genetic(read, s);
+  read.whole("lm_iterations", s.lm_iterations);
+  read.number("fd_step", s.fd_step);
+  read.number("ftol", s.ftol);
+  read.number("xtol", s.xtol);
+  read.number("gtol", s.gtol);
+  read.number("lambda0", s.lambda0);
+  read.whole("geodesic", s.geodesic);
+  read.number("geodesic_ratio", s.geodesic_ratio);
+  return factory_of<GaLm>(s);
+}
+
 struct Entry {
   std::string_view name;
   OptimizerFactory (*make)(const OptimizerSpec&);
 };
-constexpr Entry kOptimizers[] = {{"pso", make_pso}, {"ga", make_ga}, {"aga", make_aga}, {"de", make_de}};
+constexpr Entry kOptimizers[] = {{"pso", make_pso}, {"ga", make_ga},         {"aga", make_aga},
+                                 {"de", make_de},   {"ga-sqp", make_ga_sqp}, {"ga-lm", make_ga_lm}};
 
 }  // namespace
 

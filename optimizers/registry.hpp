@@ -7,6 +7,12 @@
 //   ga    pc, pm, eta_c, eta_m, tournament, elites, preset (lssvm)               optimizers/ga/ga.hpp
 //   aga   k1, k2, k3, k4, pm_min, eta_c, eta_m, tournament, elites               optimizers/ga/aga.hpp
 //   de    strategy (rand1bin | best1bin | currenttobest1bin), F, CR              optimizers/de/de.hpp
+//   ga-sqp  ga's settings (no preset), constraint (fdsp eq. 11, in the run metric's units; or off),
+//           sqp_iterations, fd_step, xtol, ftol                                  optimizers/hybrid/ga_sqp.hpp
+//   ga-lm   ga's settings (no preset), lm_iterations, fd_step, ftol, xtol, gtol, lambda0, geodesic,
+//           geodesic_ratio                                                       optimizers/hybrid/ga_lm.hpp
+// Bound narrowing over conditions (mfm §5.1) is a procedure, not an optimizer: narrow_bounds() in
+// optimizers/narrowing/narrowing.hpp, with any of these as its inner optimizer.
 //
 // Order of application: the optimizer's defaults, then `population` and `iterations` of the spec, then
 // the named bundle (`preset` for ga, `variant` for pso), then every other setting. So a preset's own
@@ -14,7 +20,7 @@
 // the command line's defaults 50/100 when the user gave none — and only when the preset is given;
 // explicit settings then override the preset's rates. For ga, aga and de, `iterations` counts
 // generations (the initial population included): every optimizer costs population × iterations
-// evaluations.
+// evaluations; the hybrids add their local phase's evaluations on top (each header says how many).
 #include <map>
 #include <string>
 #include <vector>
@@ -23,6 +29,8 @@
 #include "optimizers/de/de.hpp"
 #include "optimizers/ga/aga.hpp"
 #include "optimizers/ga/ga.hpp"
+#include "optimizers/hybrid/ga_lm.hpp"
+#include "optimizers/hybrid/ga_sqp.hpp"
 #include "optimizers/pso/pso.hpp"
 
 namespace dampbench {
@@ -35,11 +43,11 @@ struct OptimizerSpec {
   std::map<std::string, std::string> settings = {};  ///< algorithm settings, e.g. {"pc", "0.6"}, {"preset", "lssvm"}
 };
 
-/// The known optimizer names, in the order of the "known:" lists of messages: pso, ga, aga, de.
+/// The known optimizer names, in the order of the "known:" lists of messages: pso, ga, aga, de, ga-sqp, ga-lm.
 std::vector<std::string> optimizer_names();
 
 /// Validates the spec and returns a factory that makes one run's optimizer from its bounds and run key.
-/// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de)"), unknown setting
+/// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de, ga-sqp, ga-lm)"), unknown setting
 /// ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known
 /// name (the message names the setting), or settings that the optimizer's validate() rejects.
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec);

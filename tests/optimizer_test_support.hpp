@@ -14,6 +14,10 @@
 #include <string>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
+#include "engine/batch_evaluator.hpp"
+#include "engine/identification.hpp"
 #include "engine/optimizer.hpp"
 #include "engine/random.hpp"
 
@@ -302,6 +306,146 @@ inline void expect_survives_all_failures(const OptimizerFactory& make) {
   }
   ASSERT_EQ(run.best_position.size(), 2u);
   for (double v : run.best_position) EXPECT_TRUE(v >= -1 && v <= 1);
+}
+
+// ---- local phases (hybrids: refine) -----------------------------------------------------------------
+
+/// A LocalProblem over a closed-form least-squares function: residuals r(x), value Σ r² (or a plain objective
+/// when built from one; its residuals are then {sqrt(f)}). Records every point it evaluates, so a test can
+/// check that a local phase stays inside the box, and counts evaluations.
+class FunctionProblem final : public LocalProblem {
+ public:
+  using Residuals = std::function<std::vector<double>(std::span<const double>)>;
+  FunctionProblem(Residuals residuals, Bounds bounds) : residuals_(std::move(residuals)), bounds_(std::move(bounds)) {}
+  FunctionProblem(const Objective& f, Bounds bounds)
+      : residuals_([f](std::span<const double> x) { return std::vector<double>{std::sqrt(f(x))}; }),
+        bounds_(std::move(bounds)) {}
+
+  [[nodiscard]] double value(std::span<const double> x) const {
+    double s = 0;
+    for (double r : residuals_(x)) s += r * r;
+    return s;
+  }
+  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    for (int i = 0; i < batch.count(); ++i) {
+      const std::vector<double> x = batch.candidate(i);
+      points.push_back(x);
+      values[i] = value(x);
+    }
+    evaluations += batch.count();
+  }
+  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    points.emplace_back(params.begin(), params.end());
+    ++residual_calls;
+    return residuals_(params);
+  }
+  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
+
+  mutable std::vector<std::vector<double>> points;
+  mutable long long evaluations = 0, residual_calls = 0;
+
+ private:
+  Residuals residuals_;
+  Bounds bounds_;
+};
+
+/// Every point the problem evaluated lies inside its box.
+inline ::testing::AssertionResult all_points_inside(const FunctionProblem& problem) {
+  const Bounds& b = problem.bounds();
+  for (const auto& x : problem.points)
+    for (int j = 0; j < b.dim(); ++j)
+      if (!(x[j] >= b.lower[j] && x[j] <= b.upper[j]))
+        return ::testing::AssertionFailure() << "parameter " << j << " = " << x[j] << " outside [" << b.lower[j]
+                                             << ", " << b.upper[j] << "]";
+  return ::testing::AssertionSuccess();
+}
+
+/// The population phase through ask/tell on the problem's value, then refine(problem).
+inline Run minimize_and_refine(Optimizer& opt, const FunctionProblem& problem) {
+  Run run = minimize(opt, [&](std::span<const double> x) { return problem.value(x); }, problem.bounds().dim());
+  opt.refine(problem);
+  run.best_value = opt.best_value();
+  run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
+  return run;
+}
+
+/// A LocalProblem on a model through a BatchEvaluator, with residuals as engine/identification.cpp builds
+/// them. `one_by_one` evaluates every candidate of a batch as its own batch of one.
+class ModelProblem final : public LocalProblem {
+ public:
+  ModelProblem(const BatchEvaluator& evaluator, Metric metric, Bounds bounds, bool one_by_one)
+      : evaluator_(evaluator), metric_(metric), bounds_(std::move(bounds)), one_by_one_(one_by_one) {}
+  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    if (!one_by_one_) {
+      evaluator_.evaluate(batch, metric_, values);
+      return;
+    }
+    CandidateBatch one(batch.dim(), 1);
+    for (int i = 0; i < batch.count(); ++i) {
+      one.set_candidate(0, batch.candidate(i));
+      evaluator_.evaluate(one, metric_, values.subspan(i, 1));
+    }
+  }
+  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    std::vector<double> r;
+    for (const Signals* d : evaluator_.datasets()) {
+      const auto F = evaluator_.model().simulate(params, *d);
+      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+      for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
+    }
+    return r;
+  }
+  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
+
+ private:
+  const BatchEvaluator& evaluator_;
+  Metric metric_;
+  Bounds bounds_;
+  bool one_by_one_;
+};
+
+/// One run of an optimizer on a model: population phase and refine, every batch evaluated as one batch or
+/// candidate by candidate. Returns the best position followed by the best value.
+inline std::vector<double> run_on_model(const OptimizerFactory& make, const BatchEvaluator& evaluator, Metric metric,
+                                        const Bounds& bounds, std::uint64_t key, bool one_by_one) {
+  const auto opt = make(bounds, key);
+  const ModelProblem problem(evaluator, metric, bounds, one_by_one);
+  CandidateBatch batch;
+  std::vector<double> values;
+  while (!opt->finished()) {
+    const int n = opt->batch_size();
+    if (batch.count() != n) batch.resize(bounds.dim(), n);
+    values.resize(n);
+    opt->ask(batch, 0);
+    problem.evaluate(batch, values);
+    opt->tell(values);
+  }
+  opt->refine(problem);
+  std::vector<double> out(opt->best_position().begin(), opt->best_position().end());
+  out.push_back(opt->best_value());
+  return out;
+}
+
+/// identify() with `threads` worker threads and `grain` lane blocks per task.
+inline Identification identify_with(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                                    const OptimizerFactory& make, IdentificationSettings settings, int threads, int grain) {
+  settings.grain_blocks = grain;
+  tbb::task_arena arena(threads);
+  Identification out;
+  arena.execute([&] { out = identify(model, data, bounds, make, settings); });
+  return out;
+}
+
+/// Two identifications agree bit for bit: parameters, values, every metric, traces and evaluation counts.
+inline void expect_identical(const Identification& a, const Identification& b) {
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t r = 0; r < a.runs.size(); ++r) {
+    EXPECT_EQ(a.runs[r].best_params, b.runs[r].best_params) << "run " << r;
+    EXPECT_EQ(a.runs[r].best_value, b.runs[r].best_value) << "run " << r;
+    EXPECT_EQ(a.runs[r].best_metrics, b.runs[r].best_metrics) << "run " << r;
+    EXPECT_EQ(a.runs[r].trace, b.runs[r].trace) << "run " << r;
+    EXPECT_EQ(a.runs[r].evaluations, b.runs[r].evaluations) << "run " << r;
+  }
 }
 
 }  // namespace dampbench::testing

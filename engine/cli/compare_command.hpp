@@ -24,6 +24,7 @@ struct CompareOptions {
   std::uint64_t seed = 1;
   std::string bounds;
   std::string target;        ///< metric target for evaluations-to-target ("" = automatic, documented)
+  long long max_evaluations = 0;  ///< budget per run for every optimizer (0 = the optimizers' own counts)
   std::string format = "md"; ///< md, csv or json
   std::string output_dir;    ///< convergence curves CSV and tables; "" = none
 };
