@@ -59,7 +59,7 @@ LaneParams<D, W> broadcast_lanes(std::span<const double> params) {
 /// The four metric sums of a block of W lanes, accumulated sample by sample.
 template <int W = kLanes>
 struct LaneSums {
-  alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {};
+  alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {}, abs_mag[W] = {};
 
   void add(const double* force, double measured, double w) {
 #pragma omp simd
@@ -70,13 +70,15 @@ struct LaneSums {
       sq_w[l] += w * (e * e);
       abs_e[l] += ae;
       sq_e[l] += e * e;
+      abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(force[l]));
     }
   }
   /// Writes the first `count` lanes; lanes flagged in `failed` get +inf sums (masked candidates).
   void store(MetricSums* out, int count, const bool* failed = nullptr) const {
     const double inf = std::numeric_limits<double>::infinity();
     for (int l = 0; l < count; ++l)
-      out[l] = (failed && failed[l]) ? MetricSums{inf, inf, inf, inf} : MetricSums{abs_w[l], sq_w[l], abs_e[l], sq_e[l]};
+      out[l] = (failed && failed[l]) ? MetricSums{inf, inf, inf, inf, inf}
+                                     : MetricSums{abs_w[l], sq_w[l], abs_e[l], sq_e[l], abs_mag[l]};
   }
 };
 

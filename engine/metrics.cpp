@@ -13,6 +13,10 @@ std::string_view metric_name(Metric m) {
     case Metric::rmse: return "rmse";
     case Metric::nrmse: return "nrmse";
     case Metric::mae: return "mae";
+    case Metric::crfd_eps: return "crfd_eps";
+    case Metric::mfm_E: return "mfm_E";
+    case Metric::fdsp_pct: return "fdsp_pct";
+    case Metric::fdsp_signed_pct: return "fdsp_signed_pct";
   }
   return "?";
 }
@@ -20,7 +24,8 @@ std::string_view metric_name(Metric m) {
 Metric parse_metric(std::string_view name) {
   for (Metric m : kAllMetrics)
     if (metric_name(m) == name) return m;
-  throw InputError(fmt::format("unknown metric '{}' (known: of_abs, of_sq, rmse, nrmse, mae)", name));
+  throw InputError(fmt::format(
+      "unknown metric '{}' (known: of_abs, of_sq, rmse, nrmse, mae, crfd_eps, mfm_E, fdsp_pct, fdsp_signed_pct)", name));
 }
 
 double finish_metric(Metric m, const MetricSums& s, const Signals& data) {
@@ -32,6 +37,10 @@ double finish_metric(Metric m, const MetricSums& s, const Signals& data) {
     case Metric::rmse: value = std::sqrt(s.sq / n); break;
     case Metric::nrmse: value = std::sqrt(s.sq / n) / data.force_max_abs_N; break;
     case Metric::mae: value = s.abs / n; break;
+    case Metric::crfd_eps: value = std::sqrt(0.5 * s.sq / data.force_max_abs_N) * 100.0; break;
+    case Metric::mfm_E: value = std::sqrt(s.sq / data.force_sum_sq); break;
+    case Metric::fdsp_pct: value = 100.0 * s.abs_magnitude / (n * data.force_max_abs_N); break;
+    case Metric::fdsp_signed_pct: value = 100.0 * s.abs / (n * data.force_max_abs_N); break;
   }
   return std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
 }

@@ -16,8 +16,15 @@ enum class Metric {
   rmse,    ///< sqrt(Σ e² / N) [N]
   nrmse,   ///< rmse / max|F_m|
   mae,     ///< Σ|e| / N [N]
+  crfd_eps,         ///< crfd eq. 7.6 as printed: sqrt(½·Σe² / T_max)·100 (not dimensionless; nrmse·100 is
+                    ///< the normalized RMS error the paper describes)
+  mfm_E,            ///< mfm eq. 12: sqrt(Σe² / ΣF_m²)
+  fdsp_pct,         ///< fdsp eq. 8 as printed: 100·Σ||F_m| − |F|| / (N·max|F_m|) (compares magnitudes)
+  fdsp_signed_pct,  ///< its signed variant: 100·Σ|F_m − F| / (N·max|F_m|)
 };
-inline constexpr std::array kAllMetrics = {Metric::of_abs, Metric::of_sq, Metric::rmse, Metric::nrmse, Metric::mae};
+inline constexpr std::array kAllMetrics = {Metric::of_abs,   Metric::of_sq, Metric::rmse,     Metric::nrmse,
+                                           Metric::mae,      Metric::crfd_eps, Metric::mfm_E, Metric::fdsp_pct,
+                                           Metric::fdsp_signed_pct};
 inline constexpr int kMetricCount = static_cast<int>(kAllMetrics.size());
 
 std::string_view metric_name(Metric m);
@@ -30,6 +37,7 @@ struct MetricSums {
   double sq_weighted = 0;   ///< Σ w_k e_k²
   double abs = 0;           ///< Σ |e_k|
   double sq = 0;            ///< Σ e_k²
+  double abs_magnitude = 0; ///< Σ ||F_m,k| − |F_k|| (fdsp eq. 8)
 };
 
 /// The metric from the sums; +inf whenever the candidate's force was NaN or Inf anywhere (a NaN never

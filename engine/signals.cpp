@@ -41,6 +41,7 @@ Signals prepare_signals(const Dataset& data) {
     for (double f : s.F_N) {
       var += (f - mean) * (f - mean);
       s.force_max_abs_N = std::max(s.force_max_abs_N, std::fabs(f));
+      s.force_sum_sq += f * f;
     }
     s.force_std_N = std::sqrt(var / static_cast<double>(n));
   }

@@ -60,6 +60,26 @@ TEST(Metrics, HandComputedValues) {
   EXPECT_NEAR(m[2], std::sqrt(3.25 / 4.0), 1e-15);    // rmse: Σe² = 3.25
   EXPECT_NEAR(m[3], std::sqrt(3.25 / 4.0) / 3.0, 1e-15);  // nrmse
   EXPECT_NEAR(m[4], 3.5 / 4.0, 1e-15);                // mae: Σ|e| = 3.5
+  EXPECT_NEAR(m[5], std::sqrt(0.5 * 3.25 / 3.0) * 100, 1e-12);  // crfd eq. 7.6: T_max = 3
+  EXPECT_NEAR(m[6], std::sqrt(3.25 / 18.0), 1e-15);             // mfm eq. 12: ΣF² = 4 + 9 + 1 + 4
+  // fdsp eq. 8: ||F_m| − |F|| = |2−1|, |3−2|, |1−0.5|, |2−3| → 3.5; 100·3.5/(4·3)
+  EXPECT_NEAR(m[7], 100 * 3.5 / 12.0, 1e-12);
+  EXPECT_NEAR(m[8], 100 * 3.5 / 12.0, 1e-12);
+}
+
+TEST(Metrics, FdspEquation8ComparesMagnitudesOnly) {
+  // Model force = −measured force: every magnitude agrees (eq. 8 gives 0) while the signed variant sees
+  // |e| = 2|F|: Σ|e| = 2·(1 + 1 + 2 + 2) = 12, 100·12/(4·2) = 150.
+  Dataset d;
+  d.name = "mirror";
+  d.t_s = {0, 1, 2, 3};
+  d.x_m = {0, 0, 0, 0};
+  d.v_m_s = {-1, 1, -2, 2};
+  d.a_m_s2 = {0, 0, 0, 0};
+  d.F_N = {1, -1, 2, -2};
+  const auto m = metrics_of(prepare_signals(d), 0.0, 1.0);
+  EXPECT_EQ(m[static_cast<int>(Metric::fdsp_pct)], 0.0);
+  EXPECT_NEAR(m[static_cast<int>(Metric::fdsp_signed_pct)], 150.0, 1e-12);
 }
 
 TEST(Metrics, OfAbsOfASineIsItsMeanAbsoluteValueOverSigma) {
@@ -124,7 +144,7 @@ TEST(Metrics, SeveralDatasetsAverageTheirMetrics) {
 TEST(Metrics, NamesRoundTripAndUnknownNameIsRejected) {
   for (Metric m : kAllMetrics) EXPECT_EQ(parse_metric(metric_name(m)), m);
   EXPECT_EQ(testing::error_of([] { parse_metric("r2"); }),
-            "unknown metric 'r2' (known: of_abs, of_sq, rmse, nrmse, mae)");
+            "unknown metric 'r2' (known: of_abs, of_sq, rmse, nrmse, mae, crfd_eps, mfm_E, fdsp_pct, fdsp_signed_pct)");
 }
 
 }  // namespace dampbench
