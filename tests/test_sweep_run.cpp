@@ -1,2 +1,415 @@
+// Running sweeps (engine/sweep/runner.hpp) in process and through the dampbench executable: failed tasks
+// are recorded while the sweep completes; a sweep stopped by Ctrl-C or killed with SIGKILL resumes to
+// results identical bit for bit to an uninterrupted run; a store from another spec is refused; verify
+// passes on a fresh store and fails on one whose number was altered.
+#include "engine/sweep/runner.hpp"
+
 #include <gtest/gtest.h>
-TEST(Placeholder, NotWrittenYet) { GTEST_SKIP() << "not written yet"; }
+#include <sqlite3.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
+
+#include "engine/csv_loader.hpp"
+#include "engine/sweep/progress.hpp"
+#include "engine/sweep/store.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_dampbench;
+
+fs::path temp_dir() {
+  const auto dir = fs::temp_directory_path() /
+                   ("dampbench_sweeprun_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+/// A sine record, force of a generalized viscous damper plus a little stiffness, with operating variables.
+void write_record(const fs::path& p, const std::string& operating, double amp, double freq, int samples) {
+  std::string s = operating.empty() ? "" : "# operating: " + operating + "\n";
+  s += "t[s],x[mm],F[N]\n";
+  for (int k = 0; k < samples; ++k) {
+    const double t = 3.0 * k / (freq * (samples - 1)), w = 2 * std::numbers::pi * freq;
+    const double x = amp * std::sin(w * t), v = amp * w * std::cos(w * t);
+    const double F = 2e4 * (v > 0 ? 1 : -1) * std::pow(std::fabs(v), 0.4) + 3e5 * x + 500 * std::sin(7 * w * t);
+    s += fmt::format("{:.9g},{:.9g},{:.9g}\n", t, 1e3 * x, F);
+  }
+  write(p, s);
+}
+
+Loader csv_loader() {
+  return [](const LoadOptions& o) { return load_csv(o.path, CsvOptions{}); };
+}
+
+/// Every group of two stores, compared number by number (bits).
+void expect_same_results(const std::string& a_path, const std::string& b_path) {
+  const Store a = Store::open(a_path), b = Store::open(b_path);
+  const auto ha = a.header(), hb = b.header();
+  ASSERT_EQ(ha.spec_hash, hb.spec_hash);
+  ASSERT_EQ(ha.groups, hb.groups);
+  ASSERT_EQ(a.stored_groups(), ha.groups);
+  ASSERT_EQ(b.stored_groups(), hb.groups);
+  for (std::size_t d = 0; d < ha.datasets.size(); ++d) EXPECT_EQ(ha.datasets[d].hash, hb.datasets[d].hash);
+  long long runs = 0;
+  for (long long i = 0; i < ha.groups; ++i) {
+    const auto ga = a.group(i), gb = b.group(i);
+    ASSERT_TRUE(ga && gb) << i;
+    const auto diff = compare_records(*ga, *gb);
+    EXPECT_TRUE(diff.empty()) << "group " << i << ": " << diff.front();
+    EXPECT_EQ(ga->dataset_hash, gb->dataset_hash);
+    runs += static_cast<long long>(ga->run_results.size());
+  }
+  EXPECT_GT(runs, 0);
+}
+
+long long stored_groups(const fs::path& store) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(store.string().c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    return 0;
+  }
+  long long n = 0;
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db, "SELECT COUNT(*) FROM groups", -1, &s, nullptr) == SQLITE_OK && sqlite3_step(s) == SQLITE_ROW)
+    n = sqlite3_column_int64(s, 0);
+  sqlite3_finalize(s);
+  sqlite3_close(db);
+  return n;
+}
+
+/// Starts `dampbench run ...` as a child process (output discarded).
+pid_t start_run(const std::vector<std::string>& args) {
+  // Everything allocated before fork: the child only calls async-signal-safe functions.
+  std::vector<char*> argv{const_cast<char*>(DAMPBENCH_EXE), const_cast<char*>("run")};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execv(DAMPBENCH_EXE, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// Waits until the store holds at least `n` groups or the child ends; true if it is still running.
+bool wait_for_groups(pid_t pid, const fs::path& store, long long n) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return false;
+    if (stored_groups(store) >= n) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : (WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1);
+}
+
+// ---- in process -----------------------------------------------------------------------------------
+
+class SmallSweep : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = temp_dir();
+    for (int i = 0; i < 3; ++i) write_record(dir_ / "data" / fmt::format("c{}.csv", i), fmt::format("I={}", i), 0.01 * (i + 1), 1, 121);
+  }
+  std::string spec(const std::string& extra = "") const {
+    return fmt::format(R"toml(name = "small"
+seed = 3
+runs = 3
+metric = "nrmse"
+models = ["fvd.generalized_viscous", "fvd.gv_linear_elastic"]
+[optimizer]
+name = "pso"
+population = 12
+iterations = 10
+[[datasets]]
+name = "grid"
+glob = "{}/data/*.csv"
+{})toml",
+                       dir_.string(), extra);
+  }
+  /// Runs the sweep in an arena of `threads`, stopping after `stop_after` groups (0: never).
+  RunnerSummary run(const std::string& text, const std::string& store_path, int threads, int stop_after = 0) const {
+    write(dir_ / "small.toml", text);
+    const Plan plan(load_sweep((dir_ / "small.toml").string()), csv_loader());
+    Store store = Store::create_or_resume(store_path, make_store_header(plan, (dir_ / "small.toml").string()));
+    std::atomic<bool> stop{false};
+    int written = 0;
+    RunnerOptions o;
+    o.stop = &stop;
+    o.on_group = [&](const GroupRecord&, const std::string&) {
+      if (stop_after > 0 && ++written >= stop_after) stop = true;
+    };
+    RunnerSummary s;
+    tbb::task_arena(threads).execute([&] { s = run_sweep(plan, store, o); });
+    return s;
+  }
+  fs::path dir_;
+};
+
+TEST_F(SmallSweep, StoppedSweepResumesToTheSameBitsWithAnyThreadCount) {
+  const std::string full = (dir_ / "full.sqlite").string(), parts = (dir_ / "parts.sqlite").string();
+  const RunnerSummary a = run(spec(), full, 1);
+  EXPECT_EQ(a.groups, 6);
+  EXPECT_EQ(a.tasks, 18);
+  EXPECT_EQ(a.ran, 6);
+  EXPECT_FALSE(a.interrupted);
+
+  const RunnerSummary b = run(spec(), parts, 2, 2);
+  EXPECT_TRUE(b.interrupted);
+  EXPECT_GE(b.ran, 2);
+  EXPECT_LT(b.ran, 6);
+  const RunnerSummary c = run(spec(), parts, 2);
+  EXPECT_EQ(c.stored_before, b.ran);
+  EXPECT_EQ(c.ran, 6 - b.ran);
+  EXPECT_FALSE(c.interrupted);
+  expect_same_results(full, parts);
+  // Nothing left: a third run does no work.
+  EXPECT_EQ(run(spec(), parts, 2).ran, 0);
+}
+
+TEST_F(SmallSweep, RecomputedGroupsMatchTheStoreBitForBit) {
+  // What verify does, on groups with joint fits, predictions and sensitivities: run_group again, compare.
+  const std::string text = spec(R"toml([[splits]]
+name = "joint"
+by = "all"
+fit = { I = [0, 1] }
+predict = { I = 2 }
+[[splits]]
+name = "each"
+fit = { I = [0, 2] }
+predict = { I = 1 }
+sensitivity = { points = 5, where = { I = 0 } }
+)toml");
+  const std::string path = (dir_ / "v.sqlite").string();
+  run(text, path, 2);
+  const Plan plan(load_sweep((dir_ / "small.toml").string()), csv_loader());
+  const Store store = Store::open(path);
+  int with_predictions = 0, with_sensitivity = 0;
+  for (long long i = 0; i < plan.groups(); ++i) {
+    const auto stored = store.group(i);
+    ASSERT_TRUE(stored);
+    with_predictions += !stored->dataset_metrics.empty();
+    with_sensitivity += stored->sensitivity.has_value();
+    const auto diff = compare_records(*stored, run_group(plan, i));
+    EXPECT_TRUE(diff.empty()) << "group " << i << ": " << diff.front();
+  }
+  EXPECT_EQ(with_predictions, plan.groups());  // the joint fit and both per-condition fits predict
+  EXPECT_EQ(with_sensitivity, 2);              // I = 0, both models
+}
+
+TEST_F(SmallSweep, FailedTasksAreRecordedAndTheSweepCompletes) {
+  write(dir_ / "data" / "c9.csv", "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,8\n");
+  write_record(dir_ / "data" / "c5.csv", "", 0.02, 2, 121);  // no current: the law in I cannot be evaluated
+  std::string s = spec();
+  s.replace(s.find("models = [\"fvd.generalized_viscous\", \"fvd.gv_linear_elastic\"]"),
+            std::string("models = [\"fvd.generalized_viscous\", \"fvd.gv_linear_elastic\"]").size(),
+            "models = [\"fvd.generalized_viscous\", { name = \"gv(I)\", model = \"fvd.generalized_viscous\", laws = \"C=poly(I,1)\" }]");
+  const std::string path = (dir_ / "f.sqlite").string();
+  const RunnerSummary r = run(s, path, 2);
+  // 5 datasets x 2 models; c9 fails for both models (bad cell), c5 for the law model (no I).
+  EXPECT_EQ(r.groups, 10);
+  EXPECT_EQ(r.ran, 10);
+  EXPECT_EQ(r.failed, 3);
+  const Store store = Store::open(path);
+  int failed = 0, done = 0;
+  for (const auto& g : store.groups()) {
+    if (!g.failed) {
+      ++done;
+      EXPECT_EQ(g.run_results.size(), 3u);
+      continue;
+    }
+    ++failed;
+    EXPECT_TRUE(g.run_results.empty());
+    const bool bad_cell = g.message.find("c9.csv:3: column 3 ('F'): expected a number, got 'abc'") != std::string::npos;
+    const bool no_current = g.message.find("dataset 'c5' has no operating variable 'I'") != std::string::npos;
+    EXPECT_TRUE(bad_cell || no_current) << g.message;
+  }
+  EXPECT_EQ(failed, 3);
+  EXPECT_EQ(done, 7);
+  EXPECT_NE(store.header().datasets[4].error.find("expected a number"), std::string::npos);  // c9 sorts last
+}
+
+TEST(ProgressBar, Renders) {
+  EXPECT_EQ(ProgressBar::render(25, 100, 1.5e6, 125, 10), "[###       ] 25/100 tasks  25%  1.5e+06 evals/s  ETA 2m05s");
+  EXPECT_EQ(format_duration(3725), "1h02m");
+  EXPECT_EQ(format_duration(std::nan("")), "--");
+  ProgressBar off(true, 10, 0);  // stderr is not a terminal under ctest
+  EXPECT_FALSE(off.active());
+}
+
+// ---- the executable: interruptions, refusal, verify, tables ---------------------------------------
+
+class ExeSweep : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = temp_dir();
+    for (int i = 0; i < 6; ++i)
+      write_record(dir_ / "data" / fmt::format("t{}.csv", i), fmt::format("amp={},freq={}", 0.01 + 0.002 * i, 0.5 + 0.25 * i),
+                   0.01 + 0.002 * i, 0.5 + 0.25 * i, 1500);
+    spec_ = dir_ / "sweep.toml";
+    write_spec(4);
+  }
+  void write_spec(int runs) {
+    write(spec_, fmt::format(R"toml(name = "kill"
+seed = 11
+runs = {}
+models = ["fvd.linear_viscous", "fvd.generalized_viscous", "fvd.gv_linear_elastic", "fvd.gv_quadratic_elastic"]
+[optimizer]
+name = "pso"
+population = 40
+iterations = 40
+[[datasets]]
+name = "tests"
+glob = "{}/data/*.csv"
+)toml",
+                             runs, dir_.string()));
+  }
+  std::string args(const fs::path& store) const {
+    return fmt::format("run {} --store {} -o {} --quiet --threads 2", spec_.string(), store.string(), (dir_ / "out").string());
+  }
+  fs::path dir_;
+  fs::path spec_;
+};
+
+TEST_F(ExeSweep, InterruptedAndKilledSweepResumesBitIdentical) {
+  const fs::path store = dir_ / "resumed.sqlite";
+  const std::vector<std::string> argv{spec_.string(), "--store", store.string(), "-o", (dir_ / "out").string(), "--quiet",
+                                      "--threads", "2"};
+  // 1. Ctrl-C after the first stored group: the groups in flight finish, the run ends with 130, the store is valid.
+  pid_t pid = start_run(argv);
+  ASSERT_TRUE(wait_for_groups(pid, store, 1)) << "the sweep ended before it could be interrupted";
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_exit(pid), 130);
+  const long long after_interrupt = stored_groups(store);
+  EXPECT_GE(after_interrupt, 1);
+  EXPECT_LT(after_interrupt, 24);
+  EXPECT_EQ(Store::open(store.string()).stored_groups(), after_interrupt);
+
+  // 2. Resume, then SIGKILL once two more groups are stored: at most the groups in flight are lost.
+  pid = start_run(argv);
+  ASSERT_TRUE(wait_for_groups(pid, store, after_interrupt + 2)) << "the sweep ended before it could be killed";
+  kill(pid, SIGKILL);
+  EXPECT_EQ(wait_exit(pid), 128 + SIGKILL);
+  const long long after_kill = stored_groups(store);
+  EXPECT_GE(after_kill, after_interrupt + 2);
+  EXPECT_LT(after_kill, 24) << "the kill came too late to test a resume";
+
+  // 3. Resume to the end; 4. an uninterrupted run elsewhere; every stored number must agree.
+  auto r = run_dampbench(args(store));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(fmt::format("{} from the store", after_kill)), std::string::npos) << r.output;
+  const fs::path fresh = dir_ / "fresh.sqlite";
+  r = run_dampbench(args(fresh));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("candidate-samples/s"), std::string::npos);
+  expect_same_results(store.string(), fresh.string());
+}
+
+TEST_F(ExeSweep, ChangedSpecIsRefusedAndVerifyDetectsAlteredNumbers) {
+  write(spec_, fmt::format(R"toml(name = "small"
+runs = 2
+models = ["fvd.generalized_viscous"]
+tables = ["runs", "errors", "bootstrap"]
+[optimizer]
+population = 10
+iterations = 8
+[[datasets]]
+name = "tests"
+files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
+)toml",
+                           dir_.string()));
+  const fs::path store = dir_ / "s.sqlite";
+  auto r = run_dampbench(args(store));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* f : {"runs_fvd.generalized_viscous.csv", "errors.csv", "tables.md", "summary.md"})
+    EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
+
+  r = run_dampbench("verify " + store.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("verify: 2 task groups (4 runs) re-run, every stored number identical bit for bit"), std::string::npos)
+      << r.output;
+
+  // Tables from the store, in every format.
+  r = run_dampbench("table " + store.string() + " --kind runs --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j.at("tables")[0].at("rows").size(), 2u);
+  for (const char* f : {"md", "csv", "latex"}) EXPECT_EQ(run_dampbench("table " + store.string() + " --kind params --format " + f).exit_code, 0) << f;
+  r = run_dampbench("table " + store.string() + " --kind nope");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--kind: unknown table kind 'nope' (known: runs"), std::string::npos) << r.output;
+
+  // One altered bit of one stored number: verify names it and fails.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(store.string().c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE runs SET best_value = best_value * (1 + 1e-12) WHERE grp = 1 AND run = 0", nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  r = run_dampbench("verify " + store.string() + " --sample 2");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("DIFFERENT: task group 1 (fvd.generalized_viscous on t1, pso, of_abs)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run 0 best_value: stored 0x"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 2 re-run task groups differ"), std::string::npos) << r.output;
+
+  // The same store with another spec is refused before anything runs; --fresh starts over.
+  std::string text;
+  {
+    std::ifstream in(spec_);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.replace(text.find("runs = 2"), 8, "runs = 3");
+  write(spec_, text);
+  r = run_dampbench(args(store));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("belongs to another sweep spec ('small' from"), std::string::npos) << r.output;
+  r = run_dampbench(args(store) + " --fresh");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 task groups, 6 tasks (2 run now, 0 from the store, 0 failed)"), std::string::npos) << r.output;
+}
+
+TEST_F(ExeSweep, NothingStartsUntilTheWholeFileIsValid) {
+  write(spec_, fmt::format("name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"t\"\nglob = \"{}/data/*.csv\"\n"
+                           "[[tables]]\nkind = \"plots\"\n",
+                           dir_.string()));
+  const fs::path store = dir_ / "never.sqlite";
+  const auto r = run_dampbench(args(store));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("sweep.toml:6: key 'tables[0]': unknown table kind 'plots'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(store));
+}
+
+}  // namespace
+}  // namespace dampbench::sweep

@@ -1,131 +1,112 @@
 #include "engine/cli/fvd_tables.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <fstream>
+#include <map>
+#include <ostream>
 
 #include <fmt/format.h>
 
-#include "engine/statistics.hpp"
-#include "models/registry.hpp"
+#include "engine/error.hpp"
 
 namespace dampbench::cli {
 namespace {
 
-const GroupResult& group(const std::vector<GroupResult>& results, const Model* model, int dataset) {
-  return *std::find_if(results.begin(), results.end(),
-                       [&](const GroupResult& g) { return g.model == model && g.dataset == dataset; });
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw InputError(fmt::format("cannot write '{}'", path.string()));
+  out << text;
 }
 
-std::vector<std::string> dataset_columns(const Preset& preset, std::string first) {
-  std::vector<std::string> cols{std::move(first)};
-  for (const auto& d : preset.datasets) cols.push_back(d.name);
-  return cols;
-}
+struct PartFigures {
+  long long groups = 0, tasks = 0, failed = 0;
+  double candidate_samples = 0, wall_s = 0;
+};
 
-/// Paper-unit values of parameter j over the runs of one group.
-std::vector<double> parameter_over_runs(const GroupResult& g, int j) {
-  std::vector<double> values;
-  for (const auto& r : g.identification.runs) values.push_back(g.model->to_paper_units(r.best_params)[j]);
-  return values;
-}
-
-Table metric_table(const Preset& preset, const std::vector<GroupResult>& results, const Model* model, int number) {
-  Table t{fmt::format("table{:02}_{}_{}", number, metric_name(preset.metric), model->id()),
-          fmt::format("Table {}. {} over {} runs — {}", number, metric_name(preset.metric), preset.runs, model->id()),
-          {"Test", "Mean", "Max", "Min", "Std"}, {}};
-  for (int d = 0; d < static_cast<int>(preset.datasets.size()); ++d) {
-    std::vector<double> values;
-    for (const auto& r : group(results, model, d).identification.runs) values.push_back(r.best_value);
-    const Summary s = summarize(values);
-    t.rows.push_back({preset.datasets[d].name, format_number(s.mean), format_number(s.max), format_number(s.min),
-                      format_number(s.std)});
+PartFigures figures(const sweep::StoreResults& results, int part) {
+  PartFigures f;
+  for (const auto& g : results.groups) {
+    if (g.part != part) continue;
+    ++f.groups;
+    f.tasks += g.runs;
+    f.failed += g.failed;
+    f.candidate_samples += g.candidate_samples;
+    f.wall_s += g.wall_time_s;
   }
-  return t;
+  return f;
 }
 
-Table parameter_table(const Preset& preset, const std::vector<GroupResult>& results, const Model* model, int number) {
-  Table t{fmt::format("table{:02}_params_{}", number, model->id()),
-          fmt::format("Table {}. Identified parameters over {} runs (paper units) — {}", number, preset.runs, model->id()),
-          dataset_columns(preset, "Parameter"), {}};
-  const auto params = model->parameters();
-  for (int j = 0; j < model->dim(); ++j) {
-    std::vector<Summary> per_test;
-    for (int d = 0; d < static_cast<int>(preset.datasets.size()); ++d)
-      per_test.push_back(summarize(parameter_over_runs(group(results, model, d), j)));
-    const std::pair<const char*, double Summary::*> stats[] = {
-        {"mean", &Summary::mean}, {"max", &Summary::max}, {"min", &Summary::min}, {"std", &Summary::std}};
-    for (const auto& [label, field] : stats) {
-      std::vector<std::string> row{fmt::format("{}({}) [{}]", params[j].name, label, params[j].paper_unit)};
-      for (const Summary& s : per_test) row.push_back(format_number(s.*field));
-      t.rows.push_back(std::move(row));
+std::string part_summary(const sweep::StoreResults& results, int part, const std::vector<sweep::Report>& tables,
+                         const OutputInfo& info) {
+  const auto& p = results.header.parts[static_cast<std::size_t>(part)];
+  const PartFigures f = figures(results, part);
+  std::string out = fmt::format("# {}\n\n", p.title);
+  out += fmt::format("Sweep file `{}`, store `{}`.\n\n", p.path, info.store_path);
+  out += fmt::format("- task groups stored: {} ({} tasks = identification runs), failed: {}\n", f.groups, f.tasks, f.failed);
+  out += fmt::format("- candidate-samples: {:.4g} in {:.2f} s of summed group wall time ({:.3g} candidate-samples/s per "
+                     "group; groups run concurrently)\n",
+                     f.candidate_samples, f.wall_s, f.wall_s > 0 ? f.candidate_samples / f.wall_s : 0.0);
+  out += fmt::format("- this session: {} groups run in {:.2f} s wall\n\n", info.summary.ran, info.summary.wall_time_s);
+  out += "Produced tables and the paper's tables they reproduce:\n\n| file | paper | content |\n|---|---|---|\n";
+  for (const auto& t : tables)
+    out += fmt::format("| {}.csv | {} | {} |\n", t.id, t.paper.empty() ? "(beyond the paper)" : t.paper, t.title);
+  std::map<std::string, int> collections;
+  std::vector<const sweep::StoreDataset*> datasets;
+  for (const auto& d : results.header.datasets)
+    if (d.part == part) {
+      ++collections[d.collection];
+      datasets.push_back(&d);
     }
+  out += "\nDatasets:\n\n";
+  if (datasets.size() <= 40) {
+    for (const auto* d : datasets)
+      out += fmt::format("- {}: {} ({}){}\n", d->name, d->label, d->path, d->error.empty() ? "" : " — did not load: " + d->error);
+  } else {
+    for (const auto& [c, n] : collections) out += fmt::format("- {}: {} records\n", c, n);
   }
-  return t;
-}
-
-Table variability_table(const Preset& preset, const std::vector<GroupResult>& results, const Model* model, int number) {
-  Table t{fmt::format("table{:02}_variability_{}", number, model->id()),
-          fmt::format("Table {}. Parameter variability across tests — {}", number, model->id()),
-          {"Parameter", "p_mean", "delta_p", "delta_p/p_mean"}, {}};
-  const auto params = model->parameters();
-  for (int j = 0; j < model->dim(); ++j) {
-    std::vector<double> test_means;
-    for (int d = 0; d < static_cast<int>(preset.datasets.size()); ++d)
-      test_means.push_back(summarize(parameter_over_runs(group(results, model, d), j)).mean);
-    const Summary s = summarize(test_means);
-    const double delta = s.max - s.min;
-    t.rows.push_back({fmt::format("{} [{}]", params[j].name, params[j].paper_unit), format_number(s.mean),
-                      format_number(delta), s.mean != 0 ? format_number(delta / s.mean) : "-"});
-  }
-  return t;
-}
-
-Table ranking_table(const Preset& preset, const std::vector<GroupResult>& results) {
-  auto cols = dataset_columns(preset, "Model");
-  cols.push_back("mean of best");
-  Table t{"ranking", fmt::format("Best {} per model and test (lower is better)", metric_name(preset.metric)), cols, {}};
-  for (const auto& id : preset.models) {
-    const Model* model = &find_model(id);
-    std::vector<std::string> row{id};
-    double sum = 0;
-    for (int d = 0; d < static_cast<int>(preset.datasets.size()); ++d) {
-      const auto& ident = group(results, model, d).identification;
-      const double best = ident.runs[ident.best_run()].best_value;
-      sum += best;
-      row.push_back(format_number(best));
-    }
-    row.push_back(format_number(sum / static_cast<double>(preset.datasets.size())));
-    t.rows.push_back(std::move(row));
-  }
-  return t;
+  std::string failures;
+  for (const auto& g : results.groups)
+    if (g.part == part && g.failed) failures += fmt::format("- task group {}: {}\n", g.index, g.message);
+  if (!failures.empty()) out += "\nFailed task groups (see failures.csv):\n\n" + failures;
+  return out;
 }
 
 }  // namespace
 
-std::vector<Table> fvd_tables(const Preset& preset, const std::vector<GroupResult>& results) {
-  std::vector<Table> tables;
-  std::vector<const Model*> models;
-  for (const auto& id : preset.models) models.push_back(&find_model(id));
-  // The paper numbers its tables 3–6, 7–10, 11–14 for its four models; extra models continue the count.
-  const int n = static_cast<int>(models.size());
-  for (int i = 0; i < n; ++i) tables.push_back(metric_table(preset, results, models[i], 3 + i));
-  for (int i = 0; i < n; ++i) tables.push_back(parameter_table(preset, results, models[i], 3 + n + i));
-  for (int i = 0; i < n; ++i) tables.push_back(variability_table(preset, results, models[i], 3 + 2 * n + i));
-  tables.push_back(ranking_table(preset, results));
-  return tables;
-}
-
-std::string fvd_summary(const Preset& preset, const std::vector<Table>& tables) {
-  std::string out = fmt::format("# {}\n\nProduced tables and the fvd paper's tables they reproduce:\n\n", preset.title);
-  out += "| file | paper | content |\n|---|---|---|\n";
-  for (const auto& t : tables) {
-    const bool numbered = t.id.rfind("table", 0) == 0;
-    out += fmt::format("| {}.csv | {} | {} |\n", t.id, numbered ? "Table " + std::to_string(std::stoi(t.id.substr(5, 2))) : "(beyond the paper)",
-                       t.title);
+void write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir, const OutputInfo& info,
+                         std::ostream* print) {
+  namespace fs = std::filesystem;
+  const int parts = results.part_count();
+  std::string top;
+  if (parts > 1) {
+    top = fmt::format("# {}\n\nSweep file `{}`, store `{}`: {} task groups, {} tasks; this session ran {} groups in "
+                      "{:.2f} s wall ({:.3g} candidate-samples/s), {} failed.\n\n| part | folder | task groups | "
+                      "tasks | failed | candidate-samples | summed group time [s] |\n|---|---|---:|---:|---:|---:|---:|\n",
+                      results.header.name, info.spec_path, info.store_path, results.header.groups, results.header.tasks,
+                      info.summary.ran, info.summary.wall_time_s,
+                      info.summary.wall_time_s > 0 ? info.summary.candidate_samples / info.summary.wall_time_s : 0.0,
+                      info.summary.failed);
   }
-  out += fmt::format("\nDatasets:\n\n");
-  for (const auto& d : preset.datasets) out += fmt::format("- {}: {} ({})\n", d.name, d.label, d.data.path);
-  return out;
+  for (int p = 0; p < parts; ++p) {
+    const auto& part = results.header.parts[static_cast<std::size_t>(p)];
+    const fs::path dir = parts > 1 ? out_dir / part.name : out_dir;
+    fs::create_directories(dir);
+    const std::vector<sweep::Report> tables = sweep::sweep_tables(results, p);
+    std::string md = "# " + part.title + "\n\n";
+    for (const auto& t : tables) {
+      md += sweep::to_markdown(t) + "\n";
+      write_file(dir / (t.id + ".csv"), sweep::to_csv(t));
+      if (print && parts == 1) *print << sweep::to_markdown(t) << "\n";
+    }
+    write_file(dir / "tables.md", md);
+    write_file(dir / "summary.md", part_summary(results, p, tables, info));
+    if (parts > 1) {
+      const PartFigures f = figures(results, p);
+      top += fmt::format("| {} | {}/ | {} | {} | {} | {:.4g} | {:.1f} |\n", part.title, part.name, f.groups, f.tasks,
+                         f.failed, f.candidate_samples, f.wall_s);
+      if (print) *print << fmt::format("{}: {} tables in {}\n", part.name, tables.size(), dir.string());
+    }
+  }
+  if (parts > 1) write_file(out_dir / "summary.md", top);
 }
 
 }  // namespace dampbench::cli

@@ -1,20 +1,24 @@
 #pragma once
-// The fvd paper's tables from a preset's results (fvd Tables 3–14, MODELS.md §1).
+// Writing a sweep's tables into its output folder: tables.md (every table), one CSV per table, and
+// summary.md, which names the paper's table beside each produced table (the fvd paper's Tables 3–14 and
+// the other papers' tables, engine/sweep/tables.hpp). A sweep of several parts (all.toml) gets one
+// subfolder per part and a top-level summary.md.
+#include <filesystem>
+#include <iosfwd>
 #include <string>
-#include <vector>
 
-#include "engine/cli/preset.hpp"
-#include "engine/table.hpp"
+#include "engine/sweep/runner.hpp"
+#include "engine/sweep/tables.hpp"
 
 namespace dampbench::cli {
 
-/// Per model: Tables 3–6 (Mean, Max, Min, Std of the metric over the runs, per test), Tables 7–10 (each
-/// parameter's mean, max, min, std over the runs per test, in the paper's units), Tables 11–14 (p̄ = mean
-/// over tests of the per-test mean, Δp̄ = max − min of the per-test means, Δp̄/p̄); then a ranking table
-/// (best and mean metric per model and test).
-std::vector<Table> fvd_tables(const Preset& preset, const std::vector<GroupResult>& results);
+struct OutputInfo {
+  std::string spec_path, store_path;
+  sweep::RunnerSummary summary;  ///< this session
+};
 
-/// summary.md: which produced table stands for which table of the paper.
-std::string fvd_summary(const Preset& preset, const std::vector<Table>& tables);
+/// Writes the outputs; prints the tables to `print` (when not null) for a single-part sweep.
+void write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir,
+                         const OutputInfo& info, std::ostream* print);
 
 }  // namespace dampbench::cli

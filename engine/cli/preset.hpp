@@ -1,47 +1,14 @@
 #pragma once
-// Presets (datasets/presets/*.toml): which models to identify on which datasets, with which optimizer,
-// how many runs and which tables to print. The sweep files of later work extend this format.
-#include <cstdint>
-#include <map>
-#include <string>
-#include <vector>
-
+// `dampbench run SWEEP.toml`: presets (datasets/presets/*.toml) are sweep files (format in
+// engine/sweep/spec.hpp). The run loads and checks the whole file, loads every dataset,
+// opens (or resumes) the SQLite store, runs the task groups not yet stored, and writes the tables.
 #include "engine/cli/commands.hpp"
-#include "engine/identification.hpp"
-#include "engine/metrics.hpp"
-#include "engine/model.hpp"
-#include "optimizers/registry.hpp"
+#include "engine/sweep/plan.hpp"
 
 namespace dampbench::cli {
 
-struct PresetDataset {
-  std::string name;   ///< column label in tables, e.g. "Test 1"
-  std::string label;  ///< longer description, e.g. "±20 mm, 92 mm/s, 3 cycles"
-  DataOptions data;   ///< file path resolved against the preset's folder
-};
-
-struct Preset {
-  std::string path;
-  std::string name;
-  std::string title;
-  std::string tables;  ///< table set: "fvd" (fvd Tables 3–14)
-  std::uint64_t seed = 1;
-  int runs = 50;
-  Metric metric = Metric::of_abs;
-  OptimizerSpec optimizer;
-  std::vector<std::string> models;
-  std::vector<PresetDataset> datasets;
-  std::map<std::string, std::string> bounds;  ///< model id → "name=lo:hi,..." overrides
-};
-
-/// Reads and validates a preset; errors name the file, line, key and what was expected.
-Preset load_preset(const std::string& path);
-
-/// One (model, dataset) group's repeated runs.
-struct GroupResult {
-  const Model* model = nullptr;
-  int dataset = 0;  ///< index into Preset::datasets
-  Identification identification;
-};
+/// Reads sweep records with the command line's loader (load_data: units, columns, slider-crank transform,
+/// cycle averaging, UTFSM conditions, --set).
+sweep::Loader sweep_loader();
 
 }  // namespace dampbench::cli

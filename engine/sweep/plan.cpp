@@ -50,6 +50,7 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
     return out;
   };
   const std::string where = split.name.empty() ? part.path : fmt::format("{}: split '{}'", part.path, split.name);
+  if (candidates.empty()) return sp;  // only optional datasets, all skipped (SweepSpec::notes says so)
   const std::vector<int> fit = selected(split.fit);
   if (fit.empty())
     throw InputError(fmt::format("{}: 'fit' selects no dataset (of {} candidates)", where, candidates.size()));
@@ -65,7 +66,10 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
   auto name_of = [&](int d) { return part.datasets[d].name; };
   auto key_of = [&](const std::vector<int>& ds) {
     std::string k;
-    for (int d : ds) k += (k.empty() ? "" : "+") + name_of(d);
+    for (int d : ds) {
+      if (!k.empty()) k += '+';
+      k += name_of(d);
+    }
     return k;
   };
 
@@ -74,7 +78,8 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
       for (int d : fit) sp.fitsets.push_back({{d}, without(predict, {d}), name_of(d), name_of(d)});
       break;
     case SplitSpec::By::all:
-      sp.fitsets.push_back({fit, without(predict, fit), split.name.empty() ? "all" : split.name, key_of(fit)});
+      sp.fitsets.push_back({fit, without(predict, fit),
+                            fit.size() == 1 ? name_of(fit[0]) : split.name.empty() ? "all" : split.name, key_of(fit)});
       break;
     case SplitSpec::By::variables: {
       std::map<std::vector<double>, std::vector<int>> groups;  // values → fit datasets, ordered by value

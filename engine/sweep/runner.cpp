@@ -96,6 +96,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
       BatchEvaluator(model, part.datasets[d].signals).evaluate_all(best, rows);
       for (int r = 0; r < g.runs; ++r) rec.dataset_metrics.push_back({r, d, predicted, rows[r]});
     }
+    sort_dataset_metrics(rec.dataset_metrics);
 
     const SensitivitySpec& sens = part.spec->splits[g.split].sensitivity;
     if (sens.enabled && fs.fit.size() == 1 &&

@@ -1,12 +1,36 @@
 #pragma once
 // Sweep files (`dampbench run SWEEP.toml`): which models to identify on which datasets with which optimizers,
 // how often, on which conditions to fit and which to predict, and which tables to write. The presets in
-// datasets/presets/*.toml are sweep files; the format is documented in datasets/presets/README.md.
+// datasets/presets/*.toml are sweep files.
 //
 // A file is read whole and validated before anything runs: every error names the file, the line, the key
-// and what was expected ("crfd.toml:12: key 'models[2]': unknown model 'crfd.x' (known: ...)").
-// A file may instead `include` other sweep files; each included file is one part of the sweep with its own
-// models, datasets and tables (all.toml runs every paper's preset in one store).
+// and what was expected ("crfd.toml:12: key 'models': unknown model 'crfd.x' (known: ...)"); unknown keys
+// are errors. A file may instead `include` other sweep files; each included file is one part of the sweep
+// with its own models, datasets and tables (all.toml runs every paper's preset in one store).
+//
+// Format (TOML; defaults in brackets):
+//   name = "mfm"                          required; title = "..."
+//   seed = 1 [1]   runs = 10 [50]         runs per task group (an optimizer's `runs` overrides)
+//   metric = "nrmse" [of_abs]             or metrics = ["nrmse", "rmse"]: each optimized in its own tasks
+//   models = ["mrd.bingham", ...]         ids (or law fixtures), or [[models]] tables:
+//       name, model | fixture, laws = "c0=poly(I,1);n=2", bounds = "c0=0:1e4,...", optimizers = ["ga"]
+//   [bounds] "model name" = "p=lo:hi,..." (the fvd preset's form)
+//   [optimizer] or [[optimizers]]:         label [name], name [pso], population [50], iterations [100],
+//       runs, settings = { pc = 0.6 }, max_evaluations, target, stall_iterations
+//   [[datasets]]: name (required), one of file = "a.csv" | files = [...] | glob = "dir/*.csv" (wildcards in the
+//       file name), label, units, columns, transform ("slider-crank"), average ("cycles=10,drop=3"),
+//       conditions ("utfsm"), set ("I=1"), required [true]. Paths are relative to the file; "@generated/"
+//       names the build's synthetic grids, "@shared/" the shared real data (generated_dir, shared_data_dir).
+//       A glob's records are named by file stem.
+//   [[splits]] (default: one split fitting every dataset alone): name, datasets (entry names), models,
+//       optimizers, fit = { I = [0, 0.5], amp = 0.01 } or an array of such tables (any of), predict = {...},
+//       by = "each" | "all" | ["I"], sensitivity = true | { points, range, objective, normalized, where }
+//   tables = "fvd" [fvd] | ["runs", ...] | [[tables]] with kind, name, title, paper, split (name or list), models,
+//       optimizers, metric, role (fit | predict), where, target_rel   (kinds: engine/sweep/tables.hpp)
+//   [[regressions]]: name, model, split, optimizer, laws = "c_r=poly(phi,3)", where, paper
+//   include = ["fvd.toml", ...]            (a file of parts: only name, title, include and include_optional,
+//       parts whose missing data files are skipped with a note instead of refused)
+// The spec hash covers everything but title, labels, tables and regressions, which may change on a resume.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -100,9 +124,10 @@ struct SplitSpec {
 /// A table the sweep writes (kinds: engine/sweep/tables.hpp).
 struct TableSpec {
   std::string kind;
+  std::string name;    ///< file stem replacing the kind in the tables' ids (optional)
   std::string title;   ///< optional replacement title
   std::string paper;   ///< the paper's table it reproduces, for summary.md ("crfd Table 8")
-  std::string split;   ///< restrict to one split (empty: all)
+  std::vector<std::string> splits;  ///< restrict to these splits (empty: all)
   std::vector<std::string> models, optimizers;  ///< restrict (empty: all)
   std::string metric;  ///< metric shown (empty: the optimized metric)
   std::string role;    ///< errors: "fit", "predict" or "" (both)
@@ -153,6 +178,8 @@ struct SweepSpec {
 struct SpecOptions {
   /// Check that files exist and expand globs. Off when re-reading a stored spec for its tables.
   bool check_files = true;
+  /// Treat every dataset entry as `required = false` (parts listed in `include_optional`).
+  bool datasets_optional = false;
 };
 
 /// Reads and validates a sweep file; InputError names file, line, key and what was expected.

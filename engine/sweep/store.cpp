@@ -1,11 +1,13 @@
 #include "engine/sweep/store.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -83,11 +85,10 @@ class Stmt {
     if (bytes) std::memcpy(v.data(), sqlite3_column_blob(s_, c), v.size() * sizeof(double));
     return v;
   }
-  template <std::size_t N>
-  std::array<double, N> fixed(int c) const {
-    std::array<double, N> a{};
+  std::array<double, kMetricCount> metric_row(int c) const {
+    std::array<double, kMetricCount> a{};
     const auto v = doubles(c);
-    for (std::size_t i = 0; i < N && i < v.size(); ++i) a[i] = v[i];
+    for (std::size_t i = 0; i < a.size() && i < v.size(); ++i) a[i] = v[i];
     return a;
   }
 
@@ -188,6 +189,18 @@ bool is_empty_database(const std::string& path) {
   return empty;
 }
 
+long long count(const std::string& text) { return text.empty() ? 0 : std::stoll(text); }
+
+/// The metrics a run records, in blob order ("of_abs,of_sq,..."): a store is read with the same list.
+std::string metric_list() {
+  std::string s;
+  for (Metric m : kAllMetrics) {
+    if (!s.empty()) s += ',';
+    s += metric_name(m);
+  }
+  return s;
+}
+
 }  // namespace
 
 int GroupRecord::best_run() const {
@@ -272,6 +285,10 @@ Store Store::open(const std::string& path) {
   if (version != kStoreFormat)
     throw InputError(fmt::format("store '{}' has format {}, this dampbench ({}) reads format {}", path, version,
                                  dampbench_version(), kStoreFormat));
+  if (const std::string metrics = store.meta("metrics"); metrics != metric_list())
+    throw InputError(fmt::format("store '{}' records the metrics ({}), this dampbench computes ({}): it was written by "
+                                 "another build",
+                                 path, metrics, metric_list()));
   return store;
 }
 
@@ -298,7 +315,8 @@ Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {
       for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
                {"format", std::to_string(kStoreFormat)}, {"name", h.name}, {"spec_hash", h.spec_hash},
                {"spec_path", h.spec_path}, {"dampbench_version", h.dampbench_version}, {"build_flags", h.build_flags},
-               {"groups", std::to_string(h.groups)}, {"tasks", std::to_string(h.tasks)}, {"created", now_utc()}})
+               {"groups", std::to_string(h.groups)}, {"tasks", std::to_string(h.tasks)}, {"metrics", metric_list()},
+               {"created", now_utc()}})
         s.bind(1, k).bind(2, v).run();
     }
     {
@@ -394,8 +412,8 @@ StoreHeader Store::header() const {
   h.spec_path = meta("spec_path");
   h.dampbench_version = meta("dampbench_version");
   h.build_flags = meta("build_flags");
-  h.groups = std::stoll("0" + meta("groups"));
-  h.tasks = std::stoll("0" + meta("tasks"));
+  h.groups = count(meta("groups"));
+  h.tasks = count(meta("tasks"));
   {
     Stmt s(db_, "SELECT name, title, path, source, seed, runs FROM parts ORDER BY part");
     while (s.step())
@@ -425,7 +443,8 @@ StoreHeader Store::header() const {
     while (s.step()) {
       StoreDataset d{static_cast<int>(s.integer(0)), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), s.text(6),
                      s.integer(7), {}};
-      for (const auto& [k, v] : json::parse(s.text(8)).items())
+      const json vars = json::parse(s.text(8));
+      for (const auto& [k, v] : vars.items())
         if (v.is_number()) d.variables[k] = v.get<double>();
       h.datasets.push_back(std::move(d));
     }
@@ -472,7 +491,7 @@ void Store::write(const GroupRecord& g) {
 }
 
 std::vector<char> Store::finished() const {
-  std::vector<char> done(static_cast<std::size_t>(std::stoll("0" + meta("groups"))), 0);
+  std::vector<char> done(static_cast<std::size_t>(count(meta("groups"))), 0);
   Stmt s(db_, "SELECT grp FROM groups");
   while (s.step()) {
     const long long i = s.integer(0);
@@ -516,32 +535,44 @@ GroupRecord read_group_row(const Stmt& s) {
   return g;
 }
 
-void read_details(sqlite3* db, GroupRecord& g, bool runs, bool traces, bool details) {
+/// Run results, per-dataset metrics and sensitivity of the groups `where` selects ("grp=?" bound to `grp`,
+/// or "" for every group), each row attached through `slot` (group number → record, nullptr to skip).
+template <class Slot>
+void read_details(sqlite3* db, const std::string& where, long long grp, bool runs, bool traces, bool details, Slot&& slot) {
+  auto prepare = [&](const std::string& sql) {
+    auto s = std::make_unique<Stmt>(db, sql.c_str());
+    if (!where.empty()) s->bind(1, grp);
+    return s;
+  };
+  const std::string filter = where.empty() ? "" : " WHERE " + where;
   if (runs) {
-    Stmt r(db, traces ? "SELECT run, best_value, metrics, params, evaluations, stop_reason, trace FROM runs WHERE grp=? ORDER BY run"
-                      : "SELECT run, best_value, metrics, params, evaluations, stop_reason FROM runs WHERE grp=? ORDER BY run");
-    r.bind(1, g.index);
-    while (r.step()) {
+    const auto r = prepare(fmt::format("SELECT grp, run, best_value, metrics, params, evaluations, stop_reason{} FROM runs{} "
+                                       "ORDER BY grp, run",
+                                       traces ? ", trace" : "", filter));
+    while (r->step()) {
+      GroupRecord* g = slot(r->integer(0));
+      if (!g) continue;
       RunRecord x;
-      x.run = static_cast<int>(r.integer(0));
-      x.best_value = r.real(1);
-      x.metrics = r.fixed<kMetricCount>(2);
-      x.params = r.doubles(3);
-      x.evaluations = r.integer(4);
-      x.stop_reason = r.text(5);
-      if (traces) x.trace = trace_points(r.doubles(6));
-      g.run_results.push_back(std::move(x));
+      x.run = static_cast<int>(r->integer(1));
+      x.best_value = r->real(2);
+      x.metrics = r->metric_row(3);
+      x.params = r->doubles(4);
+      x.evaluations = r->integer(5);
+      x.stop_reason = r->text(6);
+      if (traces) x.trace = trace_points(r->doubles(7));
+      g->run_results.push_back(std::move(x));
     }
   }
   if (details) {
-    Stmt d(db, "SELECT run, dataset, role, metrics FROM dataset_metrics WHERE grp=? ORDER BY run, dataset");
-    d.bind(1, g.index);
-    while (d.step())
-      g.dataset_metrics.push_back({static_cast<int>(d.integer(0)), static_cast<int>(d.integer(1)), d.text(2) == "predict",
-                                   d.fixed<kMetricCount>(3)});
-    Stmt t(db, "SELECT dataset, S, SP FROM sensitivity WHERE grp=?");
-    t.bind(1, g.index);
-    if (t.step()) g.sensitivity = SensitivityRecord{static_cast<int>(t.integer(0)), t.doubles(1), t.doubles(2)};
+    const auto d = prepare("SELECT grp, run, dataset, role, metrics FROM dataset_metrics" + filter + " ORDER BY grp, run, dataset");
+    while (d->step())
+      if (GroupRecord* g = slot(d->integer(0)))
+        g->dataset_metrics.push_back({static_cast<int>(d->integer(1)), static_cast<int>(d->integer(2)),
+                                      d->text(3) == "predict", d->metric_row(4)});
+    const auto t = prepare("SELECT grp, dataset, S, SP FROM sensitivity" + filter);
+    while (t->step())
+      if (GroupRecord* g = slot(t->integer(0)))
+        g->sensitivity = SensitivityRecord{static_cast<int>(t->integer(1)), t->doubles(2), t->doubles(3)};
   }
 }
 
@@ -552,7 +583,13 @@ std::vector<GroupRecord> Store::groups(const GroupQuery& q) const {
   Stmt s(db_, fmt::format("SELECT {} FROM groups {} ORDER BY grp", kGroupColumns, q.part >= 0 ? "WHERE part=?" : "").c_str());
   if (q.part >= 0) s.bind(1, q.part);
   while (s.step()) out.push_back(read_group_row(s));
-  for (auto& g : out) read_details(db_, g, q.runs, q.traces, q.details);
+  // One pass over each table in group order, not one query per group: a store may hold 10^5 groups.
+  std::map<long long, std::size_t> index;
+  for (std::size_t i = 0; i < out.size(); ++i) index[out[i].index] = i;
+  read_details(db_, "", 0, q.runs, q.traces, q.details, [&](long long grp) -> GroupRecord* {
+    const auto it = index.find(grp);
+    return it == index.end() ? nullptr : &out[it->second];
+  });
   return out;
 }
 
@@ -561,7 +598,7 @@ std::optional<GroupRecord> Store::group(long long index, bool traces) const {
   s.bind(1, index);
   if (!s.step()) return std::nullopt;
   GroupRecord g = read_group_row(s);
-  read_details(db_, g, true, traces, true);
+  read_details(db_, "grp=?", index, true, traces, true, [&](long long) { return &g; });
   return g;
 }
 
@@ -572,8 +609,18 @@ bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::b
 
 }  // namespace
 
-std::vector<std::string> compare_records(const GroupRecord& a, const GroupRecord& b,
+void sort_dataset_metrics(std::vector<DatasetMetricRecord>& metrics) {
+  std::stable_sort(metrics.begin(), metrics.end(), [](const DatasetMetricRecord& x, const DatasetMetricRecord& y) {
+    return std::pair(x.run, x.dataset) < std::pair(y.run, y.dataset);
+  });
+}
+
+std::vector<std::string> compare_records(const GroupRecord& stored, const GroupRecord& recomputed,
                                          const std::vector<std::string>& names) {
+  // Per-dataset metrics compared in one order, whatever order each record lists them in.
+  GroupRecord a = stored, b = recomputed;
+  sort_dataset_metrics(a.dataset_metrics);
+  sort_dataset_metrics(b.dataset_metrics);
   std::vector<std::string> diff;
   auto num = [&](const std::string& what, double x, double y) {
     if (!same(x, y)) diff.push_back(fmt::format("{}: stored {} vs recomputed {}", what, bits(x), bits(y)));
@@ -613,11 +660,14 @@ std::vector<std::string> compare_records(const GroupRecord& a, const GroupRecord
   if (a.dataset_metrics.size() != b.dataset_metrics.size()) {
     diff.push_back("per-dataset metrics: count differs");
   } else {
-    for (std::size_t i = 0; i < a.dataset_metrics.size(); ++i)
+    for (std::size_t i = 0; i < a.dataset_metrics.size(); ++i) {
+      if (a.dataset_metrics[i].dataset != b.dataset_metrics[i].dataset || a.dataset_metrics[i].predicted != b.dataset_metrics[i].predicted)
+        diff.push_back(fmt::format("run {}: per-dataset metrics of other datasets or roles", a.dataset_metrics[i].run));
       for (int m = 0; m < kMetricCount; ++m)
         num(fmt::format("run {} dataset {} metric {}", a.dataset_metrics[i].run, a.dataset_metrics[i].dataset,
                         metric_name(kAllMetrics[m])),
             a.dataset_metrics[i].metrics[m], b.dataset_metrics[i].metrics[m]);
+    }
   }
   if (a.sensitivity.has_value() != b.sensitivity.has_value()) {
     diff.push_back("sensitivity: present in one only");

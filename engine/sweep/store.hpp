@@ -164,6 +164,9 @@ class Store {
   std::string path_;
 };
 
+/// Orders per-dataset metrics by (run, dataset), the order the store reads them back in.
+void sort_dataset_metrics(std::vector<DatasetMetricRecord>& metrics);
+
 /// Bit-exact comparison of two records of the same group (everything but wall time and fingerprint);
 /// each difference as a line "run 3 params[1]: stored 0x… (1.25) vs 0x… (1.2500000000000002)".
 std::vector<std::string> compare_records(const GroupRecord& stored, const GroupRecord& recomputed,
