@@ -66,7 +66,7 @@ INSTANTIATE_TEST_SUITE_P(
                                      307269.41, 182842.99, 2.0, 190.0, 0.01225}},  // fdsp Table 2
         // The papers' own pairings (population phases only): aga for GV–NEM (crfd), DE for Kwok and
         // Maxwell (crfd), GA for an fvd model.
-        Case{"crfd.gvnem_modified", {7.0, 20.0, 0.8, 8.0}, "aga", 40, 150},
+        Case{"crfd.gvnem", {0.011, 7.321, 0.925, 8.360, 0.87, 0.047, 0.592, 7.678, 46.105}, "aga", 60, 300},
         Case{"crfd.kwok", {3.0, 25.0, 0.5, 6.0, 0.8, 0.011}, "de", 40, 200},
         Case{"crfd.maxwell", {9.946, 54.63, 0.9288, 0.5004}, "de", 20, 60},
         Case{"fvd.gv_linear_elastic", {500.0, 8e5, 0.3, 4e6}, "ga", 40, 200}),
