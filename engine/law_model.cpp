@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -101,9 +102,16 @@ void LawModel::check_variables(const Signals& data) const {
 }
 
 const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const {
-  // Per-thread scratch: the base parameters of this block (grows once, never shrinks).
-  thread_local CandidateBatch scratch;
-  thread_local std::vector<double> c;
+  // Per-thread scratch of this law model (a law model over a law model must not share it with its base):
+  // the base parameters of this block, grown once, never shrunk.
+  struct Scratch {
+    CandidateBatch batch;
+    std::vector<double> c;
+  };
+  thread_local std::unordered_map<const LawModel*, Scratch> scratches;
+  Scratch& mine = scratches[this];
+  CandidateBatch& scratch = mine.batch;
+  std::vector<double>& c = mine.c;
   if (scratch.dim() != base_.dim() || scratch.count() != count) scratch.resize(base_.dim(), count);
   c.resize(coefficients_.size());
   for (int i = 0; i < count; ++i) {

@@ -7,4 +7,4 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build-native -G Ninja -DCMAKE_BUILD_TYPE=Release -DDAMPBENCH_NATIVE=ON -DDAMPBENCH_BUILD_TESTS=OFF
 cmake --build build-native --parallel "$(nproc)" --target dampbench
-./build-native/dampbench run datasets/presets/fvd.toml -o results/fvd "$@"
+./build-native/dampbench run datasets/presets/fvd.toml -o results/fvd --fresh "$@"

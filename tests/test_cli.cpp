@@ -18,6 +18,7 @@ std::filesystem::path temp_dir() {
   auto dir = std::filesystem::temp_directory_path() /
              ("dampbench_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);  // a fresh folder: no store from an earlier build to resume
   std::filesystem::create_directories(dir);
   return dir;
 }

@@ -3,10 +3,11 @@
 
 #include <algorithm>
 #include <iostream>
+#include <memory>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include "engine/cli/preset.hpp"
@@ -129,26 +130,36 @@ int verify_command(const VerifyOptions& o) {
   const std::size_t k = o.sample > 0 ? std::min<std::size_t>(static_cast<std::size_t>(o.sample), stored.size()) : stored.size();
   for (std::size_t i = 0; i < k; ++i) chosen.push_back(stored[i * stored.size() / k]);
 
+  // Re-run the chosen groups several at a time (as `run` does), compare in order as they come.
   long long differing = 0, runs = 0;
-  const std::size_t chunk = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
-  for (std::size_t first = 0; first < chosen.size(); first += chunk) {
-    const std::size_t n = std::min(chunk, chosen.size() - first);
-    std::vector<sweep::GroupRecord> again(n);
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) { again[i] = sweep::run_group(plan, chosen[first + i]); });
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto old = store.group(chosen[first + i]);
-      const sweep::GroupRef g = plan.group(chosen[first + i]);
-      std::vector<std::string> names;
-      for (const auto& p : plan.parts()[g.part].models[g.model].model->parameters()) names.push_back(p.name);
-      const auto diff = sweep::compare_records(*old, again[i], names);
-      runs += static_cast<long long>(old->run_results.size());
-      if (diff.empty()) continue;
-      ++differing;
-      std::cout << fmt::format("DIFFERENT: task group {} ({}):\n", chosen[first + i], plan.describe(g));
-      for (std::size_t j = 0; j < diff.size() && j < 20; ++j) std::cout << "  " << diff[j] << "\n";
-      if (diff.size() > 20) std::cout << fmt::format("  ... and {} more\n", diff.size() - 20);
-    }
-  }
+  std::size_t next = 0;
+  using Record = std::shared_ptr<sweep::GroupRecord>;
+  tbb::parallel_pipeline(
+      static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency())),
+      tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
+                                        [&](tbb::flow_control& fc) -> long long {
+                                          if (next >= chosen.size()) {
+                                            fc.stop();
+                                            return -1;
+                                          }
+                                          return chosen[next++];
+                                        }) &
+          tbb::make_filter<long long, Record>(
+              tbb::filter_mode::parallel,
+              [&](long long i) { return std::make_shared<sweep::GroupRecord>(sweep::run_group(plan, i)); }) &
+          tbb::make_filter<Record, void>(tbb::filter_mode::serial_in_order, [&](const Record& again) {
+            const auto old = store.group(again->index);
+            const sweep::GroupRef g = plan.group(again->index);
+            std::vector<std::string> names;
+            for (const auto& p : plan.parts()[g.part].models[g.model].model->parameters()) names.push_back(p.name);
+            const auto diff = sweep::compare_records(*old, *again, names);
+            runs += static_cast<long long>(old->run_results.size());
+            if (diff.empty()) return;
+            ++differing;
+            std::cout << fmt::format("DIFFERENT: task group {} ({}):\n", again->index, plan.describe(g));
+            for (std::size_t j = 0; j < diff.size() && j < 20; ++j) std::cout << "  " << diff[j] << "\n";
+            if (diff.size() > 20) std::cout << fmt::format("  ... and {} more\n", diff.size() - 20);
+          }));
   if (differing) {
     std::cout << fmt::format("verify: {} of {} re-run task groups differ from the store {}\n", differing, chosen.size(), o.store);
     return 1;

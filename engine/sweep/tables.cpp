@@ -699,7 +699,7 @@ void overview_table(const Context& c, std::vector<Report>& out) {
   }
   expected = c.R.header.groups;
   expected_tasks = c.R.header.tasks;
-  Report r = c.report("overview", "Sweep overview", {"Quantity", "Value"});
+  Report r = c.report("overview", "Sweep overview — " + c.spec.name, {"Quantity", "Value"});
   r.rows = {{txt("task groups stored"), num(static_cast<double>(groups))},
             {txt("tasks (runs) stored"), num(static_cast<double>(tasks))},
             {txt("failed task groups"), num(static_cast<double>(failed))},
