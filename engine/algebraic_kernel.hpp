@@ -4,6 +4,8 @@
 //   static constexpr int kParams;  static const ModelInfo& info();
 //   struct Sample; static Sample prepare(const Signals&, std::size_t k);   per-sample shared quantities
 //   template <class P> static double force(const P& p, int lane, const Sample& s);
+#include <stdexcept>
+
 #include "engine/lane_kernel.hpp"
 
 namespace dampbench {
@@ -11,7 +13,10 @@ namespace dampbench {
 template <class Law, int W>
 class AlgebraicKernel {
  public:
-  AlgebraicKernel(const LaneParams<Law::kParams, W>& p, const Signals& data) : p_(p), data_(data) {}
+  AlgebraicKernel(const LawLanes<Law, W>& p, const Signals& data) : p_(p), data_(data) {
+    if (data.sgn_v.size() != data.size())  // laws read the invariant columns of prepare_signals
+      throw std::logic_error("signals '" + data.name + "' were not built by prepare_signals");
+  }
 
   void forces(std::size_t k, double* f) const {
     const auto s = Law::prepare(data_, k);
@@ -21,7 +26,7 @@ class AlgebraicKernel {
   [[nodiscard]] const bool* failed() const { return nullptr; }
 
  private:
-  LaneParams<Law::kParams, W> p_;
+  LawLanes<Law, W> p_;
   const Signals& data_;
 };
 

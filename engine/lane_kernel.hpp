@@ -36,23 +36,41 @@ struct LaneParams {
   alignas(64) double p[D][W];
 };
 
+/// Rows of a law's lane block: its kParams parameters, then kLaneInvariants rows a law may add for
+/// per-candidate constants (1/(c0 + c1), log k_r, ...) that `Law::lane_invariants(p)` fills once per
+/// block, so the time loop does not redo a division or a log at every sample and RK4 stage.
+template <class Law>
+constexpr int lane_rows() {
+  if constexpr (requires { Law::kLaneInvariants; }) return Law::kParams + Law::kLaneInvariants;
+  else return Law::kParams;
+}
+template <class Law, int W>
+using LawLanes = LaneParams<lane_rows<Law>(), W>;
+
+template <class Law, int W>
+void fill_lane_invariants(LawLanes<Law, W>& lanes) {
+  if constexpr (requires { Law::lane_invariants(lanes); }) Law::lane_invariants(lanes);
+}
+
 /// Copies candidates [first, first + count) into a lane block; lanes past count repeat the first one.
-template <int D, int W = kLanes>
-LaneParams<D, W> gather_lanes(const CandidateBatch& batch, int first, int count) {
-  LaneParams<D, W> lanes;
-  for (int j = 0; j < D; ++j) {
+template <class Law, int W = kLanes>
+LawLanes<Law, W> gather_lanes(const CandidateBatch& batch, int first, int count) {
+  LawLanes<Law, W> lanes;
+  for (int j = 0; j < Law::kParams; ++j) {
     const double* row = batch.param_row(j);
     for (int l = 0; l < W; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
   }
+  fill_lane_invariants<Law, W>(lanes);
   return lanes;
 }
 
 /// One candidate in every lane (simulate).
-template <int D, int W = kLanes>
-LaneParams<D, W> broadcast_lanes(std::span<const double> params) {
-  LaneParams<D, W> lanes;
-  for (int j = 0; j < D; ++j)
+template <class Law, int W = kLanes>
+LawLanes<Law, W> broadcast_lanes(std::span<const double> params) {
+  LawLanes<Law, W> lanes;
+  for (int j = 0; j < Law::kParams; ++j)
     for (int l = 0; l < W; ++l) lanes.p[j][l] = params[j];
+  fill_lane_invariants<Law, W>(lanes);
   return lanes;
 }
 
@@ -83,11 +101,11 @@ struct LaneSums {
 };
 
 /// A Model from a Law and a kernel template KernelT<Law, W>, which has:
-///   KernelT(const LaneParams<Law::kParams, W>&, const Signals&);
+///   KernelT(const LawLanes<Law, W>&, const Signals&);
 ///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
 ///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
-/// Law provides kParams, info() and optionally to_paper_units.
+/// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
 template <class Law, template <class, int> class KernelT>
 class KernelModel final : public Model {
   using Kernel = KernelT<Law, kLanes>;
@@ -95,7 +113,7 @@ class KernelModel final : public Model {
   /// Metric sums of a block of W lanes (count ≤ W candidates).
   template <int W>
   static void run_block(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) {
-    KernelT<Law, W> kernel(gather_lanes<Law::kParams, W>(batch, first, count), data);
+    KernelT<Law, W> kernel(gather_lanes<Law, W>(batch, first, count), data);
     LaneSums<W> sums;
     alignas(64) double f[W];
     for (std::size_t k = 0; k < data.size(); ++k) {
@@ -122,7 +140,7 @@ class KernelModel final : public Model {
   }
 
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
-    Kernel kernel(broadcast_lanes<Law::kParams, kLanes>(params), data);
+    Kernel kernel(broadcast_lanes<Law, kLanes>(params), data);
     std::vector<double> force(data.size());
     alignas(64) double f[kLanes];
     for (std::size_t k = 0; k < data.size(); ++k) {

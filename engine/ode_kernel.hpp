@@ -23,6 +23,7 @@
 //   template <class P, class Y, class DY>
 //   static void rhs(const P&, int lane, const Context&, double x, double v, const Y& y, DY&& dydt);
 //   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
+//   optional: kLaneInvariants and lane_invariants(p), per-candidate constants (engine/lane_kernel.hpp)
 // where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
 #include <cmath>
@@ -55,7 +56,7 @@ class OdeKernel {
   static constexpr int S = Law::kStates;
   using State = LaneState<W>;
 
-  OdeKernel(const LaneParams<Law::kParams, W>& p, const Signals& data)
+  OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
       : p_(p), data_(data), ctx_(Law::context(data)) {}
 
   void forces(std::size_t k, double* f) {
@@ -68,7 +69,7 @@ class OdeKernel {
 
   /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
   static std::vector<double> reference(std::span<const double> params, const Signals& data) {
-    const auto P = broadcast_lanes<Law::kParams, 1>(params);
+    const auto P = broadcast_lanes<Law, 1>(params);
     const auto ctx = Law::context(data);
     std::size_t interval = 0;  // last interval used; times only move forward within one CVODE call
     auto input = [&](double t, double& x, double& v) {
@@ -130,7 +131,7 @@ class OdeKernel {
     }
   }
 
-  LaneParams<Law::kParams, W> p_;
+  LawLanes<Law, W> p_;
   const Signals& data_;
   typename Law::Context ctx_;
   alignas(64) double y_[S][W] = {};

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/vector_math.hpp"
+
 namespace dampbench {
 
 Signals prepare_signals(const Dataset& data) {
@@ -21,6 +23,16 @@ Signals prepare_signals(const Dataset& data) {
     const double half_dt = 0.5 * (s.t_s[k + 1] - s.t_s[k]);
     s.w_trapz_s[k] += half_dt;
     s.w_trapz_s[k + 1] += half_dt;
+  }
+  s.sgn_x.resize(n);
+  s.sgn_v.resize(n);
+  s.log_abs_x.resize(n);
+  s.log_abs_v.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    s.sgn_x[k] = sign(s.x_m[k]);
+    s.sgn_v[k] = sign(s.v_m_s[k]);
+    s.log_abs_x[k] = log_abs_clamped(s.x_m[k]);
+    s.log_abs_v[k] = log_abs_clamped(s.v_m_s[k]);
   }
   s.duration_s = n > 1 ? s.t_s.back() - s.t_s.front() : 0.0;
   if (n > 0) {

@@ -18,8 +18,8 @@ struct Sample {
 };
 
 Sample prepare_sample(const Signals& s, std::size_t k) {
-  const double x = s.x_m[k], v = s.v_m_s[k];
-  return {x, x * x, v, s.a_m_s2[k], sign(v), log_abs_clamped(v)};
+  const double x = s.x_m[k];
+  return {x, x * x, s.v_m_s[k], s.a_m_s2[k], s.sgn_v[k], s.log_abs_v[k]};
 }
 
 /// C·sgn(v)|v|^α, written exp(α·log|v|) so the lane loop needs one vector exp.

@@ -6,11 +6,13 @@
 //   metric     of_abs through BatchEvaluator (the same path as identification)
 //   1 thread / 2 threads   tbb::task_arena of that size, repeated until min_time_s
 //   scalar     Model::evaluate_scalar (the same law, one candidate at a time, no lanes), 1 thread, 256 candidates
-//   limit      a vector-exp probe: exp over a 4096-element array (libmvec lanes), 1 thread, elements/s
+//   limit      a vector-exp probe: exp over a 4096-element array (libmvec lanes), 1 thread, elements/s,
+//              best of three
 // Ratios: scalar_ratio = 1-thread lanes / scalar; limit_ratio = 1-thread candidate-samples/s ÷ exp/s
 // (a model with one exp per candidate-sample and nothing else would reach 1).
 #include "engine/cli/bench_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -78,17 +80,21 @@ double rate(double items, double min_time_s, Work&& work) {
   return items * static_cast<double>(reps) / elapsed;
 }
 
-/// The vector-exp probe: elements of exp per second on one thread.
+/// The vector-exp probe: elements of exp per second on one thread, the best of three measurements (a
+/// single one varied by ±15 % between runs on the shared machine, and every limit ratio divides by it).
 double exp_rate(double min_time_s) {
   std::vector<double> in(4096), out(4096);
   for (std::size_t i = 0; i < in.size(); ++i) in[i] = -5.0 + 10.0 * static_cast<double>(i) / in.size();
-  return rate(static_cast<double>(in.size()), min_time_s, [&] {
-    double* __restrict o = out.data();
-    const double* __restrict x = in.data();
+  double best = 0;
+  for (int trial = 0; trial < 3; ++trial)
+    best = std::max(best, rate(static_cast<double>(in.size()), min_time_s, [&] {
+      double* __restrict o = out.data();
+      const double* __restrict x = in.data();
 #pragma omp simd
-    for (std::size_t i = 0; i < 4096; ++i) o[i] = std::exp(x[i]);
-    asm volatile("" : : "r"(o) : "memory");
-  });
+      for (std::size_t i = 0; i < 4096; ++i) o[i] = std::exp(x[i]);
+      asm volatile("" : : "r"(o) : "memory");
+    }));
+  return best;
 }
 
 struct ModelRates {
