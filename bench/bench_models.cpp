@@ -1,6 +1,8 @@
-// Batch evaluation throughput: model × candidates × samples, reported as candidate-samples per second
-// (items_per_second). Threads: oneTBB's default (all cores); pin with --benchmark_filter and taskset.
+// Batch evaluation throughput: model × candidates (64…65 536) × samples (256…16 384) × threads (1, 2),
+// reported as candidate-samples per second (items_per_second). Threads: a oneTBB arena of that size.
+// bench/cost_growth.py turns the JSON output into the cost-growth tables and plot of docs/performance.md.
 #include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <numbers>
@@ -16,12 +18,14 @@ namespace {
 
 using namespace dampbench;
 
+/// A 4 Hz sinusoid sampled at 1 024 Hz: `samples` / 256 whole cycles. The sampling rate is fixed, so the
+/// ODE models take the same RK4 sub-steps per sample at every length and the cost can grow linearly.
 Signals sine_record(int samples) {
   Dataset d;
   d.name = "bench";
-  const double X = 0.02, w = 2 * std::numbers::pi * 2.0;
+  const double X = 0.02, w = 2 * std::numbers::pi * 4.0, fs_hz = 1024.0;
   for (int k = 0; k < samples; ++k) {
-    const double t = 3.0 * k / samples / 2.0;  // three cycles at 2 Hz
+    const double t = k / fs_hz;
     d.t_s.push_back(t);
     d.x_m.push_back(X * std::sin(w * t));
     d.v_m_s.push_back(X * w * std::cos(w * t));
@@ -34,6 +38,7 @@ Signals sine_record(int samples) {
 void BM_Evaluate(benchmark::State& state, const std::string& model_id) {
   const Model& model = find_model(model_id);
   const int candidates = static_cast<int>(state.range(0)), samples = static_cast<int>(state.range(1));
+  tbb::task_arena arena(static_cast<int>(state.range(2)));
   const Signals data = sine_record(samples);
   const Bounds b = default_bounds(model);
   CandidateBatch batch(model.dim(), candidates);
@@ -43,7 +48,7 @@ void BM_Evaluate(benchmark::State& state, const std::string& model_id) {
   const BatchEvaluator evaluator(model, data);
   std::vector<double> out(candidates);
   for (auto _ : state) {
-    evaluator.evaluate(batch, Metric::of_abs, out);
+    arena.execute([&] { evaluator.evaluate(batch, Metric::of_abs, out); });
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(candidates) * samples);
@@ -54,8 +59,9 @@ void register_all() {
     auto* b = benchmark::RegisterBenchmark(("evaluate/" + std::string(m->id())).c_str(), BM_Evaluate, std::string(m->id()));
     for (int candidates : {64, 1024, 16384, 65536})
       for (int samples : {256, 2048, 16384})
-        if (static_cast<long>(candidates) * samples <= 1L << 28) b->Args({candidates, samples});
-    b->ArgNames({"candidates", "samples"})->UseRealTime()->Unit(benchmark::kMillisecond);
+        if (static_cast<long>(candidates) * samples <= 1L << 28)
+          for (int threads : {1, 2}) b->Args({candidates, samples, threads});
+    b->ArgNames({"candidates", "samples", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
   }
 }
 

@@ -1,16 +1,28 @@
 #!/usr/bin/env bash
-# Performance benchmarks (docs/performance.md): builds the portable and the native build, then runs
-# `dampbench bench` (JSON into results/bench/) and the Google Benchmark suite for both.
+# Performance benchmarks (docs/performance.md). Three builds: portable (any x86-64), native
+# (-march=native) and native with SLEEF instead of glibc's libmvec. For each: `dampbench bench` (JSON into
+# results/bench/bench_<variant>.json); for portable and native also the Google Benchmark suite at 2 048
+# samples (models_<variant>.json) and the cost-growth run of fvd.gv_linear_elastic and mrd.bouc_wen over
+# candidates × samples × threads (growth_<variant>.json, .md tables and cost_growth_<variant>.svg).
+# Takes about 10 minutes on 2 cores; run it on an idle machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh libsleef-dev
 mkdir -p results/bench
-for variant in portable native; do
-  native=OFF; [ "$variant" = native ] && native=ON
-  cmake -S . -B "build-$variant" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDAMPBENCH_NATIVE=$native -DDAMPBENCH_BUILD_TESTS=OFF
+for variant in portable native native-sleef; do
+  native=OFF; [ "$variant" != portable ] && native=ON
+  math=libmvec; [ "$variant" = native-sleef ] && math=sleef
+  cmake -S . -B "build-$variant" -G Ninja -DCMAKE_BUILD_TYPE=Release -DDAMPBENCH_NATIVE=$native \
+    -DDAMPBENCH_VECTOR_MATH=$math -DDAMPBENCH_BUILD_TESTS=OFF
   cmake --build "build-$variant" --parallel "$(nproc)" --target dampbench bench_models
   "./build-$variant/dampbench" bench --format json > "results/bench/bench_$variant.json"
+  echo "results/bench/bench_$variant.json"
+  [ "$variant" = native-sleef ] && continue
   "./build-$variant/bench/bench_models" --benchmark_format=json --benchmark_out="results/bench/models_$variant.json" \
-    --benchmark_filter="${BENCH_FILTER:-samples:2048}" > /dev/null
-  echo "results/bench/bench_$variant.json, results/bench/models_$variant.json"
+    --benchmark_filter="${BENCH_FILTER:-samples:2048/}" > /dev/null
+  "./build-$variant/bench/bench_models" --benchmark_format=json --benchmark_out="results/bench/growth_$variant.json" \
+    --benchmark_filter='evaluate/(fvd.gv_linear_elastic|mrd.bouc_wen)/' > /dev/null
+  /usr/bin/python3 bench/cost_growth.py "results/bench/growth_$variant.json" \
+    --svg "results/bench/cost_growth_$variant.svg" > "results/bench/growth_$variant.md"
+  echo "results/bench/models_$variant.json, results/bench/growth_$variant.{json,md}, results/bench/cost_growth_$variant.svg"
 done

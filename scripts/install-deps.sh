@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Installs dampbench's build and test dependencies from Debian 12 packages (run as root).
+# Installs dampbench's build and test dependencies from Debian 12 packages (run as root); extra package
+# names given as arguments are installed too (scripts/bench.sh adds libsleef-dev).
 set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libeigen3-dev libtbb-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev libnlopt-cxx-dev
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do
