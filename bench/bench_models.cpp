@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/batch_evaluator.hpp"
+#include "engine/vector_math.hpp"
 #include "engine/bounds.hpp"
 #include "engine/random.hpp"
 #include "models/registry.hpp"
@@ -54,7 +55,52 @@ void BM_Evaluate(benchmark::State& state, const std::string& model_id) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(candidates) * samples);
 }
 
+/// Throughput of one vector function over a 4 096-element array (libmvec or SLEEF lanes, 1 thread): the
+/// per-call ceilings of docs/performance.md. Inputs span the range the kernels feed each function.
+template <double (*F)(double)>
+void BM_VectorFunction(benchmark::State& state, double lo, double hi) {
+  std::vector<double> in(4096), out(4096);
+  for (std::size_t i = 0; i < in.size(); ++i) in[i] = lo + (hi - lo) * static_cast<double>(i) / in.size();
+  for (auto _ : state) {
+    double* __restrict o = out.data();
+    const double* __restrict x = in.data();
+#pragma omp simd
+    for (std::size_t i = 0; i < 4096; ++i) o[i] = F(x[i]);
+    benchmark::DoNotOptimize(o);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * 4096);
+}
+
+/// A dependent |z|^n chain over 64 lanes, z ← 0.5·|z|^n + 0.2 (one vector log and exp per lane and step,
+/// each step waiting for the previous one, as RK4 stages do): the per-stage ceiling of the ODE kernels.
+void BM_LogExpChain(benchmark::State& state) {
+  constexpr int W = 64;
+  alignas(64) double z[W], n[W];
+  for (int l = 0; l < W; ++l) z[l] = 0.3 + 0.001 * l, n[l] = 1.2 + 0.01 * l;
+  for (auto _ : state) {
+    for (int step = 0; step < 64; ++step) {
+#pragma omp simd
+      for (int l = 0; l < W; ++l) z[l] = 0.5 * dampbench::abs_pow(z[l], n[l]) + 0.2;
+    }
+    benchmark::DoNotOptimize(z);
+  }
+  state.SetItemsProcessed(state.iterations() * 64 * W);
+}
+
+double vexp(double x) { return std::exp(x); }
+double vlog(double x) { return std::log(x); }
+double vtanh(double x) { return std::tanh(x); }
+double vatan(double x) { return std::atan(x); }
+double vsin(double x) { return std::sin(x); }
+
 void register_all() {
+  benchmark::RegisterBenchmark("vector/exp", BM_VectorFunction<vexp>, -5.0, 5.0);
+  benchmark::RegisterBenchmark("vector/log", BM_VectorFunction<vlog>, 1e-3, 10.0);
+  benchmark::RegisterBenchmark("vector/tanh", BM_VectorFunction<vtanh>, -5.0, 5.0);
+  benchmark::RegisterBenchmark("vector/atan", BM_VectorFunction<vatan>, -50.0, 50.0);
+  benchmark::RegisterBenchmark("vector/sin", BM_VectorFunction<vsin>, -4.0, 4.0);
+  benchmark::RegisterBenchmark("vector/abs_pow_chain", BM_LogExpChain);
   for (const Model* m : all_models()) {
     auto* b = benchmark::RegisterBenchmark(("evaluate/" + std::string(m->id())).c_str(), BM_Evaluate, std::string(m->id()));
     for (int candidates : {64, 1024, 16384, 65536})

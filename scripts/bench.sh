@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Performance benchmarks (docs/performance.md). Three builds: portable (any x86-64), native
-# (-march=native) and native with SLEEF instead of glibc's libmvec. For each: `dampbench bench` (JSON into
-# results/bench/bench_<variant>.json); for portable and native also the Google Benchmark suite at 2 048
-# samples (models_<variant>.json) and the cost-growth run of fvd.gv_linear_elastic and mrd.bouc_wen over
-# candidates × samples × threads (growth_<variant>.json, .md tables and cost_growth_<variant>.svg).
+# (-march=native) and native with SLEEF instead of glibc's libmvec. Into results/bench/, per build:
+#   bench_<variant>.json    `dampbench bench --format json`
+#   models_<variant>.json   Google Benchmark: every model at 2 048 samples, and the vector-function probes
+#                           (SLEEF build: the probes only)
+#   growth_<variant>.*      fvd.gv_linear_elastic and mrd.bouc_wen over candidates × samples × threads:
+#                           JSON, Markdown tables (.md) and cost_growth_<variant>.svg (portable, native)
 # Takes about 10 minutes on 2 cores; run it on an idle machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,12 +19,15 @@ for variant in portable native native-sleef; do
   cmake --build "build-$variant" --parallel "$(nproc)" --target dampbench bench_models
   "./build-$variant/dampbench" bench --format json > "results/bench/bench_$variant.json"
   echo "results/bench/bench_$variant.json"
-  [ "$variant" = native-sleef ] && continue
+  filter="${BENCH_FILTER:-samples:2048/|^vector/}"
+  [ "$variant" = native-sleef ] && filter="^vector/"
   "./build-$variant/bench/bench_models" --benchmark_format=json --benchmark_out="results/bench/models_$variant.json" \
-    --benchmark_filter="${BENCH_FILTER:-samples:2048/}" > /dev/null
+    --benchmark_filter="$filter" > /dev/null
+  echo "results/bench/models_$variant.json"
+  [ "$variant" = native-sleef ] && continue
   "./build-$variant/bench/bench_models" --benchmark_format=json --benchmark_out="results/bench/growth_$variant.json" \
     --benchmark_filter='evaluate/(fvd.gv_linear_elastic|mrd.bouc_wen)/' > /dev/null
   /usr/bin/python3 bench/cost_growth.py "results/bench/growth_$variant.json" \
     --svg "results/bench/cost_growth_$variant.svg" > "results/bench/growth_$variant.md"
-  echo "results/bench/models_$variant.json, results/bench/growth_$variant.{json,md}, results/bench/cost_growth_$variant.svg"
+  echo "results/bench/growth_$variant.{json,md}, results/bench/cost_growth_$variant.svg"
 done
