@@ -10,42 +10,26 @@
 #include <vector>
 
 #include "engine/batch_evaluator.hpp"
+#include "engine/bench_workload.hpp"
 #include "engine/vector_math.hpp"
-#include "engine/bounds.hpp"
-#include "engine/random.hpp"
 #include "models/registry.hpp"
 
 namespace {
 
 using namespace dampbench;
 
-/// A 4 Hz sinusoid sampled at 1 024 Hz: `samples` / 256 whole cycles. The sampling rate is fixed, so the
-/// ODE models take the same RK4 sub-steps per sample at every length and the cost can grow linearly.
-Signals sine_record(int samples) {
-  Dataset d;
-  d.name = "bench";
-  const double X = 0.02, w = 2 * std::numbers::pi * 4.0, fs_hz = 1024.0;
-  for (int k = 0; k < samples; ++k) {
-    const double t = k / fs_hz;
-    d.t_s.push_back(t);
-    d.x_m.push_back(X * std::sin(w * t));
-    d.v_m_s.push_back(X * w * std::cos(w * t));
-    d.a_m_s2.push_back(-X * w * w * std::sin(w * t));
-    d.F_N.push_back(5e5 * std::cos(w * t) + 1e5 * std::sin(w * t));
-  }
-  return prepare_signals(d);
-}
+/// The bench workload of engine/bench_workload.hpp with a 4 Hz sinusoid sampled at 1 024 Hz: `samples` / 256
+/// whole cycles. The sampling rate is fixed, so the ODE models take the same RK4 sub-steps per sample at every
+/// length and the cost can grow linearly.
+constexpr double kFreqHz = 4.0, kSampleRateHz = 1024.0;
+constexpr std::uint64_t kSeed = 1;
 
 void BM_Evaluate(benchmark::State& state, const std::string& model_id) {
   const Model& model = find_model(model_id);
   const int candidates = static_cast<int>(state.range(0)), samples = static_cast<int>(state.range(1));
   tbb::task_arena arena(static_cast<int>(state.range(2)));
-  const Signals data = sine_record(samples);
-  const Bounds b = default_bounds(model);
-  CandidateBatch batch(model.dim(), candidates);
-  RandomStream rng(hash_key({1}));
-  for (int i = 0; i < candidates; ++i)
-    for (int j = 0; j < model.dim(); ++j) batch.at(i, j) = rng.uniform(b.lower[j], b.upper[j]);
+  const Signals data = bench_record(model, samples, kFreqHz, kSampleRateHz);
+  const CandidateBatch batch = bench_candidates(model, candidates, kSeed);
   const BatchEvaluator evaluator(model, data);
   std::vector<double> out(candidates);
   for (auto _ : state) {

@@ -166,4 +166,28 @@ TEST(Cli, BadPresetIsReportedWithFileLineAndKey) {
   expect_error("run " + (dir / "nothere.toml").string(), "cannot open preset file");
 }
 
+TEST(Cli, BenchJsonHasTheKeysOutsideChecksRead) {
+  // A short run: the keys and their consistency, never a time (the machines are shared).
+  const auto r = run_dampbench("bench --models fvd.linear_viscous,mrd.bouc_wen --min-time 0.01 --trials 1 --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  for (const char* id : {"fvd.linear_viscous", "mrd.bouc_wen"}) {
+    const auto& m = j.at("models").at(id);
+    const double one = m.at("cand_samples_per_s_1t"), scalar = m.at("cand_samples_per_s_scalar");
+    EXPECT_GT(one, 0) << id;
+    EXPECT_GT(m.at("cand_samples_per_s_2t").get<double>(), 0) << id;
+    EXPECT_DOUBLE_EQ(m.at("scalar_ratio").get<double>(), one / scalar) << id;
+    EXPECT_DOUBLE_EQ(m.at("limit_ratio").get<double>(), one / j.at("machine").at("exp_per_s_1t").get<double>()) << id;
+    EXPECT_EQ(m.at("masked_share").get<double>(), 0.0) << id;
+  }
+  EXPECT_EQ(j.at("models").size(), 2u);
+  EXPECT_TRUE(j.at("machine").contains("vector_isa"));
+}
+
+TEST(Cli, BenchRejectsBadValues) {
+  expect_error("bench --models fvd.nope", "fvd.nope");
+  expect_error("bench --trials 0", "--trials");
+  expect_error("bench --format xml", "--format: expected md or json, got 'xml'");
+}
+
 }  // namespace dampbench

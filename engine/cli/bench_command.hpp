@@ -13,6 +13,7 @@ struct BenchOptions {
   std::string format = "md";   ///< md or json
   std::string models;          ///< comma-separated model ids (default: all)
   double min_time_s = 0.3;     ///< each measurement repeats until it has run this long
+  int trials = 3;              ///< measurements per rate; the best is reported
 };
 
 void add_bench_options(CLI::App* cmd, BenchOptions& options);
