@@ -1,9 +1,9 @@
 #include "engine/bench_workload.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 
+#include "engine/excitation.hpp"
 #include "engine/key_values.hpp"
 #include "engine/random.hpp"
 
@@ -42,16 +42,10 @@ CandidateBatch bench_candidates(const Model& model, int count, std::uint64_t see
 }
 
 Signals bench_record(const Model& model, int samples, double freq_hz, double fs_hz) {
-  Dataset d;
+  // make_sine samples k = 0 .. cycles·fs/f inclusive: `samples` samples.
+  Dataset d = make_sine(
+      {.amplitude_m = 0.02, .freq_hz = freq_hz, .cycles = (samples - 1) * freq_hz / fs_hz, .fs_hz = fs_hz});
   d.name = "bench";
-  const double X = 0.02, w = 2 * std::numbers::pi * freq_hz;
-  for (int k = 0; k < samples; ++k) {
-    const double t = k / fs_hz;
-    d.t_s.push_back(t);
-    d.x_m.push_back(X * std::sin(w * t));
-    d.v_m_s.push_back(X * w * std::cos(w * t));
-    d.a_m_s2.push_back(-X * w * w * std::sin(w * t));
-  }
   const Bounds b = bench_box(model);
   std::vector<double> centre(model.dim());
   for (int j = 0; j < model.dim(); ++j) centre[j] = 0.5 * (b.lower[j] + b.upper[j]);

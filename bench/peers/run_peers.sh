@@ -47,19 +47,9 @@ log() { echo "[run_peers $(date +%H:%M:%S)] $*" >&2; }
 load1() { cut -d' ' -f1 /proc/loadavg; }
 
 # ---------------------------------------------------------------- dependencies
-need_pkgs=()
-"$PY" -c 'import numpy, scipy' 2>/dev/null || need_pkgs+=(python3-numpy python3-scipy)
-dpkg -s libpagmo-dev >/dev/null 2>&1 || need_pkgs+=(libpagmo-dev)
-command -v cmake >/dev/null || need_pkgs+=(cmake)
-command -v ninja >/dev/null || need_pkgs+=(ninja-build)
-if ((${#need_pkgs[@]})); then
-  if [[ $(id -u) != 0 ]]; then
-    log "missing packages ${need_pkgs[*]} and not root: install them with apt-get"; exit 1
-  fi
-  log "installing ${need_pkgs[*]}"
-  apt-get update >&2
-  DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${need_pkgs[@]}" >&2
-fi
+# dampbench's own build dependencies and the peers' packages, installed with apt-get where missing (a fresh
+# machine needs both: scripts/install-deps.sh runs apt-get update first and only when something is missing).
+bash "$REPO/scripts/install-deps.sh" python3-numpy python3-scipy libpagmo-dev >&2
 
 # ---------------------------------------------------------------- builds
 # NATIVE=1: dampbench with -DDAMPBENCH_NATIVE=ON (-march=native) in $BUILD_DIR/native, the pagmo2 program
