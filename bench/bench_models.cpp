@@ -5,7 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 

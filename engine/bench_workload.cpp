@@ -1,7 +1,9 @@
 #include "engine/bench_workload.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "engine/excitation.hpp"
 #include "engine/key_values.hpp"

@@ -25,10 +25,8 @@
 
 #include "engine/batch_evaluator.hpp"
 #include "engine/bench_workload.hpp"
-#include "engine/bounds.hpp"
 #include "engine/error.hpp"
 #include "engine/key_values.hpp"
-#include "engine/random.hpp"
 #include "engine/table.hpp"
 #include "engine/vector_math.hpp"
 #include "models/registry.hpp"
