@@ -8,16 +8,16 @@
 #include <string>
 #include <vector>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/bench_workload.hpp"
-#include "engine/vector_math.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/evaluation/bench_workload.hpp"
+#include "engine/common/vector_math.hpp"
 #include "models/registry.hpp"
 
 namespace {
 
 using namespace dampbench;
 
-/// The bench workload of engine/bench_workload.hpp with a 4 Hz sinusoid sampled at 1 024 Hz: `samples` / 256
+/// The bench workload of engine/evaluation/bench_workload.hpp with a 4 Hz sinusoid sampled at 1 024 Hz: `samples` / 256
 /// whole cycles. The sampling rate is fixed, so the ODE models take the same RK4 sub-steps per sample at every
 /// length and the cost can grow linearly.
 constexpr double kFreqHz = 4.0, kSampleRateHz = 1024.0;

@@ -16,10 +16,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/identification.hpp"
-#include "engine/optimizer.hpp"
-#include "engine/random.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/identification/identification.hpp"
+#include "engine/identification/optimizer.hpp"
+#include "engine/common/random.hpp"
 
 namespace dampbench::testing {
 
@@ -197,7 +197,7 @@ inline void expect_keyed_history(const OptimizerFactory& make) {
 }
 
 /// Two runs asked into one batch at different offsets and told their slices (the lockstep of
-/// engine/identification.cpp) ask exactly what each asks when run alone.
+/// engine/identification/identification.cpp) ask exactly what each asks when run alone.
 inline void expect_lockstep_equals_alone(const OptimizerFactory& make) {
   const int dim = 3;
   const Bounds b = box(dim, kSphere.lower, kSphere.upper);
@@ -369,7 +369,7 @@ inline Run minimize_and_refine(Optimizer& opt, const FunctionProblem& problem) {
   return run;
 }
 
-/// A LocalProblem on a model through a BatchEvaluator, with residuals as engine/identification.cpp builds
+/// A LocalProblem on a model through a BatchEvaluator, with residuals as engine/identification/identification.cpp builds
 /// them. `one_by_one` evaluates every candidate of a batch as its own batch of one.
 class ModelProblem final : public LocalProblem {
  public:

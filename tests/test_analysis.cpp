@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "engine/sweep/store.hpp"
 #include "engine/sweep/tables.hpp"
 #include "tests/test_support.hpp"

@@ -1,6 +1,6 @@
 // Batch evaluation is bit-identical whatever the thread count, the grain size, the candidate's position
 // in the batch, or the batch it shares (DESIGN.md, "Reproducibility").
-#include "engine/batch_evaluator.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "engine/bounds.hpp"
-#include "engine/random.hpp"
+#include "engine/model/bounds.hpp"
+#include "engine/common/random.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-// The benchmark workload (engine/bench_workload.hpp): its candidates stay inside every model's default
+// The benchmark workload (engine/evaluation/bench_workload.hpp): its candidates stay inside every model's default
 // bounds, and none of them blows up, so `dampbench bench` and bench/bench_models time the models' real work
 // rather than the masking of failed lanes (in the central half of the default boxes every mrd.spencer
 // candidate and half of the mrd.bouc_wen candidates blow up).
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/bench_workload.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/evaluation/bench_workload.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench {

@@ -1,5 +1,5 @@
 // Tests for engine/csv_loader: formats, units, computed derivatives, every error message, and a real file.
-#include "engine/csv_loader.hpp"
+#include "engine/record/csv_loader.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
 
 #ifndef DAMPBENCH_SHARED_DATA_DIR

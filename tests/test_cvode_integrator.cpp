@@ -1,4 +1,4 @@
-#include "engine/ode/cvode_integrator.hpp"
+#include "engine/kernels/cvode_integrator.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "optimizer_test_support.hpp"
 #include "test_support.hpp"
 

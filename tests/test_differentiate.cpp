@@ -1,5 +1,5 @@
 // Tests for engine/differentiate: convergence order on a sine, exactness on cubics, known stencil weights.
-#include "engine/differentiate.hpp"
+#include "engine/record/differentiate.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Tests for engine/excitation: --sine parsing and validation, and the sampled sine with analytic v and a.
-#include "engine/excitation.hpp"
+#include "engine/record/excitation.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench {

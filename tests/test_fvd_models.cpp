@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/bounds.hpp"
-#include "engine/error.hpp"
-#include "engine/identification.hpp"
+#include "engine/model/bounds.hpp"
+#include "engine/common/error.hpp"
+#include "engine/identification/identification.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"
 #include "tests/test_support.hpp"

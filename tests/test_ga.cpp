@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.hpp"
-#include "engine/random.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 #include "optimizer_test_support.hpp"
 #include "test_support.hpp"
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.hpp"
-#include "engine/excitation.hpp"
-#include "engine/law_model.hpp"
+#include "engine/common/error.hpp"
+#include "engine/record/excitation.hpp"
+#include "engine/model/law_model.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/error.hpp"
-#include "engine/excitation.hpp"
+#include "engine/common/error.hpp"
+#include "engine/record/excitation.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"
 #include "tests/optimizer_test_support.hpp"

@@ -1,12 +1,12 @@
-// Lockstep repeated runs (engine/identification.cpp): reproducibility for any thread count and batch
+// Lockstep repeated runs (engine/identification/identification.cpp): reproducibility for any thread count and batch
 // split, and the bookkeeping of each run.
-#include "engine/identification.hpp"
+#include "engine/identification/identification.hpp"
 
 #include <gtest/gtest.h>
 
 #include <tbb/task_arena.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"
 #include "tests/test_support.hpp"

@@ -1,12 +1,12 @@
 // Tests for engine/key_values: name=value lists, strict numbers, name lists.
-#include "engine/key_values.hpp"
+#include "engine/common/key_values.hpp"
 
 #include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench {

@@ -1,14 +1,14 @@
-// Law models and the published fixtures (engine/law_model.cpp, models/fixtures.cpp).
-#include "engine/law_model.hpp"
+// Law models and the published fixtures (engine/model/law_model.cpp, models/fixtures.cpp).
+#include "engine/model/law_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/excitation.hpp"
-#include "engine/identification.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/record/excitation.hpp"
+#include "engine/identification/identification.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
-#include "engine/random.hpp"
+#include "engine/common/random.hpp"
 #include "models/lssvm/lssvm.hpp"
 #include "tests/test_support.hpp"
 

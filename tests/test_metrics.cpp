@@ -1,6 +1,6 @@
-// Metrics against hand-computed values (engine/metrics.hpp). The candidate model is fvd.linear_viscous
+// Metrics against hand-computed values (engine/model/metrics.hpp). The candidate model is fvd.linear_viscous
 // with m = 0 and C = 1, so the model force is the velocity signal itself.
-#include "engine/metrics.hpp"
+#include "engine/model/metrics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <limits>
 #include <numbers>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/error.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/common/error.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

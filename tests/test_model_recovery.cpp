@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "engine/identification.hpp"
+#include "engine/identification/identification.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"

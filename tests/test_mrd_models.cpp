@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/excitation.hpp"
+#include "engine/record/excitation.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/excitation.hpp"
-#include "engine/law_model.hpp"
+#include "engine/common/error.hpp"
+#include "engine/record/excitation.hpp"
+#include "engine/model/law_model.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 #include "tests/optimizer_test_support.hpp"

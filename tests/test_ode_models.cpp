@@ -1,4 +1,4 @@
-// ODE models (engine/ode_kernel.hpp) against SUNDIALS CVODE at published parameters: the fixed-step
+// ODE models (engine/kernels/ode_kernel.hpp) against SUNDIALS CVODE at published parameters: the fixed-step
 // RK4 force must be within a relative L2 difference of 1e-4 of the CVODE force (BDF, rtol 1e-10) on the
 // same piecewise-linear inputs. Also: blown-up candidates are masked, n < 1 starting at z = 0 is finite.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <limits>
 #include <vector>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/excitation.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/record/excitation.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

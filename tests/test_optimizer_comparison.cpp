@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "models/registry.hpp"
 #include "tests/optimizer_test_support.hpp"
 #include "tests/test_support.hpp"

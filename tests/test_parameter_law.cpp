@@ -1,5 +1,5 @@
-// Parameter laws (engine/parameter_law.cpp): parsing, coefficient names and hand-computed values.
-#include "engine/parameter_law.hpp"
+// Parameter laws (engine/model/parameter_law.cpp): parsing, coefficient names and hand-computed values.
+#include "engine/model/parameter_law.hpp"
 
 #include <gtest/gtest.h>
 

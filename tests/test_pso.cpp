@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "optimizer_test_support.hpp"
 #include "test_support.hpp"
 

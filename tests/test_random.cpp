@@ -1,4 +1,4 @@
-#include "engine/random.hpp"
+#include "engine/common/random.hpp"
 
 #include <gtest/gtest.h>
 

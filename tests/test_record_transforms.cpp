@@ -1,6 +1,6 @@
-// Record transforms (engine/record_transforms.cpp): crfd slider-crank kinematics, cycle averaging and
+// Record transforms (engine/record/record_transforms.cpp): crfd slider-crank kinematics, cycle averaging and
 // UTFSM file-name conditions, against hand-computed values.
-#include "engine/record_transforms.hpp"
+#include "engine/record/record_transforms.hpp"
 
 #include <gtest/gtest.h>
 

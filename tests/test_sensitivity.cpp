@@ -1,12 +1,12 @@
-// Differential sensitivity (engine/sensitivity.cpp, crfd eqs. 4.1–4.3) on a law where f is known in
+// Differential sensitivity (engine/evaluation/sensitivity.cpp, crfd eqs. 4.1–4.3) on a law where f is known in
 // closed form: fvd.linear_viscous with m = 0 has f(C) = C·RMS(v), so every point sensitivity is RMS(v).
-#include "engine/sensitivity.hpp"
+#include "engine/evaluation/sensitivity.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "engine/excitation.hpp"
+#include "engine/record/excitation.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

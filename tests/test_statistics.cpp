@@ -1,4 +1,4 @@
-#include "engine/statistics.hpp"
+#include "engine/common/statistics.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <string>
 
-#include "engine/dataset.hpp"
-#include "engine/error.hpp"
-#include "engine/excitation.hpp"
-#include "engine/signals.hpp"
+#include "engine/record/dataset.hpp"
+#include "engine/common/error.hpp"
+#include "engine/record/excitation.hpp"
+#include "engine/record/signals.hpp"
 
 namespace dampbench::testing {
 
@@ -40,7 +40,7 @@ std::string error_of(Fn&& fn) {
   return "no error";
 }
 
-/// Prepared signals of a sinusoid (engine/excitation.hpp) with the given operating variables.
+/// Prepared signals of a sinusoid (engine/record/excitation.hpp) with the given operating variables.
 inline Signals sine_signals(double amp_m, double freq_hz, double cycles, double fs_hz,
                             const std::map<std::string, double>& operating = {}) {
   SineSpec spec;

@@ -24,7 +24,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
-#include "engine/csv_loader.hpp"
+#include "engine/record/csv_loader.hpp"
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/store.hpp"
 #include "tests/test_support.hpp"

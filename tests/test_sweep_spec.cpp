@@ -14,8 +14,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/csv_loader.hpp"
-#include "engine/error.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/common/error.hpp"
 #include "engine/sweep/plan.hpp"
 #include "tests/test_support.hpp"
 

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <limits>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::sweep {

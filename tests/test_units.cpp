@@ -1,11 +1,11 @@
 // Tests for engine/units: factors to SI for every column and unit, and header cells "x[mm]".
-#include "engine/units.hpp"
+#include "engine/record/units.hpp"
 
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench {

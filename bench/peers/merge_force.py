@@ -2,7 +2,7 @@
 """Writes the peers' input t,x,v,a,F (SI) for a test record.
 
 t, x, v, a come from `dampbench simulate --input RECORD` (the signals exactly as dampbench prepares them:
-units converted, v and a by engine/differentiate.cpp's 3rd-order scheme, printed with 17 digits); F is the
+units converted, v and a by engine/record/differentiate.cpp's 3rd-order scheme, printed with 17 digits); F is the
 record's measured force converted to newtons (header unit N, kN or MN).
 
 usage: merge_force.py SIMULATE_OUTPUT.csv RECORD.csv OUT.csv

@@ -90,7 +90,7 @@ SUBSTEPS=$(sed -n '/^struct BoucWen/,/^};/p' "$REPO/models/mrd.cpp" | sed -n 's/
 [[ -n "$SUBSTEPS" ]] || { log "cannot read BoucWen::kSubstepsPerStroke from models/mrd.cpp"; exit 1; }
 
 # fvd: the committed record as dampbench fit reads it; the peers get dampbench's own prepared signals
-# (simulate --input prints t, x, v, a after unit conversion and engine/differentiate.cpp) plus F in N.
+# (simulate --input prints t, x, v, a after unit conversion and engine/record/differentiate.cpp) plus F in N.
 mkdir -p "$WORK/fvd"
 "$DB" simulate --model fvd.linear_viscous --params m=0,C=0 --input "$FVD_RECORD" -o "$WORK/fvd/signals.csv"
 "$PY" "$HERE/merge_force.py" "$WORK/fvd/signals.csv" "$FVD_RECORD" "$WORK/fvd/$(basename "$FVD_RECORD")"

@@ -5,7 +5,7 @@ Problems (same equations, metric and RK4 sub-step rule as dampbench; see README.
   fvd  fvd.gv_linear_elastic  F = m*a + C*sgn(v)*|v|^alpha + K1*x      (algebraic)
   bw   mrd.bouc_wen           dz/dt = -gamma|v| sgn(z)|z|^n - beta v |z|^n + A v,
                               F = c0 v + k0 (x - x0) + alpha z          (RK4, sub-steps per sample)
-Metric: of_abs = trapezoid integral of |F_m - F| dt / (sigma(F_m) * T)  (engine/metrics.hpp).
+Metric: of_abs = trapezoid integral of |F_m - F| dt / (sigma(F_m) * T)  (engine/model/metrics.hpp).
 
 Input: a CSV t,x,v,a,F in SI (the signals dampbench itself uses; bench/peers/run_peers.sh writes it).
 Output: one JSON object on stdout (evaluations, wall time, candidate-samples/s, per-run final metrics).
@@ -24,7 +24,7 @@ def load_signals(path):
     data = np.genfromtxt(path, delimiter=",", names=True, dtype=float, comments="#")
     t, x, v, a, F = (np.ascontiguousarray(data[c]) for c in ("t", "x", "v", "a", "F"))
     n = t.size
-    w = np.zeros(n)  # trapezoid weights, as engine/signals.cpp
+    w = np.zeros(n)  # trapezoid weights, as engine/record/signals.cpp
     half = 0.5 * np.diff(t)
     w[:-1] += half
     w[1:] += half
@@ -35,7 +35,7 @@ def load_signals(path):
 
 
 def log_abs_clamped(v):
-    """engine/vector_math.hpp: log|v| clamped so |v|^alpha = exp(alpha*log|v|) is finite at 0."""
+    """engine/common/vector_math.hpp: log|v| clamped so |v|^alpha = exp(alpha*log|v|) is finite at 0."""
     return np.log(np.abs(v) + 1e-300)
 
 
@@ -57,7 +57,7 @@ def make_fvd_objective(s):
 
 
 def ode_substeps(s, k, per_stroke):
-    """engine/ode_kernel.hpp ode_substeps: ceil(dt*max|v|*per_stroke/ptp), at least 1."""
+    """engine/kernels/ode_kernel.hpp ode_substeps: ceil(dt*max|v|*per_stroke/ptp), at least 1."""
     dt = s["t"][k] - s["t"][k - 1]
     if s["ptp"] <= 0:
         return 1

@@ -24,8 +24,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/random.hpp"
-#include "engine/signals.hpp"
+#include "engine/common/random.hpp"
+#include "engine/record/signals.hpp"
 #include "models/registry.hpp"
 
 namespace {

@@ -13,8 +13,8 @@
 #include <fmt/format.h>
 
 #include "datasets/synthetic/synthetic.hpp"
-#include "engine/differentiate.hpp"
-#include "engine/record_transforms.hpp"
+#include "engine/record/differentiate.hpp"
+#include "engine/record/record_transforms.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::synthetic {

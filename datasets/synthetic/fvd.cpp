@@ -11,7 +11,7 @@
 #include <fmt/format.h>
 
 #include "datasets/synthetic/synthetic.hpp"
-#include "engine/ode/cvode_integrator.hpp"
+#include "engine/kernels/cvode_integrator.hpp"
 
 namespace dampbench::synthetic {
 namespace {

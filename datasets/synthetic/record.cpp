@@ -5,7 +5,8 @@
 #include <fmt/format.h>
 
 #include "datasets/synthetic/synthetic.hpp"
-#include "engine/random.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 
 namespace dampbench::synthetic {
 
@@ -20,6 +21,8 @@ void write_record(const std::filesystem::path& dir, const Record& r) {
   }
   out << fmt::format("t[s],x[{}],F[{}]\n", r.x_unit, r.F_unit);
   for (std::size_t k = 0; k < r.t_s.size(); ++k) out << fmt::format("{:.9g},{:.9g},{:.9g}\n", r.t_s[k], r.x[k], r.F[k]);
+  out.flush();
+  if (!out) throw InputError(fmt::format("cannot write '{}'", (dir / r.file).string()));
 }
 
 Dataset sine_record(double amp, double f, int cycles, int per_cycle, Record& r) {

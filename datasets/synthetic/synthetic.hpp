@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/dataset.hpp"
+#include "engine/record/dataset.hpp"
 
 namespace dampbench::synthetic {
 

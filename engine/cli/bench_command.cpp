@@ -1,5 +1,5 @@
 // The `dampbench bench` workload (docs/performance.md):
-//   record     engine/bench_workload.hpp at 1 Hz, 2 cycles of 1024 samples (2049 samples)
+//   record     engine/evaluation/bench_workload.hpp at 1 Hz, 2 cycles of 1024 samples (2049 samples)
 //   candidates 4096 from bench_candidates (the central half of the model's bench box); masked_share is the
 //              share of them that blow up (+inf), 0 for every model by the choice of the bench boxes
 //   metric     of_abs through BatchEvaluator (the same path as identification)
@@ -23,12 +23,12 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/bench_workload.hpp"
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
-#include "engine/table.hpp"
-#include "engine/vector_math.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/evaluation/bench_workload.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
+#include "engine/common/table.hpp"
+#include "engine/common/vector_math.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::cli {

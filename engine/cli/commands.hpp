@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/csv_loader.hpp"
-#include "engine/dataset.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/record/dataset.hpp"
 
 namespace CLI {
 class App;

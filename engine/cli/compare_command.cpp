@@ -14,11 +14,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/bounds.hpp"
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
-#include "engine/law_model.hpp"
-#include "engine/metrics.hpp"
+#include "engine/model/bounds.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
+#include "engine/model/law_model.hpp"
+#include "engine/model/metrics.hpp"
 #include "models/registry.hpp"
 #include "optimizers/comparison.hpp"
 

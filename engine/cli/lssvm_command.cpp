@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
-#include "engine/error.hpp"
-#include "engine/table.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/table.hpp"
 #include "models/lssvm/lssvm.hpp"
 
 namespace dampbench::cli {

@@ -13,7 +13,7 @@
 #include "engine/cli/compare_command.hpp"
 #include "engine/cli/lssvm_command.hpp"
 #include "engine/cli/sweep_commands.hpp"
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 
 namespace {
 
@@ -93,6 +93,11 @@ int main(int argc, char** argv) {
   evalc->add_option("--data", eval.paths, "record(s)")->required();
   add_data_options(evalc, eval.data);
   evalc->add_option("--format", eval.format, "md (default) or json");
+  DatasetsOptions datasets;
+  auto* datasetsc = app.add_subcommand("datasets", "synthetic grids of the papers that presets read as @generated/...");
+  datasetsc->require_subcommand(1);
+  auto* generatec = datasetsc->add_subcommand("generate", "write the grids ahead of first use (run does it when needed)");
+  add_datasets_options(generatec, datasets);
   BenchOptions bench;
   auto* benchc = app.add_subcommand("bench", "throughput of every model with 1 and 2 threads (docs/performance.md)");
   add_bench_options(benchc, bench);
@@ -124,6 +129,7 @@ int main(int argc, char** argv) {
     if (comparec->parsed()) return compare_command(cmp);
     if (benchc->parsed()) return bench_command(bench);
     if (evalc->parsed()) return evaluate_command(eval);
+    if (generatec->parsed()) return datasets_command(datasets);
   } catch (const dampbench::InputError& e) {
     std::fprintf(stderr, "dampbench: error: %s\n", e.what());
     return 2;

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/cli/fvd_tables.hpp"
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "engine/sweep/runner.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"

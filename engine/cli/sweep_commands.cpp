@@ -1,7 +1,9 @@
-// `dampbench run` options, `dampbench table STORE` and `dampbench verify STORE` (engine/sweep).
+// `dampbench run` options, `dampbench table STORE`, `dampbench verify STORE` (engine/sweep) and
+// `dampbench datasets generate` (datasets/synthetic/grids.hpp).
 #include "engine/cli/sweep_commands.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -10,8 +12,9 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include "datasets/synthetic/grids.hpp"
 #include "engine/cli/preset.hpp"
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/runner.hpp"
@@ -27,6 +30,24 @@ void add_run_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--store", o.store, "SQLite store (default <output>/store.sqlite); an existing one is resumed");
   cmd->add_flag("--quiet", o.quiet, "no progress bar");
   cmd->add_flag("--fresh", o.fresh, "delete an existing store first instead of resuming it");
+}
+
+void add_datasets_options(CLI::App* cmd, DatasetsOptions& o) {
+  cmd->add_option("grids", o.grids, "grids to generate: fvd, crfd, mfm, fdsp (default: all)");
+  cmd->add_option("--into", o.into, "folder (default: the cache `run` reads; env DAMPBENCH_GENERATED_DIR)");
+}
+
+int datasets_command(const DatasetsOptions& o) {
+  const std::string root = o.into.empty() ? sweep::generated_dir() : o.into;
+  for (const std::string& grid : o.grids.empty() ? synthetic::grid_names() : o.grids) {
+    const auto state = synthetic::ensure_grid(root, grid, sweep::generator_identity());
+    std::cout << fmt::format("{}: {} {}\n", grid,
+                             state == synthetic::GridState::kPresent       ? "already in"
+                             : state == synthetic::GridState::kGenerated   ? "generated into"
+                                                                            : "regenerated (made by another build) in",
+                             (std::filesystem::path(root) / grid).string());
+  }
+  return 0;
 }
 
 void add_table_options(CLI::App* cmd, TableOptions& o) {

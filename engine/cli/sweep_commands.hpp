@@ -1,6 +1,7 @@
 #pragma once
-// Sweeps (`dampbench run SWEEP.toml`), their SQLite store, and the commands that read it back
-// (`dampbench table STORE`, `dampbench verify STORE`).
+// Sweeps (`dampbench run SWEEP.toml`), their SQLite store, the commands that read it back
+// (`dampbench table STORE`, `dampbench verify STORE`), and the synthetic grids presets read
+// (`dampbench datasets generate`).
 #include <string>
 #include <vector>
 
@@ -29,7 +30,16 @@ struct VerifyOptions {
   std::string spec;   ///< the sweep file (default: the path recorded in the store)
 };
 
+/// `dampbench datasets generate [GRID...] [--into DIR]`: the synthetic grids presets name "@generated/...",
+/// written ahead of first use (datasets/synthetic/grids.hpp).
+struct DatasetsOptions {
+  std::vector<std::string> grids;  ///< default: every grid
+  std::string into;                ///< default: the cache folder `run` reads (engine/sweep/spec.hpp generated_dir)
+};
+
 void add_run_options(CLI::App* cmd, RunOptions& options);
+void add_datasets_options(CLI::App* cmd, DatasetsOptions& options);
+int datasets_command(const DatasetsOptions& options);
 void add_table_options(CLI::App* cmd, TableOptions& options);
 void add_verify_options(CLI::App* cmd, VerifyOptions& options);
 int table_command(const TableOptions& options);

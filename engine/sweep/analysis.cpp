@@ -8,8 +8,8 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/random.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 
 namespace dampbench::sweep {
 namespace {

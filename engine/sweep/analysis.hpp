@@ -1,7 +1,7 @@
 #pragma once
 // Analyses of stored results, as pure functions of numbers (engine/sweep/tables.hpp turns them into tables):
 //   - regression of identified parameters on operating variables, for every parameter-law form
-//     (engine/parameter_law.hpp): polynomials by linear least squares (Eigen, QR on a column-scaled
+//     (engine/model/parameter_law.hpp): polynomials by linear least squares (Eigen, QR on a column-scaled
 //     Vandermonde matrix: crfd Tables 5–7, mfm eqs. 5–9); products of polynomials by alternating least
 //     squares then Levenberg–Marquardt (mfm eqs. 10–11); power and two-Gaussian forms by Levenberg–Marquardt
 //     from the best of a grid of linear fits (fdsp eqs. 13–14); with R² and residuals;
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/parameter_law.hpp"
+#include "engine/model/parameter_law.hpp"
 #include "engine/sweep/store.hpp"
 
 namespace dampbench::sweep {

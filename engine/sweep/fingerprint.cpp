@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/random.hpp"
+#include "engine/common/random.hpp"
 
 #ifndef DAMPBENCH_VERSION
 #error "dampbench_sweep needs DAMPBENCH_VERSION (engine/sweep/CMakeLists.txt)"

@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-#include "engine/signals.hpp"
+#include "engine/record/signals.hpp"
 
 namespace dampbench::sweep {
 

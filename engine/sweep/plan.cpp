@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "engine/error.hpp"
-#include "engine/random.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 #include "engine/sweep/fingerprint.hpp"
 
 namespace dampbench::sweep {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/dataset.hpp"
-#include "engine/signals.hpp"
+#include "engine/record/dataset.hpp"
+#include "engine/record/signals.hpp"
 #include "engine/sweep/spec.hpp"
 
 namespace dampbench::sweep {

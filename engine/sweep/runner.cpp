@@ -10,10 +10,10 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
-#include "engine/batch_evaluator.hpp"
-#include "engine/error.hpp"
-#include "engine/law_model.hpp"
-#include "engine/sensitivity.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/common/error.hpp"
+#include "engine/model/law_model.hpp"
+#include "engine/evaluation/sensitivity.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
 

@@ -13,19 +13,18 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
-#include "engine/csv_loader.hpp"
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
-#include "engine/law_model.hpp"
-#include "engine/parameter_law.hpp"
-#include "engine/random.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
+#include "engine/model/law_model.hpp"
+#include "engine/model/parameter_law.hpp"
+#include "engine/common/random.hpp"
+#include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/tables.hpp"
+#include "datasets/synthetic/grids.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 
-#ifndef DAMPBENCH_GENERATED_DIR
-#define DAMPBENCH_GENERATED_DIR "datasets/generated"
-#endif
 #ifndef DAMPBENCH_SHARED_DATA_DIR
 #define DAMPBENCH_SHARED_DATA_DIR "../shared/data"
 #endif
@@ -69,7 +68,27 @@ int PartSpec::split_index(std::string_view n) const {
 
 std::string generated_dir() {
   if (const char* env = std::getenv("DAMPBENCH_GENERATED_DIR"); env && *env) return env;
-  return DAMPBENCH_GENERATED_DIR;
+  fs::path cache;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) cache = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home) cache = fs::path(home) / ".cache";
+  else cache = fs::temp_directory_path();
+  // One folder per build identity, so that two builds sharing a cache never regenerate each other's grids.
+  return (cache / "dampbench" / fmt::format("generated-{:016x}", hash_name(generator_identity()))).string();
+}
+
+std::string generator_identity() { return fmt::format("dampbench {} ({})", dampbench_version(), build_flags()); }
+
+void ensure_generated(std::string_view text, std::vector<std::string>& notes) {
+  constexpr std::string_view prefix = "@generated/";
+  if (!text.starts_with(prefix)) return;
+  const std::string_view rest = text.substr(prefix.size());
+  const std::string grid(rest.substr(0, rest.find('/')));
+  const auto& known = synthetic::grid_names();
+  if (std::find(known.begin(), known.end(), grid) == known.end())
+    throw InputError(fmt::format("'{}' names no synthetic grid (known: {})", text, fmt::join(known, ", ")));
+  const std::string root = generated_dir();
+  if (synthetic::ensure_grid(root, grid, generator_identity()) != synthetic::GridState::kPresent)
+    notes.push_back(fmt::format("generated the synthetic grid '{}' into {}", grid, (fs::path(root) / grid).string()));
 }
 
 std::string shared_data_dir() {
@@ -385,6 +404,9 @@ struct PartReader {
       const bool single = t.get("file") != nullptr;
       const toml::node* source_node = t.get("file") ? t.get("file") : t.get("files") ? t.get("files") : t.get("glob");
       const std::string source_key = Reader::join(key, t.get("file") ? "file" : t.get("files") ? "files" : "glob");
+      if (options.check_files)  // "@generated/" grids are generated on first use
+        for (const auto& text : r.strings(*source_node, source_key))
+          r.check(source_node, source_key, [&] { ensure_generated(text, notes); });
       if (t.get("glob")) {
         const std::string pattern = resolve_path(r.required_string(t, "glob", key), folder());
         if (options.check_files) {

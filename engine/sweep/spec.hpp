@@ -20,7 +20,8 @@
 //   [[datasets]]: name (required), one of file = "a.csv" | files = [...] | glob = "dir/*.csv" (wildcards in the
 //       file name), label, units, columns, transform ("slider-crank"), average ("cycles=10,drop=3"),
 //       conditions ("utfsm"), set ("I=1"), required [true]. Paths are relative to the file; "@generated/"
-//       names the build's synthetic grids, "@shared/" the shared real data (generated_dir, shared_data_dir).
+//       names the synthetic grids, generated on first use (generated_dir), "@shared/" the shared real data
+//       (shared_data_dir).
 //       A glob's records are named by file stem.
 //   [[splits]] (default: one split fitting every dataset alone): name, datasets (entry names), models,
 //       optimizers, fit = { I = [0, 0.5], amp = 0.01 } or an array of such tables (any of), predict = {...},
@@ -39,10 +40,10 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/bounds.hpp"
-#include "engine/identification.hpp"
-#include "engine/metrics.hpp"
-#include "engine/model.hpp"
+#include "engine/model/bounds.hpp"
+#include "engine/identification/identification.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/model/model.hpp"
 #include "optimizers/registry.hpp"
 
 namespace dampbench::sweep {
@@ -142,7 +143,7 @@ struct RegressionSpec {
   std::string model;      ///< model label whose per-condition fits are regressed
   std::string split;      ///< only fits of this split (empty: any)
   std::string optimizer;  ///< only this optimizer's fits (empty: any; the lowest metric per condition wins)
-  std::string laws;       ///< "c_r=poly(phi,3);..." (engine/parameter_law.hpp)
+  std::string laws;       ///< "c_r=poly(phi,3);..." (engine/model/parameter_law.hpp)
   std::string paper;
   Selection where;
 };
@@ -187,12 +188,19 @@ SweepSpec load_sweep(const std::string& path, const SpecOptions& options = {});
 /// Same from text; `path` names the file in messages and anchors relative paths.
 SweepSpec parse_sweep(std::string_view text, const std::string& path, const SpecOptions& options = {});
 
-/// "@generated/..." → the build's generated datasets folder (env DAMPBENCH_GENERATED_DIR overrides the
-/// compiled-in default), "@shared/..." → the shared data folder (env DAMPBENCH_SHARED_DATA_DIR), a relative
-/// path → relative to `folder`.
+/// "@generated/..." → the synthetic grids' folder (generated_dir), "@shared/..." → the shared data folder
+/// (env DAMPBENCH_SHARED_DATA_DIR, else the compiled-in ../shared/data beside the source tree), a relative
+/// path → relative to `folder`. Pure: generates nothing (ensure_generated does).
 std::string resolve_path(std::string_view text, const std::string& folder);
+/// Where "@generated/" grids live: env DAMPBENCH_GENERATED_DIR, else
+/// $XDG_CACHE_HOME (or ~/.cache)/dampbench/generated-<hash of generator_identity()>.
 std::string generated_dir();
 std::string shared_data_dir();
+/// The build that generates grids: "dampbench <version> (<build flags>)".
+std::string generator_identity();
+/// For a path "@generated/<grid>/...": makes sure the grid exists in generated_dir() as this build makes it
+/// (datasets/synthetic/grids.hpp), adding a note when it had to generate it; other paths are left alone.
+void ensure_generated(std::string_view text, std::vector<std::string>& notes);
 
 /// A model of a sweep made ready to identify: the model object (owned when it is a law model) and its bounds.
 struct ResolvedModel {

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sqlite3.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 #include "engine/sweep/fingerprint.hpp"
 
 namespace dampbench::sweep {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/metrics.hpp"
+#include "engine/model/metrics.hpp"
 
 struct sqlite3;
 

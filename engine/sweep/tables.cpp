@@ -10,11 +10,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.hpp"
-#include "engine/random.hpp"
-#include "engine/statistics.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
+#include "engine/common/statistics.hpp"
 #include "engine/sweep/analysis.hpp"
-#include "engine/table.hpp"
+#include "engine/common/table.hpp"
 
 namespace dampbench::sweep {
 

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model.hpp"
+#include "engine/model/model.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
 

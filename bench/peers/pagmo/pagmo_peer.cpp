@@ -44,8 +44,8 @@
 
 namespace {
 
-/// The record as dampbench's kernels see it (engine/signals.cpp): SI signals, trapezoid weights,
-/// duration, population σ of the measured force, and the ODE sub-steps per interval (engine/ode_kernel.hpp).
+/// The record as dampbench's kernels see it (engine/record/signals.cpp): SI signals, trapezoid weights,
+/// duration, population σ of the measured force, and the ODE sub-steps per interval (engine/kernels/ode_kernel.hpp).
 struct Record {
   std::vector<double> t, x, v, a, F, w;
   std::vector<int> substeps;  // substeps[k]: RK4 steps on [t_{k-1}, t_k]

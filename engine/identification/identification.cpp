@@ -1,0 +1,162 @@
+#include "engine/identification/identification.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
+
+namespace dampbench {
+
+std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name, std::string_view optimizer) {
+  return hash_key({hash_name(model_id), hash_name(dataset_name), hash_name(optimizer)});
+}
+
+int Identification::best_run() const {
+  int best = 0;
+  for (int r = 1; r < static_cast<int>(runs.size()); ++r)
+    if (runs[r].best_value < runs[best].best_value) best = r;
+  return best;
+}
+
+Identification identify(const Model& model, const Signals& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
+  return identify(model, std::vector<const Signals*>{&data}, bounds, make_optimizer, settings);
+}
+
+namespace {
+
+/// The budget rule that stops a run now, or "" to go on.
+std::string budget_stop(const Budget& b, const RunResult& run, int stalled, double elapsed_s) {
+  if (b.max_evaluations > 0 && run.evaluations >= b.max_evaluations) return "max_evaluations";
+  if (!run.trace.empty() && run.trace.back() <= b.target) return "target";
+  if (b.stall_iterations > 0 && stalled >= b.stall_iterations) return "stall";
+  if (b.max_wall_time_s > 0 && elapsed_s >= b.max_wall_time_s) return "wall_time";
+  return "";
+}
+
+/// The problem one run's refinement sees: batch metric through the evaluator, residuals through simulate.
+class RunProblem final : public LocalProblem {
+ public:
+  RunProblem(const BatchEvaluator& evaluator, Metric metric, const Bounds& bounds)
+      : evaluator_(evaluator), metric_(metric), bounds_(bounds) {}
+  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    evaluator_.evaluate(batch, metric_, values);
+    evaluations_ += batch.count();
+  }
+  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    std::vector<double> r;
+    for (const Signals* d : evaluator_.datasets()) {
+      const auto F = evaluator_.model().simulate(params, *d);
+      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+      for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
+    }
+    ++evaluations_;
+    return r;
+  }
+  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
+  [[nodiscard]] long long evaluations() const { return evaluations_; }
+
+ private:
+  const BatchEvaluator& evaluator_;
+  Metric metric_;
+  const Bounds& bounds_;
+  mutable long long evaluations_ = 0;
+};
+
+}  // namespace
+
+Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
+  if (settings.runs < 1) throw InputError(fmt::format("runs must be at least 1, got {}", settings.runs));
+  if (data.empty()) throw InputError("identification needs at least one dataset");
+  for (const Signals* d : data)
+    if (!d->has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d->name));
+  validate_bounds(bounds, model);
+  const auto start = std::chrono::steady_clock::now();
+
+  const int R = settings.runs;
+  std::vector<std::unique_ptr<Optimizer>> runs;
+  std::vector<int> offset(R + 1, 0);
+  for (int r = 0; r < R; ++r) {
+    runs.push_back(make_optimizer(bounds, hash_key({settings.seed, settings.task_key, static_cast<std::uint64_t>(r)})));
+    offset[r + 1] = offset[r] + runs[r]->batch_size();
+  }
+
+  Identification result;
+  result.runs.resize(R);
+  const BatchEvaluator evaluator(model, data, settings.grain_blocks);
+  CandidateBatch batch(model.dim(), offset[R]);
+  std::vector<double> values(offset[R]);
+  std::vector<int> active;
+  std::vector<int> stalled(R, 0);
+  long long evaluations = 0;
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  // Lockstep: every unfinished run asks, one batch is evaluated, every run is told its slice.
+  for (;;) {
+    active.clear();
+    int rows = 0;
+    for (int r = 0; r < R; ++r) {
+      RunResult& run = result.runs[r];
+      if (!run.stop_reason.empty()) continue;
+      if (runs[r]->finished()) run.stop_reason = "iterations";
+      else run.stop_reason = budget_stop(settings.budget, run, stalled[r], elapsed());
+      if (!run.stop_reason.empty()) continue;
+      active.push_back(r);
+      rows += runs[r]->batch_size();
+    }
+    if (active.empty()) break;
+    if (rows != batch.count()) batch.resize(model.dim(), rows);
+    int row = 0;
+    for (int r : active) {
+      runs[r]->ask(batch, row);
+      row += runs[r]->batch_size();
+    }
+    evaluator.evaluate(batch, settings.metric, std::span(values.data(), rows));
+    evaluations += rows;
+    row = 0;
+    for (int r : active) {
+      RunResult& run = result.runs[r];
+      const int n = runs[r]->batch_size();
+      runs[r]->tell(std::span<const double>(values.data() + row, n));
+      run.evaluations += n;
+      stalled[r] = (!run.trace.empty() && !(runs[r]->best_value() < run.trace.back())) ? stalled[r] + 1 : 0;
+      run.trace.push_back(runs[r]->best_value());
+      run.trace_evaluations.push_back(run.evaluations);
+      row += n;
+    }
+  }
+
+  // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
+  tbb::parallel_for(0, R, [&](int r) {
+    RunProblem problem(evaluator, settings.metric, bounds);
+    runs[r]->refine(problem);
+    result.runs[r].evaluations += problem.evaluations();
+  });
+
+  // Every metric at each run's best parameters, as one more batch.
+  CandidateBatch best(model.dim(), R);
+  for (int r = 0; r < R; ++r) best.set_candidate(r, runs[r]->best_position());
+  std::vector<MetricRow> metrics(R);
+  evaluator.evaluate_all(best, metrics);
+
+  result.wall_time_s = elapsed();
+  result.candidate_samples = static_cast<double>(evaluations) * evaluator.samples();
+  const int metric_index = static_cast<int>(settings.metric);
+  for (int r = 0; r < R; ++r) {
+    RunResult& run = result.runs[r];
+    run.best_params = best.candidate(r);
+    run.best_metrics = metrics[r];
+    run.best_value = metrics[r][metric_index];
+    run.wall_time_s = result.wall_time_s / R;
+  }
+  return result;
+}
+
+}  // namespace dampbench

@@ -1,0 +1,66 @@
+#pragma once
+// Repeated identification runs of one (model, dataset): R independent optimizer runs advance in
+// lockstep, each iteration's R·N candidates evaluated as one batch across cores (DESIGN.md, data flow).
+#include <array>
+#include <string>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/model/bounds.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/identification/optimizer.hpp"
+
+namespace dampbench {
+
+/// Stopping rules of a run, on top of the optimizer's own iteration count. A run stops at the end of
+/// the first iteration where any rule holds:
+///   evaluations ≥ max_evaluations;  best ≤ target;  no improvement of best for stall_iterations
+///   iterations;  wall time of the group ≥ max_wall_time_s.
+/// Zero (or -inf for target) switches a rule off. The wall-time rule depends on the machine's speed, so a
+/// run stopped by it is not reproducible bit for bit; every other rule is.
+struct Budget {
+  long long max_evaluations = 0;
+  double target = -std::numeric_limits<double>::infinity();
+  int stall_iterations = 0;
+  double max_wall_time_s = 0;
+};
+
+struct IdentificationSettings {
+  int runs = 50;                ///< independent runs (fvd paper: 50)
+  std::uint64_t seed = 1;       ///< sweep seed
+  std::uint64_t task_key = 0;   ///< stable key of the task (see task_key()); runs are keyed (seed, task, run)
+  Metric metric = Metric::of_abs;
+  int grain_blocks = 1;         ///< lane blocks per oneTBB task; results do not depend on it
+  Budget budget;
+};
+
+/// Stable key of a (model, dataset, optimizer) task, from their names.
+std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name, std::string_view optimizer);
+
+struct RunResult {
+  std::vector<double> best_params;                ///< SI
+  double best_value = 0;                          ///< the optimized metric at best_params
+  std::array<double, kMetricCount> best_metrics;  ///< every metric at best_params (order of kAllMetrics)
+  long long evaluations = 0;
+  double wall_time_s = 0;  ///< this run's share of the lockstep group's wall time (group time / runs)
+  std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence)
+  std::vector<long long> trace_evaluations;  ///< evaluations spent at each trace point
+  std::string stop_reason;    ///< "iterations", "max_evaluations", "target", "stall" or "wall_time"
+};
+
+struct Identification {
+  std::vector<RunResult> runs;
+  double wall_time_s = 0;          ///< whole lockstep group
+  double candidate_samples = 0;    ///< Σ evaluations × samples (samples summed over the datasets)
+  [[nodiscard]] int best_run() const;  ///< index of the run with the lowest best_value (first on ties)
+};
+
+/// Identifies the model on one or more datasets (the metric is the mean over them, engine/evaluation/batch_evaluator.hpp).
+Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);
+Identification identify(const Model& model, const Signals& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);
+
+}  // namespace dampbench

@@ -1,0 +1,51 @@
+#pragma once
+// The ask/tell interface every population optimizer implements (optimizers/ has one folder per
+// algorithm). One Optimizer object is one independent run; R runs advance in lockstep so that each
+// generation of all of them is evaluated as one batch (engine/identification/identification.hpp).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/model/batch.hpp"
+#include "engine/model/bounds.hpp"
+
+namespace dampbench {
+
+/// What a local refinement (the SQP or least-squares stage of a hybrid) may ask of the problem; the
+/// identification loop provides one per run and counts its evaluations.
+class LocalProblem {
+ public:
+  virtual ~LocalProblem() = default;
+  /// The optimized metric of every candidate of the batch (one batch across cores; +inf for failures).
+  virtual void evaluate(const CandidateBatch& batch, std::span<double> values) const = 0;
+  /// Residuals F_model − F_measured of one candidate at every sample of every dataset, each dataset's
+  /// residuals divided by sqrt(N_d)·max|F_d| so that ‖r‖² = Σ_d nrmse_d² (least-squares stages).
+  [[nodiscard]] virtual std::vector<double> residuals(std::span<const double> params) const = 0;
+  [[nodiscard]] virtual const Bounds& bounds() const = 0;
+};
+
+class Optimizer {
+ public:
+  virtual ~Optimizer() = default;
+  /// Candidates per ask (the population size of a generational algorithm).
+  [[nodiscard]] virtual int batch_size() const = 0;
+  /// Writes the next batch_size() candidates into rows [first, first + batch_size()) of `batch`.
+  virtual void ask(CandidateBatch& batch, int first) = 0;
+  /// Takes the metric of each asked candidate, in the order asked (+inf for failed candidates).
+  virtual void tell(std::span<const double> values) = 0;
+  [[nodiscard]] virtual bool finished() const = 0;
+  [[nodiscard]] virtual std::span<const double> best_position() const = 0;
+  [[nodiscard]] virtual double best_value() const = 0;
+  /// Local refinement after the population phase has finished (hybrids: GA → SQP, GA → least squares).
+  /// It may evaluate through `problem` and must leave best_position()/best_value() updated (best_value in
+  /// the metric's terms). Default: nothing.
+  virtual void refine(const LocalProblem& /*problem*/) {}
+};
+
+/// Makes the optimizer of one run. `run_key` keys every random number the run draws
+/// (engine/common/random.hpp), so a run's history depends only on it, never on threads or batch layout.
+using OptimizerFactory = std::function<std::unique_ptr<Optimizer>(const Bounds& bounds, std::uint64_t run_key)>;
+
+}  // namespace dampbench

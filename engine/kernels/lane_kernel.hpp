@@ -1,0 +1,166 @@
+#pragma once
+// Candidate-lane kernels (DESIGN.md, "Performance principles"): the time loop is outside, the loop over
+// kLanes candidates inside and vectorized (`#pragma omp simd`); quantities shared by all lanes at a
+// sample are prepared once; metric sums live in lane arrays; no force matrix is stored.
+//
+// A model is a Law (its equations) run by a Kernel (how time advances):
+//   AlgebraicKernel<Law>  F = f(params; x, v, a) at each sample            (engine/kernels/algebraic_kernel.hpp)
+//   OdeKernel<Law>        internal states integrated between samples      (engine/kernels/ode_kernel.hpp)
+// KernelModel<Kernel> turns a kernel into a Model: evaluate_block (metric sums of up to kLanes
+// candidates) and simulate (one candidate's force) both run the same kernel, so they see the same bits.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/model/model.hpp"
+#include "engine/common/vector_math.hpp"
+
+namespace dampbench {
+
+/// Static description of a law: id, citation, force law and parameters.
+struct ModelInfo {
+  std::string id;
+  std::string citation;
+  std::string law;
+  std::vector<ParameterInfo> parameters;
+};
+
+/// Parameters of one block of W lanes: p[j][lane]. Kernels run with W = kLanes; W = 1 gives the plain
+/// scalar loop of the same law, the reference `dampbench bench` compares against.
+template <int D, int W = kLanes>
+struct LaneParams {
+  alignas(64) double p[D][W];
+};
+
+/// Rows of a law's lane block: its kParams parameters, then kLaneInvariants rows a law may add for
+/// per-candidate constants (1/(c0 + c1), log k_r, ...) that `Law::lane_invariants(p)` fills once per
+/// block, so the time loop does not redo a division or a log at every sample and RK4 stage.
+template <class Law>
+constexpr int lane_rows() {
+  if constexpr (requires { Law::kLaneInvariants; }) return Law::kParams + Law::kLaneInvariants;
+  else return Law::kParams;
+}
+template <class Law, int W>
+using LawLanes = LaneParams<lane_rows<Law>(), W>;
+
+template <class Law, int W>
+void fill_lane_invariants(LawLanes<Law, W>& lanes) {
+  if constexpr (requires { Law::lane_invariants(lanes); }) Law::lane_invariants(lanes);
+}
+
+/// Copies candidates [first, first + count) into a lane block; lanes past count repeat the first one.
+template <class Law, int W = kLanes>
+LawLanes<Law, W> gather_lanes(const CandidateBatch& batch, int first, int count) {
+  LawLanes<Law, W> lanes;
+  for (int j = 0; j < Law::kParams; ++j) {
+    const double* row = batch.param_row(j);
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
+  }
+  fill_lane_invariants<Law, W>(lanes);
+  return lanes;
+}
+
+/// One candidate in every lane (simulate).
+template <class Law, int W = kLanes>
+LawLanes<Law, W> broadcast_lanes(std::span<const double> params) {
+  LawLanes<Law, W> lanes;
+  for (int j = 0; j < Law::kParams; ++j)
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = params[j];
+  fill_lane_invariants<Law, W>(lanes);
+  return lanes;
+}
+
+/// The four metric sums of a block of W lanes, accumulated sample by sample.
+template <int W = kLanes>
+struct LaneSums {
+  alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {}, abs_mag[W] = {};
+
+  void add(const double* force, double measured, double w) {
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const double e = measured - force[l];
+      const double ae = std::fabs(e);
+      abs_w[l] += w * ae;
+      sq_w[l] += w * (e * e);
+      abs_e[l] += ae;
+      sq_e[l] += e * e;
+      abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(force[l]));
+    }
+  }
+  /// Writes the first `count` lanes; lanes flagged in `failed` get +inf sums (masked candidates).
+  void store(MetricSums* out, int count, const bool* failed = nullptr) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int l = 0; l < count; ++l)
+      out[l] = (failed && failed[l]) ? MetricSums{inf, inf, inf, inf, inf}
+                                     : MetricSums{abs_w[l], sq_w[l], abs_e[l], sq_e[l], abs_mag[l]};
+  }
+};
+
+/// A Model from a Law and a kernel template KernelT<Law, W>, which has:
+///   KernelT(const LawLanes<Law, W>&, const Signals&);
+///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
+///   const bool* failed() const;               lanes that blew up (or nullptr)
+///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
+/// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
+template <class Law, template <class, int> class KernelT>
+class KernelModel final : public Model {
+  using Kernel = KernelT<Law, kLanes>;
+
+  /// Metric sums of a block of W lanes (count ≤ W candidates).
+  template <int W>
+  static void run_block(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) {
+    KernelT<Law, W> kernel(gather_lanes<Law, W>(batch, first, count), data);
+    LaneSums<W> sums;
+    alignas(64) double f[W];
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      kernel.forces(k, f);
+      sums.add(f, data.F_N[k], data.w_trapz_s[k]);
+    }
+    sums.store(out, count, kernel.failed());
+  }
+
+ public:
+  [[nodiscard]] std::string_view id() const override { return Law::info().id; }
+  [[nodiscard]] std::string_view citation() const override { return Law::info().citation; }
+  [[nodiscard]] std::string_view law() const override { return Law::info().law; }
+  [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
+
+  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+                      MetricSums* out) const override {
+    run_block<kLanes>(batch, first, count, data, out);
+  }
+
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                       MetricSums* out) const override {
+    for (int i = 0; i < count; ++i) run_block<1>(batch, first + i, 1, data, out + i);
+  }
+
+  [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
+    Kernel kernel(broadcast_lanes<Law, kLanes>(params), data);
+    std::vector<double> force(data.size());
+    alignas(64) double f[kLanes];
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      kernel.forces(k, f);
+      force[k] = f[0];
+    }
+    if (kernel.failed() && kernel.failed()[0]) std::fill(force.begin(), force.end(), std::nan(""));
+    return force;
+  }
+
+  [[nodiscard]] std::vector<double> to_paper_units(std::span<const double> params) const override {
+    if constexpr (requires { Law::to_paper_units(params); }) return Law::to_paper_units(params);
+    else return Model::to_paper_units(params);
+  }
+
+  [[nodiscard]] std::optional<std::vector<double>> simulate_reference(std::span<const double> params,
+                                                                      const Signals& data) const override {
+    if constexpr (requires { Kernel::reference(params, data); }) return Kernel::reference(params, data);
+    else return std::nullopt;
+  }
+};
+
+}  // namespace dampbench

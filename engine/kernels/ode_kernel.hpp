@@ -1,0 +1,157 @@
+#pragma once
+// Kernel for laws with internal states (Bouc–Wen, Spencer, generalized Maxwell, voltage filter): a
+// fixed-step classical Runge–Kutta scheme (RK4) with sub-steps between samples, vectorized over candidate
+// lanes (DESIGN.md, "Performance principles"); SUNDIALS CVODE (BDF, rtol 1e-10) is the reference.
+//
+// Inputs between samples: x and v are interpolated linearly (the record is all we know); both this
+// kernel and the CVODE reference see the same piecewise-linear inputs, so their difference is the
+// integration error alone. States start at zero at the first sample (MODELS.md).
+//
+// Sub-step rule (from the record only, the same for every lane): on the interval [t_k, t_k+1] the
+// number of RK4 sub-steps is ceil(dt·max|v| / (ΔZ / Law::kSubstepsPerStroke)), at least 1: a sub-step
+// never moves the piston more than 1/kSubstepsPerStroke of the peak-to-peak stroke ΔZ. Hysteretic
+// states change over a fraction of the stroke, whatever the sampling rate, so the rule ties the step
+// to the motion rather than to the clock.
+//
+// Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
+// marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
+//
+// A Law provides:
+//   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
+//   static const ModelInfo& info();
+//   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
+//   template <class P, class Y, class DY>
+//   static void rhs(const P&, int lane, const Context&, double x, double v, const Y& y, DY&& dydt);
+//   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
+//   optional: kLaneInvariants and lane_invariants(p), per-candidate constants (engine/kernels/lane_kernel.hpp)
+// where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine/kernels/lane_kernel.hpp"
+#include "engine/kernels/cvode_integrator.hpp"
+
+namespace dampbench {
+
+/// RK4 sub-steps on the sample interval [k−1, k] by the rule above.
+inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke) {
+  const double dt = data.t_s[k] - data.t_s[k - 1];
+  if (data.displacement_ptp <= 0) return 1;
+  const double n = std::ceil(dt * data.velocity_max_abs * substeps_per_stroke / data.displacement_ptp);
+  return std::max(1, static_cast<int>(std::min(n, 1e6)));
+}
+
+/// State j of one lane inside a [states][W] block: y[j] is block[j][lane]. Indexing through it keeps
+/// the lane loop free of private arrays, which GCC's vectorizer cannot handle in `omp simd` loops.
+template <int W>
+struct LaneState {
+  double* base;
+  double& operator[](int j) const { return base[j * W]; }
+};
+
+template <class Law, int W>
+class OdeKernel {
+ public:
+  static constexpr int S = Law::kStates;
+  using State = LaneState<W>;
+
+  OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
+      : p_(p), data_(data), ctx_(Law::context(data)) {}
+
+  void forces(std::size_t k, double* f) {
+    if (k > 0) advance(k);
+    const double x = data_.x_m[k], v = data_.v_m_s[k];
+#pragma omp simd
+    for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, ctx_, x, v, State{&y_[0][l]});
+  }
+  [[nodiscard]] const bool* failed() const { return failed_flags_; }
+
+  /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
+  static std::vector<double> reference(std::span<const double> params, const Signals& data) {
+    const auto P = broadcast_lanes<Law, 1>(params);
+    const auto ctx = Law::context(data);
+    std::size_t interval = 0;  // last interval used; times only move forward within one CVODE call
+    auto input = [&](double t, double& x, double& v) {
+      while (interval + 2 < data.size() && t > data.t_s[interval + 1]) ++interval;
+      while (interval > 0 && t < data.t_s[interval]) --interval;
+      const double t0 = data.t_s[interval], t1 = data.t_s[interval + 1];
+      const double th = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+      x = data.x_m[interval] + th * (data.x_m[interval + 1] - data.x_m[interval]);
+      v = data.v_m_s[interval] + th * (data.v_m_s[interval + 1] - data.v_m_s[interval]);
+    };
+    const auto states = integrate_cvode(
+        [&](double t, std::span<const double> y, std::span<double> dydt) {
+          double x, v;
+          input(t, x, v);
+          Law::rhs(P, 0, ctx, x, v, y.data(), dydt.data());
+        },
+        std::vector<double>(S, 0.0), data.t_s, {1e-10, 1e-12, 1000000});
+    std::vector<double> force(data.size());
+    for (std::size_t k = 0; k < data.size(); ++k)
+      force[k] = Law::force(P, 0, ctx, data.x_m[k], data.v_m_s[k], states[k].data());
+    return force;
+  }
+
+ private:
+  /// Integrates every lane from sample k−1 to sample k.
+  void advance(std::size_t k) {
+    const int n = ode_substeps(data_, k, Law::kSubstepsPerStroke);
+    const double h = (data_.t_s[k] - data_.t_s[k - 1]) / n;
+    const double x0 = data_.x_m[k - 1], dx = data_.x_m[k] - x0;
+    const double v0 = data_.v_m_s[k - 1], dv = data_.v_m_s[k] - v0;
+    for (int i = 0; i < n; ++i) {
+      const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
+      step(h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv);
+    }
+    constexpr double kBlowUp = 1e30;
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      double bad = 0.0;  // counts non-finite or huge states; doubles (not bools) keep the loop vectorized
+      for (int j = 0; j < S; ++j) bad += static_cast<double>(!(std::fabs(y_[j][l]) < kBlowUp));
+      failed_[l] += bad;
+      for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
+    }
+    for (int l = 0; l < W; ++l) failed_flags_[l] = failed_[l] > 0.0;
+  }
+
+  /// One RK4 step of size h with inputs at the step's start (xa, va), middle (xm, vm) and end (xb, vb).
+  /// One lane loop per stage: the lanes of a stage are independent, so the vector calls of neighbouring
+  /// lane groups (log, exp of |z|^n) overlap in the CPU instead of waiting on the previous stage's result.
+  void step(double h, double xa, double va, double xm, double vm, double xb, double vb) {
+#pragma omp simd
+    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, xa, va, State{&y_[0][l]}, State{&k_[0][0][l]});
+    stage(0.5 * h, xm, vm, 0, 1);
+    stage(0.5 * h, xm, vm, 1, 2);
+    stage(h, xb, vb, 2, 3);
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const State y{&y_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
+      for (int j = 0; j < S; ++j) y[j] = y[j] + (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+    }
+  }
+
+  /// RK4 stage: slopes k[to] at y + a·k[from], inputs (x, v).
+  void stage(double a, double x, double v, int from, int to) {
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
+      for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
+      Law::rhs(p_, l, ctx_, x, v, t, State{&k_[to][0][l]});
+    }
+  }
+
+  LawLanes<Law, W> p_;
+  const Signals& data_;
+  typename Law::Context ctx_;
+  alignas(64) double y_[S][W] = {};
+  alignas(64) double t_[S][W] = {};      // RK4 stage input
+  alignas(64) double k_[4][S][W] = {};   // RK4 stage slopes
+  alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up
+  bool failed_flags_[W] = {};
+};
+
+template <class Law>
+using OdeModel = KernelModel<Law, OdeKernel>;
+
+}  // namespace dampbench

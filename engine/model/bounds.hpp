@@ -1,0 +1,25 @@
+#pragma once
+// Search bounds of a model's parameters: defaults from the model, overridden by name (--bounds, sweep files).
+#include <string_view>
+#include <vector>
+
+#include "engine/model/model.hpp"
+
+namespace dampbench {
+
+struct Bounds {
+  std::vector<double> lower, upper;
+  [[nodiscard]] int dim() const { return static_cast<int>(lower.size()); }
+};
+
+/// The model's default bounds.
+Bounds default_bounds(const Model& model);
+
+/// Overrides bounds from "name=lo:hi,name=lo:hi" (SI). Throws InputError naming `option` for an unknown
+/// parameter, a malformed range, or lower > upper ("--bounds C: lower bound 5 is greater than upper bound 1").
+void override_bounds(Bounds& bounds, const Model& model, std::string_view text, std::string_view option = "--bounds");
+
+/// Checks finite values and lower ≤ upper for every parameter (messages name the parameter).
+void validate_bounds(const Bounds& bounds, const Model& model, std::string_view option = "--bounds");
+
+}  // namespace dampbench

@@ -1,0 +1,69 @@
+#pragma once
+// The model interface (DESIGN.md, data flow): a model names its parameters with SI units and default
+// bounds, cites its paper and equation, and evaluates a block of candidates at once.
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/model/batch.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/record/signals.hpp"
+
+namespace dampbench {
+
+struct ParameterInfo {
+  std::string name;        ///< ASCII name from MODELS.md (the command-line contract)
+  std::string unit;        ///< SI unit of the value the engine uses
+  double lower = 0;        ///< default bounds in SI
+  double upper = 0;
+  std::string paper_unit;  ///< unit of the paper's tables (see Model::to_paper_units)
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  [[nodiscard]] virtual std::string_view id() const = 0;
+  /// Paper key and equation, e.g. "fvd eq. 5".
+  [[nodiscard]] virtual std::string_view citation() const = 0;
+  /// The force law in one line of plain text.
+  [[nodiscard]] virtual std::string_view law() const = 0;
+  [[nodiscard]] virtual std::span<const ParameterInfo> parameters() const = 0;
+
+  /// Metric sums of candidates [first, first + count) of `batch` (count ≤ kLanes) against data.F_N.
+  /// Never throws; a candidate whose force is NaN or Inf ends with non-finite sums (→ +inf metric).
+  virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+                              MetricSums* out) const = 0;
+
+  /// The same sums computed by a plain scalar loop, one candidate at a time (the reference `dampbench
+  /// bench` measures the lane kernels against). Default: evaluate_block.
+  virtual void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+                               MetricSums* out) const {
+    evaluate_block(batch, first, count, data, out);
+  }
+
+  /// Force of one candidate at every sample, computed by the same kernel as evaluate_block, so the
+  /// bits are those the batch path sees.
+  [[nodiscard]] virtual std::vector<double> simulate(std::span<const double> params, const Signals& data) const = 0;
+
+  /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
+  /// with internal states; nullopt for algebraic models, whose force is exact.
+  [[nodiscard]] virtual std::optional<std::vector<double>> simulate_reference(std::span<const double> /*params*/,
+                                                                              const Signals& /*data*/) const {
+    return std::nullopt;
+  }
+
+  /// Values in the paper's table units (ParameterInfo::paper_unit); may depend on other parameters
+  /// (fvd's C is in kN/(mm/s)^α). Default: unchanged.
+  [[nodiscard]] virtual std::vector<double> to_paper_units(std::span<const double> params) const {
+    return {params.begin(), params.end()};
+  }
+
+  [[nodiscard]] int dim() const { return static_cast<int>(parameters().size()); }
+  /// Index of a parameter; throws InputError naming the model and its parameters.
+  [[nodiscard]] int parameter_index(std::string_view name) const;
+};
+
+}  // namespace dampbench

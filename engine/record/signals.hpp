@@ -1,0 +1,41 @@
+#pragma once
+// A dataset prepared for the kernels: the signals, trapezoid weights and the force statistics that
+// normalize the metrics, computed once per dataset and shared by every candidate.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/record/dataset.hpp"
+
+namespace dampbench {
+
+struct Signals {
+  std::string name;
+  std::vector<double> t_s, x_m, v_m_s, a_m_s2;
+  std::vector<double> F_N;        ///< measured force; empty when only the input is known (simulate)
+  std::vector<double> w_trapz_s;  ///< trapezoid-rule weights: ∫ g dt ≈ Σ w_k g_k
+  /// Per-sample invariants of the power laws, computed once here instead of once per lane block:
+  /// sgn(x), sgn(v) and log|x|, log|v| (clamped, engine/common/vector_math.hpp) so that |v|^α = exp(α·log|v|)
+  /// costs the lanes one vector exp. A scalar log per sample and block was 19 % of fvd.gv_linear_elastic.
+  std::vector<double> sgn_x, sgn_v, log_abs_x, log_abs_v;
+  double duration_s = 0;          ///< t_end − t_start
+  double force_std_N = 0;         ///< population standard deviation of the measured force, σ(p_m) of fvd eq. 7
+  double force_max_abs_N = 0;     ///< max |F|, normalizes nrmse
+  double force_sum_sq = 0;        ///< Σ F² [N²], normalizes mfm eq. 12
+  double velocity_max_abs = 0;    ///< max |v| [m/s] (ΔŻ of fdsp eq. 15)
+  double displacement_ptp = 0;    ///< max x − min x [m] (ΔZ of fdsp eq. 15)
+  /// fdsp eq. 15: ω = ΔŻ/(π·ΔZ), the excitation frequency [Hz] for a sinusoid, estimated from the record.
+  double excitation_freq_hz = 0;
+  std::map<std::string, double> operating;
+  /// Variables parameter laws may use (engine/model/parameter_law.hpp): `operating`, plus amp (ΔZ/2) and freq
+  /// (eq. 15 estimate) from the signals when the dataset does not state them.
+  std::map<std::string, double> law_variables;
+
+  [[nodiscard]] std::size_t size() const { return t_s.size(); }
+  [[nodiscard]] bool has_force() const { return !F_N.empty(); }
+};
+
+/// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).
+Signals prepare_signals(const Dataset& data);
+
+}  // namespace dampbench
