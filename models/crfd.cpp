@@ -6,8 +6,8 @@
 //   crfd.maxwell         eqs. 7.3–7.4 generalized Maxwell (spring and dashpot in series)  ODE in θ_k
 #include <cmath>
 
-#include "engine/algebraic_kernel.hpp"
-#include "engine/ode_kernel.hpp"
+#include "engine/kernels/algebraic_kernel.hpp"
+#include "engine/kernels/ode_kernel.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::crfd {

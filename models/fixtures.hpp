@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/law_model.hpp"
+#include "engine/model/law_model.hpp"
 
 namespace dampbench {
 

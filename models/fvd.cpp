@@ -6,7 +6,7 @@
 // produced by to_paper_units. Default bounds cover a 750 kN device (Table 1: 750 kN at 460 mm/s).
 #include <cmath>
 
-#include "engine/algebraic_kernel.hpp"
+#include "engine/kernels/algebraic_kernel.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::fvd {

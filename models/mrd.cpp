@@ -11,9 +11,9 @@
 
 #include <tuple>
 
-#include "engine/algebraic_kernel.hpp"
-#include "engine/law_model.hpp"
-#include "engine/ode_kernel.hpp"
+#include "engine/kernels/algebraic_kernel.hpp"
+#include "engine/model/law_model.hpp"
+#include "engine/kernels/ode_kernel.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::mrd {

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
 
 namespace dampbench {
 namespace {

@@ -5,7 +5,7 @@
 // entry never changes another entry's results.
 //
 // Per optimizer:
-//   best, worst, mean, std   of the runs' best metric values (engine/statistics.hpp: +inf if any run failed);
+//   best, worst, mean, std   of the runs' best metric values (engine/common/statistics.hpp: +inf if any run failed);
 //   success rate             runs with best ≤ b + success_tolerance·|b|, b the best value found by any run of
 //                            any optimizer in the comparison (default tolerance 0.01: "within 1 % of the best");
 //   evaluations to target    per run, the evaluations at the first point of its convergence trace whose
@@ -28,9 +28,9 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/identification.hpp"
-#include "engine/statistics.hpp"
-#include "engine/table.hpp"
+#include "engine/identification/identification.hpp"
+#include "engine/common/statistics.hpp"
+#include "engine/common/table.hpp"
 #include "optimizers/registry.hpp"
 
 namespace dampbench {

@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
 
 namespace dampbench {
 namespace {

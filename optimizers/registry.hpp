@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/optimizer.hpp"
+#include "engine/identification/optimizer.hpp"
 #include "optimizers/de/de.hpp"
 #include "optimizers/ga/aga.hpp"
 #include "optimizers/ga/ga.hpp"

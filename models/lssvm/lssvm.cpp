@@ -9,9 +9,9 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/key_values.hpp"
-#include "engine/vector_math.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
+#include "engine/common/vector_math.hpp"
 
 namespace dampbench::lssvm {
 

@@ -33,7 +33,7 @@
 
 #include <Eigen/Dense>
 
-#include "engine/dataset.hpp"
+#include "engine/record/dataset.hpp"
 
 namespace dampbench::lssvm {
 
@@ -183,7 +183,7 @@ struct ErrorMetrics {
   double max_abs = 0;  ///< max|e| [N] (the paper's "maximum error")
   double max_rel = 0;  ///< max|e| / max|F_measured|: the paper's "maximum relative error" read relative to the
                        ///< force amplitude (|e_i|/|F_i| point by point is unbounded where F crosses zero)
-  double nrmse = 0;    ///< sqrt(mse) / max|F_measured|, as engine/metrics.hpp
+  double nrmse = 0;    ///< sqrt(mse) / max|F_measured|, as engine/model/metrics.hpp
   std::size_t samples = 0;
 };
 

@@ -8,8 +8,8 @@
 #include <Eigen/Jacobi>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/vector_math.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/vector_math.hpp"
 #include "models/lssvm/lssvm.hpp"
 
 namespace dampbench::lssvm {

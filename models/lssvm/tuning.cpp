@@ -10,9 +10,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
-#include "engine/batch.hpp"
-#include "engine/error.hpp"
-#include "engine/random.hpp"
+#include "engine/model/batch.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 #include "models/lssvm/lssvm.hpp"
 #include "optimizers/registry.hpp"
 

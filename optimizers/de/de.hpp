@@ -23,7 +23,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/optimizer.hpp"
+#include "engine/identification/optimizer.hpp"
 
 namespace dampbench {
 

@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 
 namespace dampbench {
 

@@ -32,8 +32,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/optimizer.hpp"
-#include "engine/random.hpp"
+#include "engine/identification/optimizer.hpp"
+#include "engine/common/random.hpp"
 
 namespace dampbench {
 

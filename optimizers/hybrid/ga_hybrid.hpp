@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/optimizer.hpp"
+#include "engine/identification/optimizer.hpp"
 #include "optimizers/ga/ga.hpp"
 
 namespace dampbench {

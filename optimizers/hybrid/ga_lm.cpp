@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
+#include "engine/common/error.hpp"
 
 namespace dampbench {
 

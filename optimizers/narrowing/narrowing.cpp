@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "engine/error.hpp"
-#include "engine/random.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 
 namespace dampbench {
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/identification.hpp"
+#include "engine/identification/identification.hpp"
 #include "optimizers/registry.hpp"
 
 namespace dampbench {

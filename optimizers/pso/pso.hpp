@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/optimizer.hpp"
+#include "engine/identification/optimizer.hpp"
 
 namespace dampbench {
 
