@@ -148,19 +148,8 @@ namespace {
 
 /// f at a normalized regressor x; scratch holds N doubles.
 double evaluate(const Eigen::MatrixXd& X, const Coefficients& coef, double sigma, const double* x, double* scratch) {
-  const Eigen::Index n = X.cols(), dim = X.rows();
-  const double inv_sigma2 = 1.0 / (sigma * sigma);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const double* xj = X.col(j).data();
-    double s = 0;
-    for (Eigen::Index k = 0; k < dim; ++k) {
-      const double d = xj[k] - x[k];
-      s += d * d;
-    }
-    scratch[j] = -s * inv_sigma2;
-  }
-#pragma omp simd
-  for (Eigen::Index j = 0; j < n; ++j) scratch[j] = std::exp(scratch[j]);
+  const Eigen::Index n = X.cols();
+  rbf_kernel_column(X, x, 1.0 / (sigma * sigma), scratch, n);
   double f = 0;
   for (Eigen::Index j = 0; j < n; ++j) f += coef.alpha[j] * scratch[j];
   return f + coef.b;

@@ -92,6 +92,8 @@ struct Normalizer {
 Eigen::MatrixXd rbf_kernel(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double sigma);
 /// The symmetric N × N kernel matrix of the columns of X (exact zero distance on the diagonal: K_ii = 1).
 Eigen::MatrixXd rbf_kernel(const Eigen::MatrixXd& X, double sigma);
+/// exp(−‖A_i − b‖² · inv_sigma2) for the columns i < count of A, into out[0 .. count): one kernel row.
+void rbf_kernel_column(const Eigen::MatrixXd& A, const double* b, double inv_sigma2, double* out, Eigen::Index count);
 
 /// Coefficients of f(x) = Σ α_j K(x_j, x) + b.
 struct Coefficients {

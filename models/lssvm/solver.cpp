@@ -29,21 +29,6 @@ void check_system(const Eigen::MatrixXd& K, const Eigen::VectorXd& y) {
     throw InputError(fmt::format("lssvm: kernel matrix is {}x{} but there are {} targets", K.rows(), K.cols(), y.size()));
 }
 
-/// exp(−dist²/σ²) of column j of B against every column of A, into out[0 .. M).
-void kernel_column(const Eigen::MatrixXd& A, const double* b, double inv_sigma2, double* out, Eigen::Index rows_limit) {
-  const Eigen::Index dim = A.rows();
-  for (Eigen::Index i = 0; i < rows_limit; ++i) {
-    const double* a = A.col(i).data();
-    double s = 0;
-    for (Eigen::Index k = 0; k < dim; ++k) {
-      const double d = a[k] - b[k];
-      s += d * d;
-    }
-    out[i] = -s * inv_sigma2;
-  }
-#pragma omp simd
-  for (Eigen::Index i = 0; i < rows_limit; ++i) out[i] = std::exp(out[i]);
-}
 
 /// One implicit symmetric QR step with the Wilkinson shift on the unreduced block [start, end] of the
 /// tridiagonal (diag, sub), applying every rotation G_k on the right of W (W ← W·G_k). Same arithmetic as
@@ -111,13 +96,28 @@ bool symmetric_tridiagonal_qr(Eigen::VectorXd& diag, Eigen::VectorXd& sub, Eigen
 
 }  // namespace
 
+void rbf_kernel_column(const Eigen::MatrixXd& A, const double* b, double inv_sigma2, double* out, Eigen::Index count) {
+  const Eigen::Index dim = A.rows();
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const double* a = A.col(i).data();
+    double s = 0;
+    for (Eigen::Index k = 0; k < dim; ++k) {
+      const double d = a[k] - b[k];
+      s += d * d;
+    }
+    out[i] = -s * inv_sigma2;
+  }
+#pragma omp simd
+  for (Eigen::Index i = 0; i < count; ++i) out[i] = std::exp(out[i]);
+}
+
 Eigen::MatrixXd rbf_kernel(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double sigma) {
   check_sigma(sigma);
   if (A.rows() != B.rows())
     throw InputError(fmt::format("lssvm: regressors of length {} and {} in one kernel", A.rows(), B.rows()));
   const double inv_sigma2 = 1.0 / (sigma * sigma);
   Eigen::MatrixXd K(A.cols(), B.cols());
-  for (Eigen::Index j = 0; j < B.cols(); ++j) kernel_column(A, B.col(j).data(), inv_sigma2, K.col(j).data(), A.cols());
+  for (Eigen::Index j = 0; j < B.cols(); ++j) rbf_kernel_column(A, B.col(j).data(), inv_sigma2, K.col(j).data(), A.cols());
   return K;
 }
 
@@ -128,7 +128,7 @@ Eigen::MatrixXd rbf_kernel(const Eigen::MatrixXd& X, double sigma) {
   Eigen::MatrixXd K(n, n);
   // Upper triangle column by column (rows 0 .. j), mirrored: K is exactly symmetric with K_jj = 1.
   for (Eigen::Index j = 0; j < n; ++j) {
-    kernel_column(X, X.col(j).data(), inv_sigma2, K.col(j).data(), j);
+    rbf_kernel_column(X, X.col(j).data(), inv_sigma2, K.col(j).data(), j);
     K(j, j) = 1.0;
   }
   for (Eigen::Index j = 0; j < n; ++j)

@@ -123,6 +123,12 @@ void GaLm::refine(const LocalProblem& problem) {
       for (Eigen::Index b = 0; b < k; ++b) Af(a, b) = A(free[a], free[b]);
     }
 
+    // A refused step raises the damping; true when too many steps in a row were refused.
+    const auto reject_step = [&] {
+      lambda *= nu;
+      nu *= 2;
+      return ++rejected >= kMaxRejectedSteps || !std::isfinite(lambda);
+    };
     for (;;) {  // until a step is accepted or a stopping rule holds
       Eigen::MatrixXd M = Af;
       for (Eigen::Index a = 0; a < k; ++a) M(a, a) += lambda * std::max(Af(a, a), diag_floor);
@@ -151,9 +157,7 @@ void GaLm::refine(const LocalProblem& problem) {
         }
       }
       if (!curvature_ok) {
-        lambda *= nu;
-        nu *= 2;
-        if (++rejected >= kMaxRejectedSteps || !std::isfinite(lambda)) {
+        if (reject_step()) {
           report_.status = "no progress";
           stop = true;
           break;
@@ -184,9 +188,7 @@ void GaLm::refine(const LocalProblem& problem) {
         }
         break;
       }
-      lambda *= nu;
-      nu *= 2;
-      if (++rejected >= kMaxRejectedSteps || !std::isfinite(lambda)) {
+      if (reject_step()) {
         report_.status = "no progress";
         stop = true;
         break;

@@ -123,9 +123,11 @@ struct SqpContext {
   [[nodiscard]] double value() const { return std::isfinite(f) ? f : penalty; }
 };
 
-double sqp_objective(unsigned n, const double* y, double* grad, void* data) {
+/// Evaluates the context at y (with its gradient when NLopt asks for one) and returns value(c); an exception
+/// stops NLopt, is kept for rethrowing after it, and answers the penalty.
+template <class Value>
+double sqp_callback(unsigned n, const double* y, double* grad, void* data, Value value) {
   auto& c = *static_cast<SqpContext*>(data);
-  ++c.calls;
   try {
     c.evaluate_at(y, grad != nullptr);
   } catch (...) {
@@ -135,21 +137,16 @@ double sqp_objective(unsigned n, const double* y, double* grad, void* data) {
     return c.penalty;
   }
   if (grad) std::copy(c.grad.begin(), c.grad.end(), grad);
-  return c.value();
+  return value(c);
+}
+
+double sqp_objective(unsigned n, const double* y, double* grad, void* data) {
+  ++static_cast<SqpContext*>(data)->calls;
+  return sqp_callback(n, y, grad, data, [](const SqpContext& c) { return c.value(); });
 }
 
 double sqp_constraint(unsigned n, const double* y, double* grad, void* data) {
-  auto& c = *static_cast<SqpContext*>(data);
-  try {
-    c.evaluate_at(y, grad != nullptr);
-  } catch (...) {
-    c.error = std::current_exception();
-    nlopt_force_stop(c.opt);
-    if (grad) std::fill(grad, grad + n, 0.0);
-    return c.penalty;
-  }
-  if (grad) std::copy(c.grad.begin(), c.grad.end(), grad);
-  return c.value() - c.constraint;
+  return sqp_callback(n, y, grad, data, [](const SqpContext& c) { return c.value() - c.constraint; });
 }
 
 }  // namespace
