@@ -13,6 +13,7 @@
 #include "engine/model/bounds.hpp"
 #include "engine/common/error.hpp"
 #include "engine/record/excitation.hpp"
+#include "engine/identification/convergence.hpp"
 #include "engine/identification/identification.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/model/law_model.hpp"
@@ -228,6 +229,8 @@ int fit_command(const FitOptions& o) {
   const Summary s = summarize(values);
   const auto params = model.parameters();
   const double rate = id.candidate_samples / id.wall_time_s;
+  const Convergence convergence = assess_convergence(id);
+  const ConvergenceRule rule;
 
   if (o.format == "json") {
     nlohmann::ordered_json j;
@@ -246,6 +249,23 @@ int fit_command(const FitOptions& o) {
     j["metrics"] = metrics;
     j["runs"] = {{"count", s.count}, {"best", json_number(s.min)}, {"worst", json_number(s.max)},
                  {"mean", json_number(s.mean)}, {"std", json_number(s.std)}};
+    j["convergence"] = {{"converged", convergence.converged},
+                        {"verdict", convergence.verdict()},
+                        {"runs_agree", convergence.runs_agree},
+                        {"stalled", convergence.stalled},
+                        {"median_above_best_rel", json_number(convergence.median_above_best_rel)},
+                        {"worst_above_best_rel", json_number(convergence.worst_above_best_rel)},
+                        {"late_gain_rel", json_number(convergence.late_gain_rel)},
+                        {"rule", {{"agree_rel", rule.agree_rel}, {"late_gain_rel", rule.late_gain_rel},
+                                  {"late_fraction", rule.late_fraction}, {"abs_tol", rule.abs_tol}}}};
+    // Best-so-far history of every run: [evaluations, value] where it improved, and at its end.
+    nlohmann::ordered_json history = nlohmann::ordered_json::array();
+    for (const RunResult& r : id.runs) {
+      nlohmann::ordered_json points = nlohmann::ordered_json::array();
+      for (const TracePoint& p : improvement_points(r)) points.push_back({p.evaluations, json_number(p.value)});
+      history.push_back(points);
+    }
+    j["history"] = history;
     j["evaluations"] = evaluations;
     j["wall_time_s"] = id.wall_time_s;
     j["candidate_samples_per_s"] = rate;
@@ -264,6 +284,12 @@ int fit_command(const FitOptions& o) {
   Table r{"runs", fmt::format("{} over {} runs", o.metric, s.count), {"best", "worst", "mean", "std"},
           {{format_number(s.min), format_number(s.max), format_number(s.mean), format_number(s.std)}}};
   std::cout << p.to_markdown() << "\n" << m.to_markdown() << "\n" << r.to_markdown() << "\n";
+  std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
+                           "improved {:.3g} % over its last {:.0f} % of evaluations{}\n",
+                           convergence.converged ? "Converged" : "NOT CONVERGED (" + convergence.verdict() + ")",
+                           100 * convergence.median_above_best_rel, 100 * convergence.worst_above_best_rel,
+                           100 * convergence.late_gain_rel, 100 * rule.late_fraction,
+                           convergence.converged ? "" : ": do not trust this fit; raise --runs, --pop or --iters");
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", evaluations,
                            samples, id.wall_time_s, rate);
   return 0;

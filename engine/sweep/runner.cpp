@@ -14,25 +14,11 @@
 #include "engine/common/error.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/evaluation/sensitivity.hpp"
+#include "engine/identification/convergence.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
 
 namespace dampbench::sweep {
-namespace {
-
-/// The trace points where the best-so-far improved, the last iteration, and a final point for a local
-/// refinement that improved on the population phase.
-std::vector<TracePoint> compress_trace(const RunResult& run) {
-  std::vector<TracePoint> t;
-  for (std::size_t i = 0; i < run.trace.size(); ++i)
-    if (i == 0 || run.trace[i] < run.trace[i - 1] || i + 1 == run.trace.size())
-      t.push_back({run.trace_evaluations[i], run.trace[i]});
-  if (!t.empty() && (run.best_value < t.back().value || run.evaluations != t.back().evaluations))
-    t.push_back({run.evaluations, std::min(run.best_value, t.back().value)});
-  return t;
-}
-
-}  // namespace
 
 GroupRecord run_group(const Plan& plan, long long index) {
   const GroupRef g = plan.group(index);
@@ -82,7 +68,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
       const RunResult& run = id.runs[r];
       rec.evaluations += run.evaluations;
       rec.run_results.push_back({r, run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
-                                 compress_trace(run)});
+                                 improvement_points(run)});
       best.set_candidate(r, run.best_params);
     }
 

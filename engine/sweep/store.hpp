@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/identification/convergence.hpp"
 #include "engine/model/metrics.hpp"
 
 struct sqlite3;
@@ -77,11 +78,6 @@ struct StoreHeader {
   [[nodiscard]] int dataset(int part, int i) const;
   [[nodiscard]] int fitset(int part, int split, int i) const;
   [[nodiscard]] std::string split_name(int part, int i) const;
-};
-
-struct TracePoint {
-  long long evaluations = 0;
-  double value = 0;  ///< best-so-far metric after `evaluations`
 };
 
 struct RunRecord {

@@ -1,0 +1,77 @@
+#include "engine/identification/convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dampbench {
+
+std::vector<TracePoint> improvement_points(const RunResult& run) {
+  std::vector<TracePoint> t;
+  for (std::size_t i = 0; i < run.trace.size(); ++i)
+    if (i == 0 || run.trace[i] < run.trace[i - 1] || i + 1 == run.trace.size())
+      t.push_back({run.trace_evaluations[i], run.trace[i]});
+  if (!t.empty() && (run.best_value < t.back().value || run.evaluations != t.back().evaluations))
+    t.push_back({run.evaluations, std::min(run.best_value, t.back().value)});
+  return t;
+}
+
+std::string Convergence::verdict() const {
+  if (converged) return "converged";
+  if (all_failed) return "every run failed";
+  if (!runs_agree && !stalled) return "runs disagree, still improving";
+  return runs_agree ? "still improving" : "runs disagree";
+}
+
+namespace {
+
+/// The best-so-far value of a history after `evaluations` (+inf before its first point).
+double value_at(const std::vector<TracePoint>& trace, double evaluations) {
+  double v = std::numeric_limits<double>::infinity();
+  for (const TracePoint& p : trace) {
+    if (static_cast<double>(p.evaluations) > evaluations) break;
+    v = p.value;
+  }
+  return v;
+}
+
+}  // namespace
+
+Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule) {
+  Convergence c;
+  std::vector<double> values;
+  const RunHistory* best = nullptr;
+  for (const RunHistory& r : runs) {
+    values.push_back(std::isnan(r.best_value) ? std::numeric_limits<double>::infinity() : r.best_value);
+    if (!best || values.back() < best->best_value) best = &r;
+  }
+  if (!best || !std::isfinite(best->best_value)) {
+    c.median_above_best_rel = c.worst_above_best_rel = std::numeric_limits<double>::infinity();
+    c.all_failed = true;
+    return c;
+  }
+  std::sort(values.begin(), values.end());
+  const double b = values.front(), scale = std::abs(b);
+  // The median of an even count is the upper middle value: half of the runs must be within the tolerance.
+  const double median = values[values.size() / 2], worst = values.back();
+  const auto rel = [&](double above) { return scale > 0 ? above / scale : (above > 0 ? HUGE_VAL : 0.0); };
+  c.median_above_best_rel = rel(median - b);
+  c.worst_above_best_rel = rel(worst - b);
+  c.runs_agree = median - b <= rule.agree_rel * scale + rule.abs_tol;
+
+  const double total = best->trace.empty() ? 0.0 : static_cast<double>(best->trace.back().evaluations);
+  const double earlier = value_at(best->trace, total * (1 - rule.late_fraction));
+  const double gain = earlier - best->best_value;
+  c.late_gain_rel = rel(gain);
+  c.stalled = !best->trace.empty() && gain <= rule.late_gain_rel * scale + rule.abs_tol;
+  c.converged = c.runs_agree && c.stalled;
+  return c;
+}
+
+Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule) {
+  std::vector<RunHistory> runs;
+  for (const RunResult& r : id.runs) runs.push_back({r.best_value, improvement_points(r)});
+  return assess_convergence(runs, rule);
+}
+
+}  // namespace dampbench

@@ -1,0 +1,59 @@
+#pragma once
+// Convergence evidence of repeated identification runs (DESIGN.md "Evidence with every result"): do the
+// runs agree, and had the best one stopped improving? Printed by `fit`, stored and marked by sweeps.
+//
+//   runs agree  ⇔  median(best values) − best ≤ agree_rel·|best| + abs_tol
+//                  (at least half of the runs end within agree_rel of the best one)
+//   stalled     ⇔  value(E·(1 − late_fraction)) − best ≤ late_gain_rel·|best| + abs_tol
+//                  on the best run's best-so-far history, E its evaluations (it no longer improved in the
+//                  last fifth of its budget)
+//   converged   ⇔  runs agree and stalled
+// abs_tol keeps differences that no metric can show (noise-free synthetic fits reaching 1e-9 and 1e-8)
+// from counting as disagreement. A single run cannot show agreement: it counts as agreeing with itself,
+// and the verdict rests on stalling alone.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/identification/identification.hpp"
+
+namespace dampbench {
+
+/// One point of a best-so-far history.
+struct TracePoint {
+  long long evaluations = 0;
+  double value = 0;  ///< best-so-far metric after `evaluations`
+};
+
+/// A run's history reduced to the points where the best-so-far improved, the last iteration, and a final
+/// point for a local refinement that improved on the population phase (evaluations included).
+std::vector<TracePoint> improvement_points(const RunResult& run);
+
+struct ConvergenceRule {
+  double agree_rel = 0.02;      ///< median run within 2 % of the best
+  double late_gain_rel = 0.01;  ///< best improved by at most 1 % over the last fifth
+  double late_fraction = 0.2;
+  double abs_tol = 1e-9;        ///< in the metric's units
+};
+
+struct Convergence {
+  double median_above_best_rel = 0;  ///< (median − best)/|best| of the runs' best values
+  double worst_above_best_rel = 0;   ///< (worst − best)/|best|
+  double late_gain_rel = 0;          ///< the best run's improvement over its last fifth, relative to its best
+  bool runs_agree = false, stalled = false, converged = false;
+  bool all_failed = false;  ///< no run has a finite best value
+  /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
+  /// "every run failed".
+  [[nodiscard]] std::string verdict() const;
+};
+
+/// One run as the assessment sees it: its best value and its best-so-far history.
+struct RunHistory {
+  double best_value = 0;
+  std::vector<TracePoint> trace;
+};
+
+Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule = {});
+Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule = {});
+
+}  // namespace dampbench
