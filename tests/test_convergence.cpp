@@ -73,6 +73,10 @@ TEST(Convergence, FailedRunsAndEmptyInput) {
   EXPECT_FALSE(c.converged);
   EXPECT_EQ(c.verdict(), "every run failed");
   EXPECT_EQ(assess_convergence(std::vector<RunHistory>{}).verdict(), "every run failed");
+  // A store without traces cannot show stalling: said so, never counted as converged.
+  const std::vector<RunHistory> bare{{1.0, {}}, {1.0, {}}};
+  EXPECT_FALSE(assess_convergence(bare).converged);
+  EXPECT_EQ(assess_convergence(bare).verdict(), "no history");
   // Half of the runs failed: the median is +inf, so they do not agree.
   const std::vector<RunHistory> half{run(1.0), run(1.0), {kInf, {{1000, kInf}}}, {kInf, {{1000, kInf}}}};
   EXPECT_FALSE(assess_convergence(half).runs_agree);

@@ -262,6 +262,34 @@ TEST_F(SmallSweep, FailedTasksAreRecordedAndTheSweepCompletes) {
   EXPECT_NE(store.header().datasets[4].error.find("expected a number"), std::string::npos);  // c9 sorts last
 }
 
+TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
+  const fs::path dir = temp_dir();
+  write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
+  auto runs_csv = [&](int population, int iterations) {
+    write(dir / "s.toml", fmt::format(R"toml(name = "conv"
+runs = 6
+metric = "nrmse"
+models = ["fvd.generalized_viscous"]
+[optimizer]
+name = "de"
+population = {}
+iterations = {}
+[[datasets]]
+name = "c"
+glob = "{}/data/*.csv"
+)toml",
+                                      population, iterations, dir.string()));
+    const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    return run_dampbench(fmt::format("table {} --kind runs --format csv", (dir / "out" / "store.sqlite").string()));
+  };
+  const auto starved = runs_csv(8, 3), generous = runs_csv(30, 200);
+  EXPECT_NE(starved.output.find("Mean,Max,Min,Std,Runs,Converged"), std::string::npos) << starved.output;
+  EXPECT_NE(starved.output.find("† runs disagree"), std::string::npos) << starved.output;
+  EXPECT_NE(generous.output.find(",6,yes"), std::string::npos) << generous.output;
+  EXPECT_EQ(generous.output.find("†"), std::string::npos) << generous.output;
+}
+
 TEST(ProgressBar, Renders) {
   EXPECT_EQ(ProgressBar::render(25, 100, 1.5e6, 125, 10), "[###       ] 25/100 tasks  25%  1.5e+06 evals/s  ETA 2m05s");
   EXPECT_EQ(format_duration(3725), "1h02m");

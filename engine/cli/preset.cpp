@@ -63,10 +63,7 @@ int run_command(const RunOptions& options) {
     return 130;
   }
 
-  const bool traces = std::any_of(plan.spec().parts.begin(), plan.spec().parts.end(), [](const sweep::PartSpec& p) {
-    return std::any_of(p.tables.begin(), p.tables.end(), [](const sweep::TableSpec& t) { return t.kind == "runtime"; });
-  });
-  const sweep::StoreResults results(store, traces);
+  const sweep::StoreResults results(store);
   write_sweep_outputs(results, out_dir, {spec_path, store_path, summary}, &std::cout);
 
   double stored_cs = 0, stored_wall = 0;

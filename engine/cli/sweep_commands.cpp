@@ -84,7 +84,7 @@ int table_command(const TableOptions& o) {
     throw InputError(fmt::format("--role: expected fit or predict, got '{}'", o.role));
   if (!o.metric.empty()) (void)parse_metric(o.metric);
   const sweep::Store store = sweep::Store::open(o.store);
-  const sweep::StoreResults results(store, o.kind == "runtime" || o.kind == "sweep");
+  const sweep::StoreResults results(store);
   std::vector<sweep::Report> reports;
   for (int p = 0; p < results.part_count(); ++p) {
     std::vector<sweep::Report> part;

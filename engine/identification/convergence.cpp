@@ -19,6 +19,7 @@ std::vector<TracePoint> improvement_points(const RunResult& run) {
 std::string Convergence::verdict() const {
   if (converged) return "converged";
   if (all_failed) return "every run failed";
+  if (no_history) return runs_agree ? "no history" : "runs disagree, no history";
   if (!runs_agree && !stalled) return "runs disagree, still improving";
   return runs_agree ? "still improving" : "runs disagree";
 }
@@ -63,7 +64,8 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   const double earlier = value_at(best->trace, total * (1 - rule.late_fraction));
   const double gain = earlier - best->best_value;
   c.late_gain_rel = rel(gain);
-  c.stalled = !best->trace.empty() && gain <= rule.late_gain_rel * scale + rule.abs_tol;
+  c.no_history = best->trace.empty();
+  c.stalled = !c.no_history && gain <= rule.late_gain_rel * scale + rule.abs_tol;
   c.converged = c.runs_agree && c.stalled;
   return c;
 }

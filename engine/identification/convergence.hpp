@@ -41,9 +41,10 @@ struct Convergence {
   double worst_above_best_rel = 0;   ///< (worst − best)/|best|
   double late_gain_rel = 0;          ///< the best run's improvement over its last fifth, relative to its best
   bool runs_agree = false, stalled = false, converged = false;
-  bool all_failed = false;  ///< no run has a finite best value
+  bool all_failed = false;   ///< no run has a finite best value
+  bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
   /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
-  /// "every run failed".
+  /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed".
   [[nodiscard]] std::string verdict() const;
 };
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/common/error.hpp"
+#include "engine/identification/convergence.hpp"
 #include "engine/common/random.hpp"
 #include "engine/common/statistics.hpp"
 #include "engine/sweep/analysis.hpp"
@@ -23,9 +24,9 @@ std::vector<std::string> table_kinds() {
           "sensitivity", "ranksum", "bootstrap",   "runtime",  "failures", "overview"};
 }
 
-StoreResults::StoreResults(const Store& store, bool traces) : header(store.header()) {
+StoreResults::StoreResults(const Store& store) : header(store.header()) {
   GroupQuery q;
-  q.traces = traces;
+  q.traces = true;
   groups = store.groups(q);
   for (const auto& p : header.parts) {
     SpecOptions o;
@@ -184,11 +185,26 @@ std::vector<double> best_values(const GroupRecord& g) {
   return v;
 }
 
+/// Whether a group's runs converged (engine/identification/convergence.hpp), from its stored runs and traces.
+Convergence group_convergence(const GroupRecord& g) {
+  std::vector<RunHistory> runs;
+  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace});
+  return assess_convergence(runs);
+}
+
+constexpr const char* kUnconvergedMark = "†";
+constexpr const char* kUnconvergedNote =
+    "† not converged: the runs disagree (median run > 2 % above the best) or the best still improved by > 1 % in "
+    "the last fifth of its budget; raise runs, population or iterations before trusting it.";
+
 Report runs_table(const Context& c, const Series& s, std::string id, std::string title) {
-  Report r = c.report(std::move(id), std::move(title), {"Condition", "Mean", "Max", "Min", "Std", "Runs"});
+  Report r = c.report(std::move(id), std::move(title), {"Condition", "Mean", "Max", "Min", "Std", "Runs", "Converged"});
   for (const GroupRecord* g : s.groups) {
     const Summary x = summarize(best_values(*g));
-    r.rows.push_back({txt(c.label(*g)), num(x.mean), num(x.max), num(x.min), num(x.std), num(x.count)});
+    const Convergence conv = group_convergence(*g);
+    r.rows.push_back({txt(c.label(*g)), num(x.mean), num(x.max), num(x.min), num(x.std), num(x.count),
+                      txt(conv.converged ? "yes" : std::string(kUnconvergedMark) + " " + conv.verdict())});
+    if (!conv.converged) r.note = kUnconvergedNote;
   }
   return r;
 }
@@ -392,7 +408,7 @@ void errors_tables(const Context& c, std::vector<Report>& out) {
       }
     std::vector<double> sums(list.size(), 0);
     std::vector<int> counts(list.size(), 0);
-    bool averaged = false, predicted_any = false;
+    bool averaged = false, predicted_any = false, unconverged_any = false;
     for (int d : datasets) {
       if (!c.t.where.everything() && !c.matches(c.t.where, d)) continue;
       std::vector<Cell> row{txt(c.dataset(d).name)};
@@ -400,20 +416,23 @@ void errors_tables(const Context& c, std::vector<Report>& out) {
       for (std::size_t i = 0; i < list.size(); ++i) {
         // The fit value when the series fits this dataset, else the (mean) prediction of it.
         std::optional<double> value;
-        bool predicted = false;
+        bool predicted = false, unconverged = false;
         for (const bool role : {false, true}) {
           if (value || (role ? !predictions : !fits)) continue;
           double sum = 0;
           int n = 0;
+          bool all_converged = true;
           for (const GroupRecord* g : list[i].groups)
             if (auto v = dataset_value(c, *g, d, role, m)) {
               sum += *v;
               ++n;
+              all_converged &= group_convergence(*g).converged;
             }
           if (n > 0) {
             value = sum / n;
             predicted = role;
             averaged |= n > 1;
+            unconverged = !all_converged;
           }
         }
         if (!value) {
@@ -422,7 +441,8 @@ void errors_tables(const Context& c, std::vector<Report>& out) {
         }
         any = true;
         predicted_any |= predicted;
-        row.push_back({format_number(*value) + (predicted ? "*" : ""), *value});
+        row.push_back({format_number(*value) + (predicted ? "*" : "") + (unconverged ? kUnconvergedMark : ""), *value});
+        unconverged_any |= unconverged;
         sums[i] += *value;
         ++counts[i];
       }
@@ -436,6 +456,7 @@ void errors_tables(const Context& c, std::vector<Report>& out) {
     std::string note;
     if (predicted_any) note = "* predicted: the dataset was not fitted, the fit of other conditions was evaluated on it.";
     if (averaged) note += std::string(note.empty() ? "" : " ") + "A dataset predicted by several fits shows the mean over them.";
+    if (unconverged_any) note += std::string(note.empty() ? "" : " ") + kUnconvergedNote;
     r.note = note;
     out.push_back(std::move(r));
   }

@@ -50,11 +50,12 @@ struct Report {
   std::vector<std::vector<Cell>> rows;
 };
 
-/// Everything tables need, read once from a store: its header, groups (with runs; traces on request), the
+/// Everything tables need, read once from a store: its header, groups (with runs and their best-so-far
+/// traces, which the convergence marks and the runtime tables read), the
 /// sweep file's table requests per part, and the models rebuilt for paper units.
 class StoreResults {
  public:
-  explicit StoreResults(const Store& store, bool traces = false);
+  explicit StoreResults(const Store& store);
 
   const StoreHeader header;
   std::vector<GroupRecord> groups;
