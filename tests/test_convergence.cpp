@@ -55,8 +55,18 @@ TEST(Convergence, ABestStillImprovingLateIsFlagged) {
   // The best run is the first of the equal ones.
   EXPECT_NEAR(c.late_gain_rel, 4.0, 1e-12);
   // An improvement just before the last fifth does not count.
-  const std::vector<RunHistory> early{{1.0, {{10, 5.0}, {800, 1.0}, {1000, 1.0}}}};
+  const std::vector<RunHistory> early{{1.0, {{10, 5.0}, {800, 1.0}, {1000, 1.0}}}, run(1.0)};
   EXPECT_TRUE(assess_convergence(early).stalled);
+}
+
+TEST(Convergence, OneRunIsNeverCalledConverged) {
+  // The utfsm preset's single Spencer run: stuck at 0.22, stalled, but nothing shows it is the optimum.
+  const std::vector<RunHistory> one{run(0.22)};
+  const Convergence c = assess_convergence(one);
+  EXPECT_TRUE(c.stalled);
+  EXPECT_FALSE(c.runs_agree);
+  EXPECT_FALSE(c.converged);
+  EXPECT_EQ(c.verdict(), "one run");
 }
 
 TEST(Convergence, NoiseFreeFitsAgreeWithinTheAbsoluteTolerance) {

@@ -19,6 +19,7 @@ std::vector<TracePoint> improvement_points(const RunResult& run) {
 std::string Convergence::verdict() const {
   if (converged) return "converged";
   if (all_failed) return "every run failed";
+  if (single_run) return stalled ? "one run" : (no_history ? "one run, no history" : "one run, still improving");
   if (no_history) return runs_agree ? "no history" : "runs disagree, no history";
   if (!runs_agree && !stalled) return "runs disagree, still improving";
   return runs_agree ? "still improving" : "runs disagree";
@@ -58,7 +59,8 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   const auto rel = [&](double above) { return scale > 0 ? above / scale : (above > 0 ? HUGE_VAL : 0.0); };
   c.median_above_best_rel = rel(median - b);
   c.worst_above_best_rel = rel(worst - b);
-  c.runs_agree = median - b <= rule.agree_rel * scale + rule.abs_tol;
+  c.single_run = runs.size() == 1;
+  c.runs_agree = !c.single_run && median - b <= rule.agree_rel * scale + rule.abs_tol;
 
   const double total = best->trace.empty() ? 0.0 : static_cast<double>(best->trace.back().evaluations);
   const double earlier = value_at(best->trace, total * (1 - rule.late_fraction));

@@ -9,8 +9,8 @@
 //                  last fifth of its budget)
 //   converged   ⇔  runs agree and stalled
 // abs_tol keeps differences that no metric can show (noise-free synthetic fits reaching 1e-9 and 1e-8)
-// from counting as disagreement. A single run cannot show agreement: it counts as agreeing with itself,
-// and the verdict rests on stalling alone.
+// from counting as disagreement. A single run cannot show agreement (a run stuck in a local minimum
+// stalls too): it is never called converged, and its verdict says "one run".
 #include <span>
 #include <string>
 #include <vector>
@@ -43,8 +43,10 @@ struct Convergence {
   bool runs_agree = false, stalled = false, converged = false;
   bool all_failed = false;   ///< no run has a finite best value
   bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
+  bool single_run = false;   ///< one run: agreement cannot be shown
   /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
-  /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed".
+  /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed", and for a
+  /// single run "one run" or "one run, still improving".
   [[nodiscard]] std::string verdict() const;
 };
 
