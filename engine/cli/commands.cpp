@@ -14,6 +14,7 @@
 #include "engine/common/error.hpp"
 #include "engine/record/excitation.hpp"
 #include "engine/identification/convergence.hpp"
+#include "engine/identification/identifiability.hpp"
 #include "engine/identification/identification.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/model/law_model.hpp"
@@ -231,6 +232,7 @@ int fit_command(const FitOptions& o) {
   const double rate = id.candidate_samples / id.wall_time_s;
   const Convergence convergence = assess_convergence(id);
   const ConvergenceRule rule;
+  const Identifiability identifiability = assess_identifiability(model, data, bounds, best.best_params);
 
   if (o.format == "json") {
     nlohmann::ordered_json j;
@@ -266,6 +268,19 @@ int fit_command(const FitOptions& o) {
       history.push_back(points);
     }
     j["history"] = history;
+    nlohmann::ordered_json ident = nlohmann::ordered_json::object();
+    for (int i = 0; i < model.dim(); ++i)
+      ident[params[i].name] = {{"std_error", json_number(identifiability.std_error[i])},
+                               {"relative_error", json_number(identifiability.relative_error[i])},
+                               {"flags", identifiability.flags[i]}};
+    nlohmann::ordered_json corr = nlohmann::ordered_json::array();
+    for (const auto& row : identifiability.correlation) {
+      nlohmann::ordered_json r = nlohmann::ordered_json::array();
+      for (double c : row) r.push_back(nlohmann::ordered_json(json_number(c)));
+      corr.push_back(r);
+    }
+    j["identifiability"] = {{"identifiable", identifiability.all_identifiable()}, {"parameters", ident},
+                            {"correlation", corr}};
     j["evaluations"] = evaluations;
     j["wall_time_s"] = id.wall_time_s;
     j["candidate_samples_per_s"] = rate;
@@ -274,10 +289,16 @@ int fit_command(const FitOptions& o) {
   }
   const auto paper = model.to_paper_units(best.best_params);
   Table p{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, o.runs),
-          {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit"}, {}};
-  for (int i = 0; i < model.dim(); ++i)
+          {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit", "std. error (SI)", "rel. error",
+           "identifiable"},
+          {}};
+  for (int i = 0; i < model.dim(); ++i) {
+    std::string flags;
+    for (const auto& f : identifiability.flags[i]) flags += (flags.empty() ? "" : "; ") + f;
     p.rows.push_back({params[i].name, format_number(best.best_params[i]), params[i].unit, format_number(paper[i]),
-                      params[i].paper_unit});
+                      params[i].paper_unit, format_number(identifiability.std_error[i]),
+                      format_number(identifiability.relative_error[i]), flags.empty() ? "yes" : "NO: " + flags});
+  }
   Table m{"metrics", "Metrics of the best run", {"metric", "value"}, {}};
   for (int i = 0; i < kMetricCount; ++i)
     m.rows.push_back({std::string(metric_name(kAllMetrics[i])), format_number(best.best_metrics[i])});

@@ -29,6 +29,17 @@ Identification identify(const Model& model, const Signals& data, const Bounds& b
   return identify(model, std::vector<const Signals*>{&data}, bounds, make_optimizer, settings);
 }
 
+std::vector<double> scaled_residuals(const Model& model, std::span<const Signals* const> data,
+                                     std::span<const double> params) {
+  std::vector<double> r;
+  for (const Signals* d : data) {
+    const auto F = model.simulate(params, *d);
+    const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+    for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
+  }
+  return r;
+}
+
 namespace {
 
 /// The budget rule that stops a run now, or "" to go on.
@@ -50,14 +61,8 @@ class RunProblem final : public LocalProblem {
     evaluations_ += batch.count();
   }
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
-    std::vector<double> r;
-    for (const Signals* d : evaluator_.datasets()) {
-      const auto F = evaluator_.model().simulate(params, *d);
-      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
-      for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
-    }
     ++evaluations_;
-    return r;
+    return scaled_residuals(evaluator_.model(), evaluator_.datasets(), params);
   }
   [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
   [[nodiscard]] long long evaluations() const { return evaluations_; }

@@ -57,6 +57,11 @@ struct Identification {
   [[nodiscard]] int best_run() const;  ///< index of the run with the lowest best_value (first on ties)
 };
 
+/// Residuals F_model − F_measured of one candidate at every sample of every dataset, each dataset's residuals
+/// divided by sqrt(N_d)·max|F_d|, so that ‖r‖² = Σ_d nrmse_d² (local refinements, identifiability).
+std::vector<double> scaled_residuals(const Model& model, std::span<const Signals* const> data,
+                                     std::span<const double> params);
+
 /// Identifies the model on one or more datasets (the metric is the mean over them, engine/evaluation/batch_evaluator.hpp).
 Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
                         const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);

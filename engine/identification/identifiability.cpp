@@ -1,0 +1,114 @@
+#include "engine/identification/identifiability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "engine/identification/identification.hpp"
+
+namespace dampbench {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kMaxRelativeError = 1.0, kMaxCorrelation = 0.99, kBoundTolerance = 1e-6, kSingular = 1e-10;
+}  // namespace
+
+bool Identifiability::all_identifiable() const {
+  return std::all_of(flags.begin(), flags.end(), [](const auto& f) { return f.empty(); });
+}
+
+std::string Identifiability::summary(const Model& model) const {
+  std::string out;
+  for (std::size_t j = 0; j < flags.size(); ++j)
+    for (const std::string& f : flags[j]) out += fmt::format("{}{}: {}", out.empty() ? "" : "; ", model.parameters()[j].name, f);
+  return out.empty() ? "ok" : out;
+}
+
+Identifiability assess_identifiability(const Model& model, std::span<const Signals* const> data, const Bounds& bounds,
+                                       std::span<const double> best_params) {
+  const int p = model.dim();
+  const std::vector<double> r0 = scaled_residuals(model, data, best_params);
+  const auto n = static_cast<Eigen::Index>(r0.size());
+  Eigen::MatrixXd J(n, p);
+  std::vector<double> x(best_params.begin(), best_params.end());
+  for (int j = 0; j < p; ++j) {
+    // Central difference with a step relative to the value, or to the box where the value is 0; a step that
+    // would leave the box is taken one-sided.
+    const double width = bounds.upper[j] - bounds.lower[j];
+    const double h = 1e-6 * std::max(std::abs(best_params[j]), 1e-3 * width);
+    const double up = std::min(best_params[j] + h, bounds.upper[j]), down = std::max(best_params[j] - h, bounds.lower[j]);
+    x[j] = up;
+    const std::vector<double> ru = scaled_residuals(model, data, x);
+    x[j] = down;
+    const std::vector<double> rd = scaled_residuals(model, data, x);
+    x[j] = best_params[j];
+    for (Eigen::Index k = 0; k < n; ++k) J(k, j) = up > down ? (ru[k] - rd[k]) / (up - down) : 0.0;
+  }
+  double ssr = 0;
+  for (double v : r0) ssr += v * v;
+  const double s2 = ssr / std::max<Eigen::Index>(n - p, 1);
+
+  // cov = s²·V Σ⁻² Vᵀ over the resolved directions; a direction with a (near) zero singular value is
+  // unresolved, and every parameter with weight in it gets an infinite standard error.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::MatrixXd& V = svd.matrixV();
+  const double largest = sv.size() ? sv[0] : 0.0;
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(p, p);
+  std::vector<bool> unresolved(p, false);
+  for (Eigen::Index i = 0; i < sv.size(); ++i) {
+    if (!(sv[i] > kSingular * largest)) {
+      for (int j = 0; j < p; ++j) unresolved[j] = unresolved[j] || std::abs(V(j, i)) > 1e-3;
+      continue;
+    }
+    cov += (s2 / (sv[i] * sv[i])) * V.col(i) * V.col(i).transpose();
+  }
+  // Unresolved directions still carry their correlation: the parameters move together along V's column.
+  Eigen::MatrixXd dir = Eigen::MatrixXd::Zero(p, p);
+  for (Eigen::Index i = 0; i < sv.size(); ++i)
+    if (!(sv[i] > kSingular * largest)) dir += V.col(i) * V.col(i).transpose();
+
+  Identifiability out;
+  out.samples = static_cast<int>(n);
+  out.std_error.resize(p);
+  out.relative_error.resize(p);
+  out.correlation.assign(p, std::vector<double>(p, 0.0));
+  out.flags.resize(p);
+  std::vector<bool> fixed(p);
+  for (int j = 0; j < p; ++j) fixed[j] = !(bounds.upper[j] > bounds.lower[j]);  // held by its bounds: not estimated
+  for (int j = 0; j < p; ++j) {
+    if (fixed[j]) unresolved[j] = false;
+    out.std_error[j] = fixed[j] ? 0.0 : unresolved[j] ? kInf : std::sqrt(std::max(cov(j, j), 0.0));
+    const double mag = std::abs(best_params[j]);
+    out.relative_error[j] = mag > 0 ? out.std_error[j] / mag : (out.std_error[j] > 0 ? kInf : 0.0);
+  }
+  for (int i = 0; i < p; ++i)
+    for (int j = 0; j < p; ++j) {
+      double c;
+      if (i == j) c = 1.0;
+      else if (fixed[i] || fixed[j]) c = 0.0;
+      else if (unresolved[i] && unresolved[j] && dir(i, i) > 0 && dir(j, j) > 0) c = dir(i, j) / std::sqrt(dir(i, i) * dir(j, j));
+      else if (out.std_error[i] > 0 && out.std_error[j] > 0 && std::isfinite(out.std_error[i] * out.std_error[j]))
+        c = cov(i, j) / (out.std_error[i] * out.std_error[j]);
+      else c = 0.0;
+      out.correlation[i][j] = c;
+    }
+  const auto params = model.parameters();
+  for (int j = 0; j < p; ++j) {
+    if (fixed[j]) continue;
+    if (!(out.relative_error[j] <= kMaxRelativeError)) out.flags[j].push_back("not identifiable");
+    for (int i = 0; i < p; ++i)
+      if (i != j && std::abs(out.correlation[i][j]) > kMaxCorrelation)
+        out.flags[j].push_back(fmt::format("correlated with {} ({:+.3f})", params[i].name, out.correlation[i][j]));
+    const double width = bounds.upper[j] - bounds.lower[j];
+    if (width > 0 && (best_params[j] - bounds.lower[j] <= kBoundTolerance * width ||
+                      bounds.upper[j] - best_params[j] <= kBoundTolerance * width))
+      out.flags[j].push_back("at bound");
+  }
+  return out;
+}
+
+}  // namespace dampbench
