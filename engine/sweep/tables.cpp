@@ -194,8 +194,9 @@ Convergence group_convergence(const GroupRecord& g) {
 
 constexpr const char* kUnconvergedMark = "†";
 constexpr const char* kUnconvergedNote =
-    "† not converged: the runs disagree (median run > 2 % above the best) or the best still improved by > 1 % in "
-    "the last fifth of its budget; raise runs, population or iterations before trusting it.";
+    "† not converged: the runs disagree (median run > 2 % above the best), a single run cannot show agreement, or "
+    "the best still improved by > 1 % in the last fifth of its budget; raise runs, population or iterations "
+    "before trusting it.";
 
 Report runs_table(const Context& c, const Series& s, std::string id, std::string title) {
   Report r = c.report(std::move(id), std::move(title), {"Condition", "Mean", "Max", "Min", "Std", "Runs", "Converged"});
