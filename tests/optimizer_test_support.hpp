@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the optimizer tests: standard test functions with known optima, the ask/tell loop that
-// runs one optimizer to the end, seeded success rates, and a retry helper that can fail.
+// runs one optimizer to the end (and its refine), seeded success rates, a retry helper that can fail, and
+// the checks of the conformance suite (tests/test_optimizer_conformance.cpp) that every optimizer passes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,8 @@
 #include <sstream>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <tbb/task_arena.h>
@@ -67,16 +70,31 @@ inline double griewank(std::span<const double> x) {
   return 1 + s - p;
 }
 
+/// The sphere as least squares: r = x.
+inline std::vector<double> sphere_residuals(std::span<const double> x) { return {x.begin(), x.end()}; }
+
+/// Rosenbrock as least squares: r = (10 (x_{i+1} − x_i²), 1 − x_i), i = 1 … d − 1.
+inline std::vector<double> rosenbrock_residuals(std::span<const double> x) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    r.push_back(10 * (x[i + 1] - x[i] * x[i]));
+    r.push_back(1 - x[i]);
+  }
+  return r;
+}
+
 using Objective = std::function<double(std::span<const double>)>;
 
-/// A standard function with its usual search box (the same bound in every dimension).
+/// A standard function with its usual search box (the same bound in every dimension) and, for a sum of
+/// squares, its residuals (Σ r² = f), which a least-squares local phase fits.
 struct TestFunction {
   const char* name;
   double (*f)(std::span<const double>);
   double lower, upper;
+  std::vector<double> (*residuals)(std::span<const double>) = nullptr;
 };
-inline constexpr TestFunction kSphere{"sphere", sphere, -5.12, 5.12};
-inline constexpr TestFunction kRosenbrock{"rosenbrock", rosenbrock, -2.048, 2.048};
+inline constexpr TestFunction kSphere{"sphere", sphere, -5.12, 5.12, sphere_residuals};
+inline constexpr TestFunction kRosenbrock{"rosenbrock", rosenbrock, -2.048, 2.048, rosenbrock_residuals};
 inline constexpr TestFunction kRastrigin{"rastrigin", rastrigin, -5.12, 5.12};
 inline constexpr TestFunction kAckley{"ackley", ackley, -32.768, 32.768};
 inline constexpr TestFunction kGriewank{"griewank", griewank, -600, 600};
@@ -93,6 +111,15 @@ OptimizerFactory factory_of(const Settings& settings) {
   return [settings](const Bounds& bounds, std::uint64_t run_key) -> std::unique_ptr<Optimizer> {
     return std::make_unique<Algorithm>(settings, bounds, run_key);
   };
+}
+
+/// Settings of a generational optimizer (ga, aga, de, the hybrids) with its population and generations.
+template <class Settings>
+Settings generational(int population, int generations) {
+  Settings s;
+  s.population = population;
+  s.generations = generations;
+  return s;
 }
 
 struct Run {
@@ -133,6 +160,129 @@ inline Run minimize(const OptimizerFactory& make, const Objective& f, const Boun
   return minimize(*opt, f, bounds.dim(), keep_history);
 }
 
+// ---- local phases as problems (hybrids: refine) ----------------------------------------------------
+
+/// A LocalProblem over a closed-form least-squares function: residuals r(x), value Σ r² (or a plain objective
+/// when built from one, or a standard function without residuals: its residuals are then {sqrt(f)}).
+/// Records every point it evaluates, so a test can check that a local phase stays inside the box, and
+/// counts evaluations.
+class FunctionProblem final : public LocalProblem {
+ public:
+  using Residuals = std::function<std::vector<double>(std::span<const double>)>;
+  FunctionProblem(Residuals residuals, Bounds bounds) : residuals_(std::move(residuals)), bounds_(std::move(bounds)) {}
+  FunctionProblem(const Objective& f, Bounds bounds)
+      : residuals_([f](std::span<const double> x) { return std::vector<double>{std::sqrt(f(x))}; }),
+        bounds_(std::move(bounds)) {}
+  FunctionProblem(const TestFunction& f, Bounds bounds)
+      : FunctionProblem(f.residuals ? Residuals(f.residuals) : Residuals([f](std::span<const double> x) {
+          return std::vector<double>{std::sqrt(f.f(x))};
+        }), std::move(bounds)) {}
+
+  [[nodiscard]] double value(std::span<const double> x) const {
+    double s = 0;
+    for (double r : residuals_(x)) s += r * r;
+    return s;
+  }
+  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    for (int i = 0; i < batch.count(); ++i) {
+      const std::vector<double> x = batch.candidate(i);
+      points.push_back(x);
+      values[i] = value(x);
+    }
+    evaluations += batch.count();
+  }
+  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    points.emplace_back(params.begin(), params.end());
+    ++residual_calls;
+    return residuals_(params);
+  }
+  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
+
+  mutable std::vector<std::vector<double>> points;
+  mutable long long evaluations = 0, residual_calls = 0;
+
+ private:
+  Residuals residuals_;
+  Bounds bounds_;
+};
+
+/// Every point the problem evaluated lies inside its box.
+inline ::testing::AssertionResult all_points_inside(const FunctionProblem& problem) {
+  const Bounds& b = problem.bounds();
+  for (const auto& x : problem.points)
+    for (int j = 0; j < b.dim(); ++j)
+      if (!(x[j] >= b.lower[j] && x[j] <= b.upper[j]))
+        return ::testing::AssertionFailure() << "parameter " << j << " = " << x[j] << " outside [" << b.lower[j]
+                                             << ", " << b.upper[j] << "]";
+  return ::testing::AssertionSuccess();
+}
+
+/// A whole run as identify() makes it: the population phase through ask/tell on f, then refine(problem)
+/// (a no-op but for the hybrids). The conformance checks below run every optimizer this way.
+inline Run minimize_and_refine(Optimizer& opt, const Objective& f, const FunctionProblem& problem,
+                               bool keep_history = false) {
+  Run run = minimize(opt, f, problem.bounds().dim(), keep_history);
+  opt.refine(problem);
+  run.best_value = opt.best_value();
+  run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
+  return run;
+}
+
+/// The population phase on the problem's value, then refine(problem).
+inline Run minimize_and_refine(Optimizer& opt, const FunctionProblem& problem) {
+  return minimize_and_refine(opt, [&](std::span<const double> x) { return problem.value(x); }, problem);
+}
+
+/// One seeded run on f over `bounds`, refine seeing f as a FunctionProblem (value f where f >= 0, NaN where
+/// f = −inf: the population phase sees f itself).
+inline Run minimize_and_refine(const OptimizerFactory& make, const Objective& f, const Bounds& bounds,
+                               std::uint64_t seed) {
+  const FunctionProblem problem(f, bounds);
+  const std::unique_ptr<Optimizer> opt = make(bounds, hash_key({seed}));
+  return minimize_and_refine(*opt, f, problem);
+}
+
+/// A hybrid (optimizers/hybrid) on a closed-form problem: the GA-phase best, the whole run and the local
+/// phase's report.
+template <class Hybrid>
+struct HybridRun {
+  double ga_best = 0;
+  Run run;
+  std::remove_cvref_t<decltype(std::declval<const Hybrid&>().report())> report;
+};
+template <class Hybrid, class Settings>
+HybridRun<Hybrid> run_hybrid(const Settings& settings, const FunctionProblem& problem, std::uint64_t seed) {
+  Hybrid opt(settings, problem.bounds(), hash_key({seed}));
+  HybridRun<Hybrid> h;
+  h.ga_best = minimize(opt, [&](std::span<const double> x) { return problem.value(x); }, problem.bounds().dim()).best_value;
+  opt.refine(problem);
+  h.run.best_value = opt.best_value();
+  h.run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
+  h.report = opt.report();
+  return h;
+}
+
+/// A hybrid refined beside a failure region (x0 < 0) hands back no failure and nothing worse than its GA best.
+template <class Hybrid>
+void expect_refine_avoids_failures(const HybridRun<Hybrid>& h) {
+  ASSERT_TRUE(std::isfinite(h.ga_best));
+  EXPECT_TRUE(std::isfinite(h.run.best_value));
+  EXPECT_LE(h.run.best_value, h.ga_best);
+  EXPECT_GE(h.run.best_position[0], 0.0);
+}
+
+/// Two factories ask the same candidates, bit for bit, and end at the same best (a hybrid's population
+/// phase is the GA's).
+inline void expect_same_run(const OptimizerFactory& a, const OptimizerFactory& b) {
+  const Bounds bounds = box(3, -5, 5);
+  const Run x = minimize(a, rastrigin, bounds, 4, true), y = minimize(b, rastrigin, bounds, 4, true);
+  ASSERT_FALSE(x.history.empty());
+  EXPECT_EQ(x.history, y.history);
+  EXPECT_EQ(x.best_value, y.best_value);
+}
+
+// ---- success rates --------------------------------------------------------------------------------
+
 /// One success-rate case: `repeats` seeded runs of f in `dim` dimensions; success = best value < target.
 struct SuccessCase {
   TestFunction function;
@@ -155,7 +305,9 @@ inline ::testing::AssertionResult reaches_target(const SuccessCase& c, const std
   std::ostringstream bests;
   bests.precision(3);
   for (int r = 0; r < c.repeats; ++r) {
-    const double best = minimize(factory, c.function.f, bounds, first_seed + r).best_value;
+    const FunctionProblem problem(c.function, bounds);
+    const std::unique_ptr<Optimizer> opt = factory(bounds, hash_key({first_seed + r}));
+    const double best = minimize_and_refine(*opt, c.function.f, problem).best_value;
     successes += best < c.target;
     bests << (r ? ", " : "") << best;
   }
@@ -229,19 +381,22 @@ inline void expect_lockstep_equals_alone(const OptimizerFactory& make) {
   EXPECT_EQ(together[1], alone[1]);
 }
 
-/// Every asked candidate inside the box (including a parameter with lower == upper) while the
-/// optimum of the sphere lies outside it: the best ends near the nearest corner (1, −2.5, 0.5), value 7.5.
+/// Every asked candidate, and every point refine evaluates, inside the box (including a parameter with
+/// lower == upper) while the optimum of the sphere lies outside it: the best ends near the nearest corner
+/// (1, −2.5, 0.5), value 7.5.
 inline void expect_stays_inside_bounds(const OptimizerFactory& make, double value_tolerance) {
   const Bounds b{{1.0, -3.0, 0.5}, {2.0, -2.5, 0.5}};
+  const FunctionProblem problem(sphere, b);
   const auto opt = make(b, 77);
-  const Run run = minimize(*opt, sphere, 3, true);
+  const Run run = minimize_and_refine(*opt, sphere, problem, true);
   for (std::size_t k = 0; k < run.history.size(); ++k) {
     const std::size_t j = k % 3;
     ASSERT_GE(run.history[k], b.lower[j]) << "parameter " << j;
     ASSERT_LE(run.history[k], b.upper[j]) << "parameter " << j;
   }
+  EXPECT_TRUE(all_points_inside(problem)) << "refine";
   EXPECT_GE(run.best_value, 7.5);
-  EXPECT_LT(run.best_value, 7.5 + value_tolerance);
+  EXPECT_LT(run.best_value, 7.5 + value_tolerance) << "best − 7.5 = " << run.best_value - 7.5;
   EXPECT_EQ(run.best_position[2], 0.5);
 }
 
@@ -265,8 +420,8 @@ inline void expect_budget(const OptimizerFactory& make, int population, int iter
 }
 
 /// Failed candidates: `failure` (+inf, NaN or −inf) on the half x0 < 0 of [−5, 5]^3; the shifted sphere
-/// Σ (x − 1)² elsewhere. The run must converge in the valid half (best < target) and never report a
-/// failure as its best.
+/// Σ (x − 1)² elsewhere. The run, refine included, must converge in the valid half (best < target) and
+/// never report a failure as its best.
 inline void expect_converges_beside_failures(const OptimizerFactory& make, double failure, double target) {
   const auto f = [failure](std::span<const double> x) {
     if (x[0] < 0) return failure;
@@ -274,7 +429,7 @@ inline void expect_converges_beside_failures(const OptimizerFactory& make, doubl
     for (double v : x) s += (v - 1) * (v - 1);
     return s;
   };
-  const Run run = minimize(make, f, box(3, -5, 5), 5);
+  const Run run = minimize_and_refine(make, f, box(3, -5, 5), 5);
   EXPECT_TRUE(std::isfinite(run.best_value));
   EXPECT_LT(run.best_value, target);
   EXPECT_GE(run.best_position[0], 0.0);
@@ -293,81 +448,29 @@ inline void expect_best_position_before_first_tell(const OptimizerFactory& make)
   }
 }
 
-/// Every candidate fails: the run still ends, its best value is +inf and its best position is in the box.
+/// Every candidate fails (+inf, then NaN): the run still ends, its best value is +inf, its best position is
+/// in the box, and refine has nothing to refine (it evaluates nothing).
 inline void expect_survives_all_failures(const OptimizerFactory& make) {
   const Bounds b = box(2, -1, 1);
-  const Run run = minimize(make, [](std::span<const double>) { return std::numeric_limits<double>::infinity(); }, b, 4,
-                           true);
-  EXPECT_EQ(run.best_value, std::numeric_limits<double>::infinity());
-  for (double v : run.history) {
-    ASSERT_TRUE(std::isfinite(v));
-    ASSERT_GE(v, -1.0);
-    ASSERT_LE(v, 1.0);
-  }
-  ASSERT_EQ(run.best_position.size(), 2u);
-  for (double v : run.best_position) EXPECT_TRUE(v >= -1 && v <= 1);
-}
-
-// ---- local phases (hybrids: refine) -----------------------------------------------------------------
-
-/// A LocalProblem over a closed-form least-squares function: residuals r(x), value Σ r² (or a plain objective
-/// when built from one; its residuals are then {sqrt(f)}). Records every point it evaluates, so a test can
-/// check that a local phase stays inside the box, and counts evaluations.
-class FunctionProblem final : public LocalProblem {
- public:
-  using Residuals = std::function<std::vector<double>(std::span<const double>)>;
-  FunctionProblem(Residuals residuals, Bounds bounds) : residuals_(std::move(residuals)), bounds_(std::move(bounds)) {}
-  FunctionProblem(const Objective& f, Bounds bounds)
-      : residuals_([f](std::span<const double> x) { return std::vector<double>{std::sqrt(f(x))}; }),
-        bounds_(std::move(bounds)) {}
-
-  [[nodiscard]] double value(std::span<const double> x) const {
-    double s = 0;
-    for (double r : residuals_(x)) s += r * r;
-    return s;
-  }
-  void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
-    for (int i = 0; i < batch.count(); ++i) {
-      const std::vector<double> x = batch.candidate(i);
-      points.push_back(x);
-      values[i] = value(x);
+  for (const double failure : {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    SCOPED_TRACE(::testing::Message() << "every value " << failure);
+    const Objective fail = [failure](std::span<const double>) { return failure; };
+    const FunctionProblem problem(fail, b);
+    const auto opt = make(b, hash_key({4}));
+    const Run run = minimize_and_refine(*opt, fail, problem, true);
+    EXPECT_EQ(run.best_value, std::numeric_limits<double>::infinity());
+    for (double v : run.history) {
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, -1.0);
+      ASSERT_LE(v, 1.0);
     }
-    evaluations += batch.count();
+    ASSERT_EQ(run.best_position.size(), 2u);
+    for (double v : run.best_position) EXPECT_TRUE(v >= -1 && v <= 1);
+    EXPECT_TRUE(problem.points.empty()) << "refine evaluated " << problem.points.size() << " points";
   }
-  [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
-    points.emplace_back(params.begin(), params.end());
-    ++residual_calls;
-    return residuals_(params);
-  }
-  [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
-
-  mutable std::vector<std::vector<double>> points;
-  mutable long long evaluations = 0, residual_calls = 0;
-
- private:
-  Residuals residuals_;
-  Bounds bounds_;
-};
-
-/// Every point the problem evaluated lies inside its box.
-inline ::testing::AssertionResult all_points_inside(const FunctionProblem& problem) {
-  const Bounds& b = problem.bounds();
-  for (const auto& x : problem.points)
-    for (int j = 0; j < b.dim(); ++j)
-      if (!(x[j] >= b.lower[j] && x[j] <= b.upper[j]))
-        return ::testing::AssertionFailure() << "parameter " << j << " = " << x[j] << " outside [" << b.lower[j]
-                                             << ", " << b.upper[j] << "]";
-  return ::testing::AssertionSuccess();
 }
 
-/// The population phase through ask/tell on the problem's value, then refine(problem).
-inline Run minimize_and_refine(Optimizer& opt, const FunctionProblem& problem) {
-  Run run = minimize(opt, [&](std::span<const double> x) { return problem.value(x); }, problem.bounds().dim());
-  opt.refine(problem);
-  run.best_value = opt.best_value();
-  run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
-  return run;
-}
+// ---- identification on a model: thread counts, batch splits, one by one ----------------------------
 
 /// A LocalProblem on a model through a BatchEvaluator, with residuals as engine/identification/identification.cpp builds
 /// them. `one_by_one` evaluates every candidate of a batch as its own batch of one.
@@ -426,6 +529,15 @@ inline std::vector<double> run_on_model(const OptimizerFactory& make, const Batc
   return out;
 }
 
+/// Settings of `runs` identification runs from `seed`, on the nrmse.
+inline IdentificationSettings nrmse_runs(int runs, std::uint64_t seed) {
+  IdentificationSettings s;
+  s.runs = runs;
+  s.seed = seed;
+  s.metric = Metric::nrmse;
+  return s;
+}
+
 /// identify() with `threads` worker threads and `grain` lane blocks per task.
 inline Identification identify_with(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
                                     const OptimizerFactory& make, IdentificationSettings settings, int threads, int grain) {
@@ -446,6 +558,24 @@ inline void expect_identical(const Identification& a, const Identification& b) {
     EXPECT_EQ(a.runs[r].trace, b.runs[r].trace) << "run " << r;
     EXPECT_EQ(a.runs[r].evaluations, b.runs[r].evaluations) << "run " << r;
   }
+}
+
+/// identify() of a model gives the same bits with 1 and 2 threads and with another grain (3 runs in one
+/// lockstep batch), another seed gives other runs, every run costs at least `min_evaluations`, and a run
+/// whose batches (refine's included) are evaluated candidate by candidate ends with the same bits.
+inline void expect_reproducible_identification(const OptimizerFactory& make, const Model& model, const Signals& data,
+                                               const Bounds& bounds, long long min_evaluations) {
+  IdentificationSettings s = nrmse_runs(3, 8);
+  const std::vector<const Signals*> datasets{&data};
+  const Identification one = identify_with(model, datasets, bounds, make, s, 1, 1);
+  expect_identical(one, identify_with(model, datasets, bounds, make, s, 2, 1));
+  expect_identical(one, identify_with(model, datasets, bounds, make, s, 2, 3));
+  for (const RunResult& r : one.runs) EXPECT_GE(r.evaluations, min_evaluations);
+  s.seed = 9;
+  EXPECT_NE(one.runs[0].best_params, identify_with(model, datasets, bounds, make, s, 2, 1).runs[0].best_params);
+
+  const BatchEvaluator evaluator(model, data);
+  EXPECT_EQ(run_on_model(make, evaluator, s.metric, bounds, 4, false), run_on_model(make, evaluator, s.metric, bounds, 4, true));
 }
 
 }  // namespace dampbench::testing

@@ -1,5 +1,6 @@
-// GA (optimizers/ga/ga.hpp) and the operators it shares with the AGA (optimizers/ga/genetic.hpp): standard
-// test functions over seeded repeats, operator properties, settings checks, ask/tell conformance.
+// GA (optimizers/ga/ga.hpp) and the operators it shares with the AGA (optimizers/ga/genetic.hpp): the lssvm
+// preset, operator properties, settings checks. The checks every optimizer passes (standard functions,
+// ask/tell conformance) are in test_optimizer_conformance.cpp.
 #include "optimizers/ga/ga.hpp"
 
 #include <gtest/gtest.h>
@@ -19,59 +20,12 @@ namespace {
 
 using testing::error_of;
 using testing::factory_of;
-using testing::kAckley;
-using testing::kGriewank;
-using testing::kRastrigin;
-using testing::kRosenbrock;
 using testing::kSphere;
 using testing::SuccessCase;
 
-GaSettings ga(int population, int generations) {
-  GaSettings s;
-  s.population = population;
-  s.generations = generations;
-  return s;
-}
-
-OptimizerFactory make_ga(int population, int generations) { return factory_of<Ga>(ga(population, generations)); }
-
 }  // namespace
 
-// ---- standard functions ---------------------------------------------------------------------------
-
-class GaStandardFunctions : public ::testing::TestWithParam<SuccessCase> {};
-
-TEST_P(GaStandardFunctions, ReachesKnownOptimum) { testing::expect_success_rate(GetParam(), make_ga); }
-
-// Defaults (pc 0.9, pm 1/d, SBX η 15, polynomial η 20, binary tournament, one elite). Grid N = 30/40/50,
-// L = 100/200/400 in 2/5/10 dimensions. Measured over seeds 1–20 and 1001–1020 (18th best of 20 in each
-// block; worst run):
-//   sphere      3.2e-5 1.5e-5 (6.4e-5);  2.0e-4 1.1e-4 (6.3e-4);  4.9e-4 5.8e-4 (1.4e-3)
-//   Rosenbrock  L = 200 in 2-D: 9.3e-5 4.2e-4 (8.4e-4);  5-D 4.0 2.1 (4.4, the local minimum near 3.99);
-//               10-D 7.7 7.5 (9.5)
-//   Rastrigin   3.5e-3 7.3e-3 (0.024);  0.065 0.092 (0.59);  0.30 0.17 (2.0)
-//   Ackley      0.098 0.084 (0.12);  0.13 0.18 (0.24);  0.18 0.17 (0.27)
-//   Griewank    0.038 0.036 (0.068);  0.17 0.15 (0.27);  0.36 0.37 (0.44)
-// Targets: about three times the worse 18th best (1.5 times above 1), rounded up; every target is below
-// the 10th percentile of random sampling with the same budget (e.g. 2-D Rosenbrock 0.0019 at 6 000
-// samples, 10-D Rastrigin 61), so a GA that stops converging fails.
-INSTANTIATE_TEST_SUITE_P(Functions, GaStandardFunctions,
-                         ::testing::Values(SuccessCase{kSphere, 2, 30, 100, 1e-4, 18, 20},
-                                           SuccessCase{kSphere, 5, 40, 200, 7e-4, 18, 20},
-                                           SuccessCase{kSphere, 10, 50, 400, 2e-3, 18, 20},
-                                           SuccessCase{kRosenbrock, 2, 30, 200, 1e-3, 18, 20},
-                                           SuccessCase{kRosenbrock, 5, 40, 200, 7.0, 18, 20},
-                                           SuccessCase{kRosenbrock, 10, 50, 400, 15.0, 18, 20},
-                                           SuccessCase{kRastrigin, 2, 30, 100, 0.03, 18, 20},
-                                           SuccessCase{kRastrigin, 5, 40, 200, 0.3, 18, 20},
-                                           SuccessCase{kRastrigin, 10, 50, 400, 1.0, 18, 20},
-                                           SuccessCase{kAckley, 2, 30, 100, 0.3, 18, 20},
-                                           SuccessCase{kAckley, 5, 40, 200, 0.7, 18, 20},
-                                           SuccessCase{kAckley, 10, 50, 400, 0.7, 18, 20},
-                                           SuccessCase{kGriewank, 2, 30, 100, 0.1, 18, 20},
-                                           SuccessCase{kGriewank, 5, 40, 200, 0.7, 18, 20},
-                                           SuccessCase{kGriewank, 10, 50, 400, 1.5, 18, 20}),
-                         [](const auto& p) { return p.param.name(); });
+// ---- the lssvm preset --------------------------------------------------------------------------------
 
 // The lssvm paper's settings (pc 0.6, pm 0.03, N 50, 500 generations) on a 5-D sphere: a slower GA (few
 // mutations) that still converges; measured 18th best of seeds 1–20 and 1001–1020: 7.9e-7 and 2.2e-7
@@ -85,34 +39,9 @@ TEST(Ga, LssvmPresetConverges) {
   });
 }
 
-// ---- conformance ------------------------------------------------------------------------------------
-
-TEST(Ga, SameKeySameHistory) { testing::expect_keyed_history(make_ga(20, 30)); }
-TEST(Ga, LockstepEqualsAlone) { testing::expect_lockstep_equals_alone(make_ga(12, 15)); }
-
-// SBX and polynomial mutation reach a bound only in the limit: measured 7.5 + 1.2e-10 after 50 generations.
-TEST(Ga, StaysInsideBounds) { testing::expect_stays_inside_bounds(make_ga(20, 50), 1e-6); }
-
-// Generation 0 (the initial population) is evaluated like every other: N × generations, also for odd N.
-TEST(Ga, EvaluationBudgetIsPopulationTimesGenerations) {
-  testing::expect_budget(make_ga(8, 13), 8, 13);
-  testing::expect_budget(make_ga(7, 5), 7, 5);
-}
-
-// Measured (seed 5, N = 30, 100 generations): 5.6e-5 beside +inf, NaN and −inf alike.
-TEST(Ga, ConvergesBesideFailedCandidates) {
-  const OptimizerFactory make = make_ga(30, 100);
-  testing::expect_converges_beside_failures(make, std::numeric_limits<double>::infinity(), 1e-3);
-  testing::expect_converges_beside_failures(make, std::numeric_limits<double>::quiet_NaN(), 1e-3);
-  testing::expect_converges_beside_failures(make, -std::numeric_limits<double>::infinity(), 1e-3);
-}
-
-TEST(Ga, BestPositionInsideBeforeFirstTell) { testing::expect_best_position_before_first_tell(make_ga(10, 20)); }
-TEST(Ga, SurvivesAllCandidatesFailing) { testing::expect_survives_all_failures(make_ga(10, 20)); }
-
 // The rates are used: pc = 0 and pm = 0 ask only copies of initial members.
 TEST(Ga, WithoutCrossoverAndMutationOnlyCopiesAreAsked) {
-  GaSettings s = ga(10, 6);
+  GaSettings s = testing::generational<GaSettings>(10, 6);
   s.pc = 0;
   s.pm = 0;
   const Bounds b = testing::box(2, -1, 1);
@@ -219,43 +148,14 @@ TEST(Ga, LssvmPresetHasThePapersSettings) {
   EXPECT_EQ(s.tournament, GaSettings{}.tournament);
 }
 
-TEST(Ga, RejectsBadSettings) {
-  const Bounds b{{0.0}, {1.0}};
-  const auto message = [&](const GaSettings& s) { return error_of([&] { Ga(s, b, 1); }); };
-  GaSettings s;
-  s.population = 2;
-  EXPECT_EQ(message(s), "ga: population must be at least 4, got 2");
-  s = {};
-  s.generations = 0;
-  EXPECT_EQ(message(s), "ga: iterations (generations) must be at least 1, got 0");
-  s = {};
-  s.pc = 1.5;
-  EXPECT_EQ(message(s), "ga: pc must be in [0, 1], got 1.5");
-  s = {};
-  s.pc = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(message(s), "ga: pc must be in [0, 1], got nan");
-  s = {};
-  s.pm = -0.1;
-  EXPECT_EQ(message(s), "ga: pm must be in [0, 1], got -0.1");
-  s = {};
-  s.tournament = 1;
-  EXPECT_EQ(message(s), "ga: tournament must be in [2, population = 50], got 1");
-  s = {};
-  s.tournament = 51;
-  EXPECT_EQ(message(s), "ga: tournament must be in [2, population = 50], got 51");
-  s = {};
-  s.elites = 26;
-  EXPECT_EQ(message(s), "ga: elites must be in [0, population / 2 = 25], got 26");
-  s = {};
-  s.elites = -1;
-  EXPECT_EQ(message(s), "ga: elites must be in [0, population / 2 = 25], got -1");
-  s = {};
-  s.eta_c = -1;
-  EXPECT_EQ(message(s), "ga: eta_c must be a finite number >= 0, got -1");
-  s = {};
-  s.eta_m = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(message(s), "ga: eta_m must be a finite number >= 0, got inf");
-  EXPECT_EQ(message(GaSettings{}), "no error");
+// The other bad values are rejected through the registry (test_optimizer_conformance.cpp), which never
+// passes a non-finite number.
+TEST(Ga, RejectsNonFiniteSettings) {
+  GaSettings nan_pc, inf_eta_m;
+  nan_pc.pc = std::numeric_limits<double>::quiet_NaN();
+  inf_eta_m.eta_m = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(error_of([&] { Ga(nan_pc, testing::box(1, 0, 1), 1); }), "ga: pc must be in [0, 1], got nan");
+  EXPECT_EQ(error_of([&] { Ga(inf_eta_m, testing::box(1, 0, 1), 1); }), "ga: eta_m must be a finite number >= 0, got inf");
 }
 
 }  // namespace dampbench

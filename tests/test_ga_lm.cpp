@@ -1,5 +1,6 @@
 // ga-lm (optimizers/hybrid/ga_lm.hpp): the GA phase is the ga optimizer; bounded Levenberg–Marquardt then
-// fits LocalProblem::residuals with finite-difference Jacobians.
+// fits LocalProblem::residuals with finite-difference Jacobians. The checks every optimizer passes (standard
+// functions, ask/tell conformance, 1 and 2 threads, any batch split) are in test_optimizer_conformance.cpp.
 #include "optimizers/hybrid/ga_lm.hpp"
 
 #include <gtest/gtest.h>
@@ -21,38 +22,10 @@ namespace {
 
 using testing::FunctionProblem;
 
-GaLmSettings settings(int population, int generations) {
-  GaLmSettings s;
-  s.population = population;
-  s.generations = generations;
-  return s;
-}
+GaLmSettings settings(int population, int generations) { return testing::generational<GaLmSettings>(population, generations); }
 
-struct HybridRun {
-  double ga_best = 0;
-  testing::Run run;
-  LmReport report;
-};
-HybridRun run_hybrid(const GaLmSettings& s, const FunctionProblem& problem, std::uint64_t seed) {
-  GaLm opt(s, problem.bounds(), hash_key({seed}));
-  HybridRun h;
-  h.ga_best = testing::minimize(opt, [&](std::span<const double> x) { return problem.value(x); }, problem.bounds().dim()).best_value;
-  opt.refine(problem);
-  h.run.best_value = opt.best_value();
-  h.run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
-  h.report = opt.report();
-  return h;
-}
-
-/// Rosenbrock as least squares in d dimensions: r = (10(x_{i+1} − x_i²), 1 − x_i); ‖r‖² is the chained
-/// Rosenbrock function, zero at (1, …, 1).
-std::vector<double> rosenbrock_residuals(std::span<const double> x) {
-  std::vector<double> r;
-  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
-    r.push_back(10 * (x[i + 1] - x[i] * x[i]));
-    r.push_back(1 - x[i]);
-  }
-  return r;
+testing::HybridRun<GaLm> run_hybrid(const GaLmSettings& s, const FunctionProblem& problem, std::uint64_t seed) {
+  return testing::run_hybrid<GaLm>(s, problem, seed);
 }
 
 }  // namespace
@@ -61,19 +34,7 @@ std::vector<double> rosenbrock_residuals(std::span<const double> x) {
 
 TEST(GaLm, PopulationPhaseIsTheGa) {
   const GaLmSettings s = settings(12, 6);
-  const Bounds b = testing::box(3, -5, 5);
-  const auto hybrid = testing::minimize(testing::factory_of<GaLm>(s), testing::rastrigin, b, 4, true);
-  const auto ga = testing::minimize(testing::factory_of<Ga>(static_cast<const GaSettings&>(s)), testing::rastrigin, b, 4, true);
-  EXPECT_EQ(hybrid.history, ga.history);
-}
-
-TEST(GaLm, ConformsToTheOptimizerInterface) {
-  const OptimizerFactory make = testing::factory_of<GaLm>(settings(10, 8));
-  testing::expect_keyed_history(make);
-  testing::expect_lockstep_equals_alone(make);
-  testing::expect_budget(make, 10, 8);
-  testing::expect_best_position_before_first_tell(make);
-  testing::expect_survives_all_failures(make);
+  testing::expect_same_run(testing::factory_of<GaLm>(s), testing::factory_of<Ga>(static_cast<const GaSettings&>(s)));
 }
 
 // ---- least-squares optima --------------------------------------------------------------------------
@@ -82,10 +43,10 @@ TEST(GaLm, RosenbrockToTheLeastSquaresOptimumWhereTheGaStops) {
   for (int geodesic : {1, 0})
   for (int dim : {2, 4}) {
     SCOPED_TRACE(::testing::Message() << "geodesic " << geodesic);
-    const FunctionProblem problem(rosenbrock_residuals, testing::box(dim, -2.048, 2.048));
+    const FunctionProblem problem(testing::rosenbrock_residuals, testing::box(dim, -2.048, 2.048));
     GaLmSettings s = settings(20, 15);
     s.geodesic = geodesic;
-    const HybridRun h = run_hybrid(s, problem, 1);
+    const auto h = run_hybrid(s, problem, 1);
     EXPECT_GT(h.ga_best, 1e-3) << dim;  // 300 GA evaluations stop well short
     EXPECT_LT(h.run.best_value, 1e-10) << dim;
     for (double x : h.run.best_position) EXPECT_NEAR(x, 1.0, 1e-5) << dim;
@@ -103,7 +64,7 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
       Bounds{{-1, -1, 0.5}, {1, 1, 0.5}});
   GaLmSettings s = settings(6, 2);
   s.lm_iterations = 1;
-  const HybridRun h = run_hybrid(s, problem, 2);
+  const auto h = run_hybrid(s, problem, 2);
   EXPECT_EQ(h.report.iterations, 1);
   // start, Jacobian (2), the geodesic-acceleration probe and the accepted trial
   EXPECT_EQ(h.report.residual_evaluations, 1 + 2 + 1 + 1);
@@ -113,7 +74,7 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
   const double start = std::hypot(problem.points[0][0] - 0.3, problem.points[0][1] + 0.2);
   EXPECT_LT(std::hypot(h.run.best_position[0] - 0.3, h.run.best_position[1] + 0.2), 1.1e-3 * start);
   s.lm_iterations = 100;
-  const HybridRun full = run_hybrid(s, problem, 2);
+  const auto full = run_hybrid(s, problem, 2);
   EXPECT_NEAR(full.run.best_position[0], 0.3, 1e-9);  // ftol stops it: the fixed residual 0.5 dominates ‖r‖²
   EXPECT_NEAR(full.run.best_position[1], -0.2, 1e-9);
   EXPECT_NEAR(full.run.best_value, 0.25, 1e-15);
@@ -124,7 +85,7 @@ TEST(GaLm, OptimumOutsideTheBoxEndsOnTheBound) {
   const FunctionProblem problem(
       [](std::span<const double> x) { return std::vector<double>{x[0] - 3, x[1] - 0.25, x[2] + 4}; },
       testing::box(3, -1, 1));
-  const HybridRun h = run_hybrid(settings(8, 3), problem, 3);
+  const auto h = run_hybrid(settings(8, 3), problem, 3);
   EXPECT_TRUE(testing::all_points_inside(problem));
   EXPECT_EQ(h.run.best_position[0], 1.0);
   EXPECT_NEAR(h.run.best_position[1], 0.25, 1e-8);
@@ -141,21 +102,17 @@ TEST(GaLm, BacksOffFromAFailureRegion) {
         return std::vector<double>{x[0] + 1, x[1] - 0.5};
       },
       testing::box(2, -2, 2));
-  const HybridRun h = run_hybrid(settings(12, 5), problem, 4);
-  ASSERT_TRUE(std::isfinite(h.ga_best));
-  EXPECT_TRUE(std::isfinite(h.run.best_value));
+  const auto h = run_hybrid(settings(12, 5), problem, 4);
+  testing::expect_refine_avoids_failures(h);
   EXPECT_LT(h.run.best_value, h.ga_best);
-  EXPECT_GE(h.run.best_position[0], 0.0);
   EXPECT_LT(h.run.best_value, 1.01);  // rejected steps shrink towards the wall (value 1 on it)
 }
 
+// The rest of such a run (best +inf, no point evaluated) is Conformance.SurvivesAllCandidatesFailing.
 TEST(GaLm, NothingToRefineWhenEveryCandidateFailed) {
   const FunctionProblem problem([](std::span<const double>) { return std::vector<double>{std::nan("")}; },
                                 testing::box(2, -1, 1));
-  const HybridRun h = run_hybrid(settings(6, 2), problem, 5);
-  EXPECT_EQ(h.run.best_value, std::numeric_limits<double>::infinity());
-  EXPECT_FALSE(h.report.ran);
-  EXPECT_EQ(problem.residual_calls, 0);
+  EXPECT_FALSE(run_hybrid(settings(6, 2), problem, 5).report.ran);
 }
 
 TEST(GaLm, KeepsTheGaBestWhenTheLeastSquaresOptimumIsWorseInTheRunMetric) {
@@ -209,10 +166,7 @@ struct MfmProblem {
 
 TEST(GaLm, RecoversMagicFormulaParametersOnNoiseFreeData) {
   const MfmProblem p;
-  IdentificationSettings s;
-  s.runs = 4;
-  s.seed = 3;
-  s.metric = Metric::nrmse;
+  const IdentificationSettings s = testing::nrmse_runs(4, 3);
   const Identification ga = identify(p.model, p.data, default_bounds(p.model), make_optimizer_factory({"ga", 40, 40}), s);
   const Identification id =
       identify(p.model, p.data, default_bounds(p.model), make_optimizer_factory({"ga-lm", 40, 40}), s);
@@ -228,43 +182,11 @@ TEST(GaLm, RecoversMagicFormulaParametersOnNoiseFreeData) {
   }
 }
 
-TEST(GaLm, SameBitsForAnyThreadCountBatchSplitAndOneByOne) {
-  const MfmProblem p;
-  const OptimizerFactory make = make_optimizer_factory({"ga-lm", 16, 5, {{"lm_iterations", "8"}}});
-  IdentificationSettings s;
-  s.runs = 3;
-  s.seed = 8;
-  s.metric = Metric::nrmse;
-  const std::vector<const Signals*> data{&p.data};
-  const Bounds b = default_bounds(p.model);
-  const auto one = testing::identify_with(p.model, data, b, make, s, 1, 1);
-  testing::expect_identical(one, testing::identify_with(p.model, data, b, make, s, 2, 1));
-  testing::expect_identical(one, testing::identify_with(p.model, data, b, make, s, 2, 3));
-  s.seed = 9;
-  EXPECT_NE(one.runs[0].best_params, testing::identify_with(p.model, data, b, make, s, 2, 1).runs[0].best_params);
-
-  const BatchEvaluator evaluator(p.model, p.data);
-  EXPECT_EQ(testing::run_on_model(make, evaluator, Metric::nrmse, b, 4, false),
-            testing::run_on_model(make, evaluator, Metric::nrmse, b, 4, true));
-}
-
 // ---- settings ---------------------------------------------------------------------------------------
 
-TEST(GaLm, RejectsBadSettings) {
-  auto error = [](std::map<std::string, std::string> settings, int population = 20, int iterations = 10) {
-    return testing::error_of([&] { make_optimizer_factory({"ga-lm", population, iterations, std::move(settings)}); });
-  };
-  EXPECT_EQ(error({}, 2), "ga-lm: population must be at least 4, got 2");
-  EXPECT_EQ(error({}, 20, 0), "ga-lm: iterations (generations) must be at least 1, got 0");
-  EXPECT_EQ(error({{"pc", "-0.5"}}), "ga-lm: pc must be in [0, 1], got -0.5");
-  EXPECT_EQ(error({{"lm_iterations", "0"}}), "ga-lm: lm_iterations must be at least 1, got 0");
-  EXPECT_EQ(error({{"fd_step", "0.5"}}), "ga-lm: fd_step must be in (0, 0.1], got 0.5");
-  EXPECT_EQ(error({{"lambda0", "0"}}), "ga-lm: lambda0 must be a finite number > 0, got 0");
-  EXPECT_EQ(error({{"gtol", "-1"}}), "ga-lm: gtol must be a finite number >= 0, got -1");
-  EXPECT_EQ(error({{"geodesic", "2"}}), "ga-lm: geodesic must be 0 or 1, got 2");
-  EXPECT_EQ(error({{"geodesic_ratio", "0"}}), "ga-lm: geodesic_ratio must be a finite number > 0, got 0");
-  EXPECT_EQ(error({{"ftol", "x"}}), "ga-lm: setting 'ftol': expected a number, got 'x'");
-  EXPECT_EQ(error({{"constraint", "4"}}).substr(0, 43), "ga-lm: unknown setting 'constraint' (known:");
+// The class validates its settings too (the registry's messages are checked in
+// test_optimizer_conformance.cpp).
+TEST(GaLm, ConstructorRejectsBadSettings) {
   GaLmSettings s = settings(20, 10);
   s.tournament = 30;
   EXPECT_EQ(testing::error_of([&] { GaLm(s, testing::box(2, -1, 1), 1); }),
