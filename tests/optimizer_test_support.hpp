@@ -490,13 +490,7 @@ class ModelProblem final : public LocalProblem {
     }
   }
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
-    std::vector<double> r;
-    for (const Signals* d : evaluator_.datasets()) {
-      const auto F = evaluator_.model().simulate(params, *d);
-      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
-      for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
-    }
-    return r;
+    return scaled_residuals(evaluator_.model(), evaluator_.datasets(), params);
   }
   [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
 

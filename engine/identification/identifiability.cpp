@@ -57,19 +57,17 @@ Identifiability assess_identifiability(const Model& model, std::span<const Signa
   const Eigen::VectorXd sv = svd.singularValues();
   const Eigen::MatrixXd& V = svd.matrixV();
   const double largest = sv.size() ? sv[0] : 0.0;
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(p, p);
+  // Unresolved directions still carry their correlation (`dir`): the parameters move together along V's column.
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(p, p), dir = Eigen::MatrixXd::Zero(p, p);
   std::vector<bool> unresolved(p, false);
   for (Eigen::Index i = 0; i < sv.size(); ++i) {
     if (!(sv[i] > kSingular * largest)) {
       for (int j = 0; j < p; ++j) unresolved[j] = unresolved[j] || std::abs(V(j, i)) > 1e-3;
+      dir += V.col(i) * V.col(i).transpose();
       continue;
     }
     cov += (s2 / (sv[i] * sv[i])) * V.col(i) * V.col(i).transpose();
   }
-  // Unresolved directions still carry their correlation: the parameters move together along V's column.
-  Eigen::MatrixXd dir = Eigen::MatrixXd::Zero(p, p);
-  for (Eigen::Index i = 0; i < sv.size(); ++i)
-    if (!(sv[i] > kSingular * largest)) dir += V.col(i) * V.col(i).transpose();
 
   Identifiability out;
   out.samples = static_cast<int>(n);
