@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -16,42 +18,45 @@
 namespace dampbench {
 namespace {
 
-/// Reads one optimizer's settings map: rejects unknown keys up front, then applies known ones on request.
+/// The field a settings key sets: a number, an optional number (unset = the optimizer's rule) or a whole number.
+using SettingField = std::variant<double*, std::optional<double>*, int*>;
+
+/// Reads one optimizer's settings map: `apply` sets fields from a table of keys, `choice` and `text` read the
+/// rest; `finish` rejects any key no call asked for, listing the known ones.
 class SettingsReader {
  public:
-  SettingsReader(std::string_view optimizer, const std::map<std::string, std::string>& settings,
-                 std::vector<std::string_view> known)
-      : optimizer_(optimizer), settings_(settings) {
-    for (const auto& [key, value] : settings_)
-      if (std::ranges::find(known, key) == known.end())
-        throw InputError(fmt::format("{}: unknown setting '{}' (known: {})", optimizer_, key, fmt::join(known, ", ")));
-  }
+  SettingsReader(std::string_view optimizer, const std::map<std::string, std::string>& settings)
+      : optimizer_(optimizer), settings_(settings) {}
 
   /// The raw value of `key`, or nullptr.
-  [[nodiscard]] const std::string* text(std::string_view key) const {
+  [[nodiscard]] const std::string* text(std::string_view key) {
+    if (std::ranges::find(known_, key) == known_.end()) known_.push_back(key);
     const auto it = settings_.find(std::string(key));
     return it == settings_.end() ? nullptr : &it->second;
   }
 
-  void number(std::string_view key, double& field) const {
-    if (const std::string* t = text(key)) field = parse_number(trim(*t), what(key));
+  /// Sets each field whose key is given.
+  void apply(std::initializer_list<std::pair<std::string_view, SettingField>> table) {
+    for (const auto& [key, field] : table) {
+      const std::string* t = text(key);
+      if (!t) continue;
+      const double v = parse_number(trim(*t), what(key));
+      std::visit(
+          [&](auto* f) {
+            if constexpr (std::is_same_v<decltype(f), int*>) {
+              if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
+                throw InputError(fmt::format("{}: expected a whole number, got '{}'", what(key), *t));
+              *f = static_cast<int>(v);
+            } else {
+              *f = v;
+            }
+          },
+          field);
+    }
   }
 
-  void optional_number(std::string_view key, std::optional<double>& field) const {
-    if (const std::string* t = text(key)) field = parse_number(trim(*t), what(key));
-  }
-
-  void whole(std::string_view key, int& field) const {
-    const std::string* t = text(key);
-    if (!t) return;
-    const double v = parse_number(trim(*t), what(key));
-    if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
-      throw InputError(fmt::format("{}: expected a whole number, got '{}'", what(key), *t));
-    field = static_cast<int>(v);
-  }
-
-  /// The value of `key` if it is one of `names` (or absent: nullopt-like empty string); otherwise InputError.
-  [[nodiscard]] std::string choice(std::string_view key, std::vector<std::string_view> names) const {
+  /// The value of `key` if it is one of `names` (empty when absent); otherwise InputError.
+  [[nodiscard]] std::string choice(std::string_view key, std::vector<std::string_view> names) {
     const std::string* t = text(key);
     if (!t) return {};
     const std::string_view v = trim(*t);
@@ -60,16 +65,26 @@ class SettingsReader {
     return std::string(v);
   }
 
+  /// InputError for a key that no call above asked for.
+  void finish() const {
+    for (const auto& [key, value] : settings_)
+      if (std::ranges::find(known_, key) == known_.end())
+        throw InputError(fmt::format("{}: unknown setting '{}' (known: {})", optimizer_, key, fmt::join(known_, ", ")));
+  }
+
  private:
   [[nodiscard]] std::string what(std::string_view key) const {
     return fmt::format("{}: setting '{}'", optimizer_, key);
   }
   std::string_view optimizer_;
   const std::map<std::string, std::string>& settings_;
+  std::vector<std::string_view> known_;
 };
 
+/// Checks the settings and makes the factory of the runs.
 template <class Algorithm, class Settings>
-OptimizerFactory factory_of(const Settings& settings) {
+OptimizerFactory factory_of(SettingsReader& read, const Settings& settings) {
+  read.finish();
   settings.validate();
   return [settings](const Bounds& bounds, std::uint64_t run_key) -> std::unique_ptr<Optimizer> {
     return std::make_unique<Algorithm>(settings, bounds, run_key);
@@ -77,107 +92,82 @@ OptimizerFactory factory_of(const Settings& settings) {
 }
 
 OptimizerFactory make_pso(const OptimizerSpec& spec) {
-  const SettingsReader read("pso", spec.settings,
-                            {"variant", "inertia", "inertia_end", "cognitive", "social", "vmax_fraction"});
+  SettingsReader read("pso", spec.settings);
   PsoSettings s;
   const std::string variant = read.choice("variant", {"inertia", "constriction", "linear_inertia"});
   if (variant == "constriction") s = PsoSettings::constriction();
   if (variant == "linear_inertia") s = PsoSettings::linear_inertia();
   s.population = spec.population;
   s.iterations = spec.iterations;
-  read.number("inertia", s.inertia);
-  read.number("inertia_end", s.inertia_end);
-  read.number("cognitive", s.cognitive);
-  read.number("social", s.social);
-  read.number("vmax_fraction", s.vmax_fraction);
-  return factory_of<Pso>(s);
+  read.apply({{"inertia", &s.inertia}, {"inertia_end", &s.inertia_end}, {"cognitive", &s.cognitive},
+              {"social", &s.social}, {"vmax_fraction", &s.vmax_fraction}});
+  return factory_of<Pso>(read, s);
 }
 
-void read_genetic(const SettingsReader& read, GeneticSettings& s) {
-  read.number("eta_c", s.eta_c);
-  read.number("eta_m", s.eta_m);
-  read.whole("tournament", s.tournament);
-  read.whole("elites", s.elites);
+/// Settings with the spec's budget (population × generations) and every other field at its default.
+template <class Settings>
+Settings with_budget(const OptimizerSpec& spec) {
+  Settings s;
+  s.population = spec.population;
+  s.generations = spec.iterations;
+  return s;
+}
+
+/// The operator settings every genetic algorithm shares.
+void read_genetic(SettingsReader& read, GeneticSettings& s) {
+  read.apply({{"eta_c", &s.eta_c}, {"eta_m", &s.eta_m}, {"tournament", &s.tournament}, {"elites", &s.elites}});
+}
+
+/// The fixed crossover and mutation probabilities of the GA and the hybrids built on it, then read_genetic.
+void read_ga(SettingsReader& read, GaSettings& s) {
+  read.apply({{"pc", &s.pc}, {"pm", &s.pm}});
+  read_genetic(read, s);
 }
 
 OptimizerFactory make_ga(const OptimizerSpec& spec) {
-  const SettingsReader read("ga", spec.settings, {"pc", "pm", "eta_c", "eta_m", "tournament", "elites", "preset"});
-  GaSettings s;
-  s.population = spec.population;
-  s.generations = spec.iterations;
-  if (read.choice("preset", {"lssvm"}) == "lssvm") s = GaSettings::lssvm();
-  read.number("pc", s.pc);
-  read.optional_number("pm", s.pm);
-  read_genetic(read, s);
-  return factory_of<Ga>(s);
+  SettingsReader read("ga", spec.settings);
+  // The lssvm paper's preset fixes its own budget (50 × 500) as well.
+  GaSettings s = read.choice("preset", {"lssvm"}) == "lssvm" ? GaSettings::lssvm() : with_budget<GaSettings>(spec);
+  read_ga(read, s);
+  return factory_of<Ga>(read, s);
 }
 
 OptimizerFactory make_aga(const OptimizerSpec& spec) {
-  const SettingsReader read("aga", spec.settings,
-                            {"k1", "k2", "k3", "k4", "pm_min", "eta_c", "eta_m", "tournament", "elites"});
-  AgaSettings s;
-  s.population = spec.population;
-  s.generations = spec.iterations;
-  read.number("k1", s.k1);
-  read.number("k2", s.k2);
-  read.number("k3", s.k3);
-  read.number("k4", s.k4);
-  read.optional_number("pm_min", s.pm_min);
+  SettingsReader read("aga", spec.settings);
+  auto s = with_budget<AgaSettings>(spec);
+  read.apply({{"k1", &s.k1}, {"k2", &s.k2}, {"k3", &s.k3}, {"k4", &s.k4}, {"pm_min", &s.pm_min}});
   read_genetic(read, s);
-  return factory_of<Aga>(s);
+  return factory_of<Aga>(read, s);
 }
 
 OptimizerFactory make_de(const OptimizerSpec& spec) {
-  const SettingsReader read("de", spec.settings, {"strategy", "F", "CR"});
-  DeSettings s;
-  s.population = spec.population;
-  s.generations = spec.iterations;
+  SettingsReader read("de", spec.settings);
+  auto s = with_budget<DeSettings>(spec);
   if (const std::string* t = read.text("strategy")) s.strategy = parse_de_strategy(trim(*t));
-  read.number("F", s.F);
-  read.number("CR", s.CR);
-  return factory_of<De>(s);
+  read.apply({{"F", &s.F}, {"CR", &s.CR}});
+  return factory_of<De>(read, s);
 }
 
 OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
-  const SettingsReader read("ga-sqp", spec.settings,
-                            {"pc", "pm", "eta_c", "eta_m", "tournament", "elites", "constraint", "sqp_iterations",
-                             "fd_step", "xtol", "ftol"});
-  GaSqpSettings s;
-  s.population = spec.population;
-  s.generations = spec.iterations;
-  read.number("pc", s.pc);
-  read.optional_number("pm", s.pm);
-  read_genetic(read, s);
+  SettingsReader read("ga-sqp", spec.settings);
+  auto s = with_budget<GaSqpSettings>(spec);
+  read_ga(read, s);
   if (const std::string* t = read.text("constraint"); t && (trim(*t) == "off" || trim(*t) == "none"))
     s.constraint = std::numeric_limits<double>::infinity();
   else
-    read.number("constraint", s.constraint);
-  read.whole("sqp_iterations", s.sqp_iterations);
-  read.number("fd_step", s.fd_step);
-  read.number("xtol", s.xtol);
-  read.number("ftol", s.ftol);
-  return factory_of<GaSqp>(s);
+    read.apply({{"constraint", &s.constraint}});
+  read.apply({{"sqp_iterations", &s.sqp_iterations}, {"fd_step", &s.fd_step}, {"xtol", &s.xtol}, {"ftol", &s.ftol}});
+  return factory_of<GaSqp>(read, s);
 }
 
 OptimizerFactory make_ga_lm(const OptimizerSpec& spec) {
-  const SettingsReader read("ga-lm", spec.settings,
-                            {"pc", "pm", "eta_c", "eta_m", "tournament", "elites", "lm_iterations", "fd_step", "ftol",
-                             "xtol", "gtol", "lambda0", "geodesic", "geodesic_ratio"});
-  GaLmSettings s;
-  s.population = spec.population;
-  s.generations = spec.iterations;
-  read.number("pc", s.pc);
-  read.optional_number("pm", s.pm);
-  read_genetic(read, s);
-  read.whole("lm_iterations", s.lm_iterations);
-  read.number("fd_step", s.fd_step);
-  read.number("ftol", s.ftol);
-  read.number("xtol", s.xtol);
-  read.number("gtol", s.gtol);
-  read.number("lambda0", s.lambda0);
-  read.whole("geodesic", s.geodesic);
-  read.number("geodesic_ratio", s.geodesic_ratio);
-  return factory_of<GaLm>(s);
+  SettingsReader read("ga-lm", spec.settings);
+  auto s = with_budget<GaLmSettings>(spec);
+  read_ga(read, s);
+  read.apply({{"lm_iterations", &s.lm_iterations}, {"fd_step", &s.fd_step}, {"ftol", &s.ftol}, {"xtol", &s.xtol},
+              {"gtol", &s.gtol}, {"lambda0", &s.lambda0}, {"geodesic", &s.geodesic},
+              {"geodesic_ratio", &s.geodesic_ratio}});
+  return factory_of<GaLm>(read, s);
 }
 
 struct Entry {

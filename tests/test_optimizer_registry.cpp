@@ -81,7 +81,7 @@ TEST(OptimizerRegistry, ValidatesPopulationAndIterations) {
 
 TEST(OptimizerRegistry, RejectsUnknownSettingKeys) {
   EXPECT_EQ(spec_error({"ga", 50, 100, {{"pk", "0.6"}}}),
-            "ga: unknown setting 'pk' (known: pc, pm, eta_c, eta_m, tournament, elites, preset)");
+            "ga: unknown setting 'pk' (known: preset, pc, pm, eta_c, eta_m, tournament, elites)");
   EXPECT_EQ(spec_error({"pso", 50, 100, {{"w", "0.5"}}}),
             "pso: unknown setting 'w' (known: variant, inertia, inertia_end, cognitive, social, vmax_fraction)");
   EXPECT_EQ(spec_error({"aga", 50, 100, {{"pc", "0.5"}}}),

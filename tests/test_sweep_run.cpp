@@ -62,7 +62,7 @@ void write_record(const fs::path& p, const std::string& operating, double amp, d
 }
 
 Loader csv_loader() {
-  return [](const LoadOptions& o) { return load_csv(o.path, CsvOptions{}); };
+  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
 }
 
 /// Every group of two stores, compared number by number (bits).

@@ -49,7 +49,7 @@ void write_record(const fs::path& p, const std::string& operating, double amp = 
 }
 
 Loader csv_loader() {
-  return [](const LoadOptions& o) { return load_csv(o.path, CsvOptions{}); };
+  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
 }
 
 /// The message of parsing `text` as dir/x.toml.
@@ -222,7 +222,7 @@ paper = "Table 4"
     const GroupRef g = plan.group(i);
     EXPECT_EQ(g.index, i);
     seen.insert({g.split, g.fitset, g.model, g.optimizer, static_cast<int>(g.metric)});
-    keys.insert(g.key);
+    keys.insert(g.task_key);
     EXPECT_EQ(g.runs, g.optimizer == 1 ? 2 : 3);
     tasks += g.runs;
   }
@@ -272,7 +272,7 @@ TEST(SweepSpec, IncludedFilesAreParts) {
   // The same part gives the same task keys alone and inside all.toml: results are shared bit for bit.
   const Plan alone(load_sweep((dir / "p1.toml").string()), csv_loader());
   const Plan both(load_sweep((dir / "all.toml").string()), csv_loader());
-  EXPECT_EQ(alone.group(0).key, both.group(0).key);
+  EXPECT_EQ(alone.group(0).task_key, both.group(0).task_key);
   write(dir / "dup.toml", "name = \"all\"\ninclude = [\"p1.toml\", \"p1.toml\"]\n");
   EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "dup.toml").string()); }).find("two included files are named 'p1'"),
             std::string::npos);

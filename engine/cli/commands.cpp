@@ -29,54 +29,13 @@
 
 namespace dampbench::cli {
 
-void add_data_options(CLI::App* cmd, DataOptions& d) {
+void add_data_options(CLI::App* cmd, RecordOptions& d) {
   cmd->add_option("--units", d.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
   cmd->add_option("--columns", d.columns, "column names of a file without header, e.g. t,x,v,F");
   cmd->add_option("--transform", d.transform, "slider-crank or slider-crank-printed: crfd rig MTS record to angle and torque");
   cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
   cmd->add_option("--conditions", d.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
   cmd->add_option("--set", d.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
-}
-
-void set_operating(Dataset& data, const std::string& text, std::string_view option) {
-  for (const auto& [name, value] : parse_key_values(text, option)) {
-    if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
-      throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", option, name));
-    data.operating[name] = parse_number(value, fmt::format("{} {}", option, name));
-  }
-}
-
-Dataset load_data(const DataOptions& options, bool require_force) {
-  CsvOptions csv;
-  csv.require_force = require_force;
-  if (!options.units.empty()) csv.units = parse_units_option(options.units);
-  if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
-  Dataset data = load_csv(options.path, csv);
-  if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
-    SliderCrank rig;
-    rig.printed_torque = options.transform == "slider-crank-printed";
-    data = to_rotary(data, rig);
-  } else if (!options.transform.empty()) {
-    throw InputError(fmt::format("--transform: expected slider-crank or slider-crank-printed, got '{}'", options.transform));
-  }
-  if (!options.average.empty()) {
-    int cycles = 0, drop = 0;
-    for (const auto& [key, value] : parse_key_values(options.average, "--average-cycles")) {
-      const double n = parse_number(value, "--average-cycles " + key);
-      if (n != std::floor(n) || n < 0) throw InputError(fmt::format("--average-cycles {}: expected a whole number, got '{}'", key, value));
-      if (key == "cycles") cycles = static_cast<int>(n);
-      else if (key == "drop") drop = static_cast<int>(n);
-      else throw InputError(fmt::format("--average-cycles: unknown key '{}' (expected cycles, drop)", key));
-    }
-    data = average_cycles(data, cycles, drop);
-  }
-  if (options.conditions == "utfsm") {
-    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) data.operating[k] = v;
-  } else if (!options.conditions.empty()) {
-    throw InputError(fmt::format("--conditions: expected utfsm, got '{}'", options.conditions));
-  }
-  if (!options.set.empty()) set_operating(data, options.set);
-  return data;
 }
 
 namespace {
@@ -161,7 +120,7 @@ int simulate_command(const SimulateOptions& o) {
   const ResolvedModel resolved = o.fixture.empty() ? resolve_model(o.model, o.laws) : resolve_fixture(o.fixture);
   const Model& model = *resolved.model;
   const std::vector<double> params = parse_params(model, o.params, resolved.defaults);
-  Dataset data = o.sine.empty() ? load_data(o.input, false) : make_sine(parse_sine_option(o.sine));
+  Dataset data = o.sine.empty() ? load_record(o.input, false) : make_sine(parse_sine_option(o.sine));
   if (!o.sine.empty() && !o.input.set.empty()) set_operating(data, o.input.set);
   const Signals signals = prepare_signals(data);
   if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(signals);
@@ -202,9 +161,9 @@ int fit_command(const FitOptions& o) {
   std::vector<Signals> signals;
   std::string names;
   for (const auto& path : o.paths) {
-    DataOptions d = o.data;
+    RecordOptions d = o.data;
     d.path = path;
-    signals.push_back(prepare_signals(load_data(d, true)));
+    signals.push_back(prepare_signals(load_record(d, true)));
     if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(signals.back());
     names += (names.empty() ? "" : "+") + signals.back().name;
   }
@@ -329,9 +288,9 @@ int evaluate_command(const EvaluateOptions& o) {
   for (Metric m : kAllMetrics) cols.emplace_back(metric_name(m));
   Table t{"evaluate", fmt::format("{} at the given parameters", model.id()), cols, {}};
   for (const auto& path : o.paths) {
-    DataOptions d = o.data;
+    RecordOptions d = o.data;
     d.path = path;
-    const Signals s = prepare_signals(load_data(d, true));
+    const Signals s = prepare_signals(load_record(d, true));
     if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(s);
     std::vector<MetricRow> row(1);
     BatchEvaluator(model, s).evaluate_all(batch, row);
@@ -369,9 +328,9 @@ int sensitivity_command(const SensitivityOptions& o) {
     const std::string& input = inputs[inputs.size() == 1 ? 0 : c];
     Dataset data;
     if (o.sines.empty()) {
-      DataOptions d = o.data;
+      RecordOptions d = o.data;
       d.path = input;
-      data = load_data(d, settings.metric.has_value());
+      data = load_record(d, settings.metric.has_value());
     } else {
       data = make_sine(parse_sine_option(input));
     }

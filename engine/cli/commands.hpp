@@ -9,6 +9,7 @@
 
 #include "engine/record/csv_loader.hpp"
 #include "engine/record/dataset.hpp"
+#include "engine/record/record_options.hpp"
 
 namespace CLI {
 class App;
@@ -16,31 +17,16 @@ class App;
 
 namespace dampbench::cli {
 
-/// Where a record comes from and how it is prepared (the loader options of fit, simulate and presets).
-struct DataOptions {
-  std::string path;
-  std::string units;       ///< "x=mm,F=kN"
-  std::string columns;     ///< "t,x,v,F"
-  std::string transform;   ///< "" | "slider-crank" | "slider-crank-printed" (crfd rig, eqs. 2.1–2.2)
-  std::string average;     ///< "cycles=10,drop=3": average the kept cycles into one
-  std::string conditions;  ///< "" | "utfsm": operating variables from the file name
-  std::string set;         ///< "I=1,amp=0.01,freq=1": operating variables (override the others)
-};
 /// Declares the loader options (--units, --columns, --transform, --average-cycles, --conditions, --set) on a
 /// subcommand.
-void add_data_options(CLI::App* cmd, DataOptions& data);
-
-/// Loads and prepares one record: CSV → slider-crank transform → cycle averaging → operating variables.
-Dataset load_data(const DataOptions& options, bool require_force);
-/// Applies "I=1,amp=0.01" to a dataset's operating variables (InputError for unknown names).
-void set_operating(Dataset& data, const std::string& text, std::string_view option = "--set");
+void add_data_options(CLI::App* cmd, RecordOptions& data);
 
 struct SimulateOptions {
   std::string model;
   std::string fixture;  ///< a published law fixture instead of --model (models/fixtures.hpp)
   std::string laws;     ///< "c0=poly(I,1);..." laws on the model's parameters
   std::string params;   ///< "name=value,..." in SI (the fixture's values by default)
-  DataOptions input;   ///< used when sine is empty
+  RecordOptions input;   ///< used when sine is empty
   std::string sine;    ///< "amp=...,freq=...,cycles=...,fs=..."
   double noise_rel = 0;
   std::uint64_t seed = 1;
@@ -51,7 +37,7 @@ struct FitOptions {
   std::string model;
   std::string laws;                 ///< parameter laws; with several --data, one set of coefficients for all
   std::vector<std::string> paths;   ///< one or more records (the metric is averaged over them)
-  DataOptions data;                 ///< loader options shared by every record (path unused)
+  RecordOptions data;                 ///< loader options shared by every record (path unused)
   std::string metric = "of_abs";
   std::string optimizer = "pso";
   std::string optimizer_settings;  ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
@@ -70,7 +56,7 @@ struct SensitivityOptions {
   std::vector<std::string> params;  ///< one per case
   std::vector<std::string> sines;   ///< one per case (or one for all)
   std::vector<std::string> paths;   ///< records instead of sines
-  DataOptions data;                 ///< loader options for the records
+  RecordOptions data;                 ///< loader options for the records
   int points = 21;
   double range = 0.5;
   std::string objective = "rms";    ///< rms (of the model force) or a metric name
@@ -84,7 +70,7 @@ struct EvaluateOptions {
   std::string laws;
   std::string params;
   std::vector<std::string> paths;
-  DataOptions data;
+  RecordOptions data;
   std::string format = "md";
 };
 

@@ -134,9 +134,9 @@ int compare_command(const CompareOptions& o) {
 
   std::vector<Signals> signals;
   for (const std::string& path : o.paths) {
-    DataOptions d = o.data;
+    RecordOptions d = o.data;
     d.path = path;
-    signals.push_back(prepare_signals(load_data(d, true)));
+    signals.push_back(prepare_signals(load_record(d, true)));
     if (law_model) law_model->check_variables(signals.back());
     settings.data_name += (settings.data_name.empty() ? "" : "+") + signals.back().name;
   }

@@ -17,7 +17,7 @@ struct CompareOptions {
   std::string model;
   std::string laws;
   std::vector<std::string> paths;
-  DataOptions data;
+  RecordOptions data;
   std::vector<std::string> optimizers;  ///< e.g. "pso", "ga:population=80", "ga-sqp:population=240,pc=0.8"
   std::string metric = "of_abs";
   int runs = 10;

@@ -36,12 +36,12 @@ std::vector<std::string> metric_cells(const lssvm::ErrorMetrics& m) {
           format_number(m.nrmse)};
 }
 
-std::vector<Dataset> load_records(const std::vector<std::string>& paths, const DataOptions& data) {
+std::vector<Dataset> load_records(const std::vector<std::string>& paths, const RecordOptions& data) {
   std::vector<Dataset> records;
   for (const std::string& path : paths) {
-    DataOptions d = data;
+    RecordOptions d = data;
     d.path = path;
-    records.push_back(load_data(d, false));
+    records.push_back(load_record(d, false));
   }
   return records;
 }

@@ -27,7 +27,7 @@ struct LssvmOptions {
   double c = std::numeric_limits<double>::quiet_NaN();      ///< fixed c (with sigma): no GA; NaN: tune
   double sigma = std::numeric_limits<double>::quiet_NaN();  ///< fixed σ (with c): no GA; NaN: tune
   std::string format = "md";       ///< md or json
-  DataOptions data;                ///< loader options shared by every record (path unused)
+  RecordOptions data;                ///< loader options shared by every record (path unused)
 };
 
 /// Declares the subcommand's options on `cmd` (created by main).

@@ -15,17 +15,7 @@
 namespace dampbench::cli {
 
 sweep::Loader sweep_loader() {
-  return [](const sweep::LoadOptions& o) {
-    DataOptions d;
-    d.path = o.path;
-    d.units = o.units;
-    d.columns = o.columns;
-    d.transform = o.transform;
-    d.average = o.average;
-    d.conditions = o.conditions;
-    d.set = o.set;
-    return load_data(d, true);
-  };
+  return [](const RecordOptions& o) { return load_record(o, true); };
 }
 
 int run_command(const RunOptions& options) {

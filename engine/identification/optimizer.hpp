@@ -44,6 +44,14 @@ class Optimizer {
   virtual void refine(const LocalProblem& /*problem*/) {}
 };
 
+/// `settings` after `settings.validate()` (which throws InputError), so that a constructor checks its settings
+/// before it builds its bases and members from them.
+template <class Settings>
+const Settings& validated(const Settings& settings) {
+  settings.validate();
+  return settings;
+}
+
 /// Makes the optimizer of one run. `run_key` keys every random number the run draws
 /// (engine/common/random.hpp), so a run's history depends only on it, never on threads or batch layout.
 using OptimizerFactory = std::function<std::unique_ptr<Optimizer>(const Bounds& bounds, std::uint64_t run_key)>;

@@ -10,13 +10,7 @@ namespace dampbench {
 
 Signals prepare_signals(const Dataset& data) {
   Signals s;
-  s.name = data.name;
-  s.t_s = data.t_s;
-  s.x_m = data.x_m;
-  s.v_m_s = data.v_m_s;
-  s.a_m_s2 = data.a_m_s2;
-  s.F_N = data.F_N;
-  s.operating = data.operating;
+  static_cast<Dataset&>(s) = data;
   const std::size_t n = s.t_s.size();
   s.w_trapz_s.assign(n, 0.0);
   for (std::size_t k = 0; k + 1 < n; ++k) {

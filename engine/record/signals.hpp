@@ -9,10 +9,8 @@
 
 namespace dampbench {
 
-struct Signals {
-  std::string name;
-  std::vector<double> t_s, x_m, v_m_s, a_m_s2;
-  std::vector<double> F_N;        ///< measured force; empty when only the input is known (simulate)
+/// The dataset (its signals and operating variables) plus what every candidate's evaluation shares.
+struct Signals : Dataset {
   std::vector<double> w_trapz_s;  ///< trapezoid-rule weights: ∫ g dt ≈ Σ w_k g_k
   /// Per-sample invariants of the power laws, computed once here instead of once per lane block:
   /// sgn(x), sgn(v) and log|x|, log|v| (clamped, engine/common/vector_math.hpp) so that |v|^α = exp(α·log|v|)
@@ -26,13 +24,9 @@ struct Signals {
   double displacement_ptp = 0;    ///< max x − min x [m] (ΔZ of fdsp eq. 15)
   /// fdsp eq. 15: ω = ΔŻ/(π·ΔZ), the excitation frequency [Hz] for a sinusoid, estimated from the record.
   double excitation_freq_hz = 0;
-  std::map<std::string, double> operating;
   /// Variables parameter laws may use (engine/model/parameter_law.hpp): `operating`, plus amp (ΔZ/2) and freq
   /// (eq. 15 estimate) from the signals when the dataset does not state them.
   std::map<std::string, double> law_variables;
-
-  [[nodiscard]] std::size_t size() const { return t_s.size(); }
-  [[nodiscard]] bool has_force() const { return !F_N.empty(); }
 };
 
 /// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).

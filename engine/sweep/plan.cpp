@@ -182,7 +182,7 @@ GroupRef Plan::group(long long index) const {
   g.fitset = static_cast<int>(local / pairs);
   const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
   g.runs = opt.runs > 0 ? opt.runs : part.spec->runs;
-  g.key = hash_key({task_key(part.spec->models[g.model].name, split.fitsets[g.fitset].key_name, opt.label),
+  g.task_key = hash_key({task_key(part.spec->models[g.model].name, split.fitsets[g.fitset].key_name, opt.label),
                     hash_name(metric_name(g.metric)), hash_name(part.spec->splits[g.split].name)});
   return g;
 }

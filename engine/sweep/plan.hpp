@@ -14,11 +14,12 @@
 #include "engine/record/dataset.hpp"
 #include "engine/record/signals.hpp"
 #include "engine/sweep/spec.hpp"
+#include "engine/sweep/store.hpp"
 
 namespace dampbench::sweep {
 
 /// Reads one record with the loader options of a dataset entry (the command line passes its load_data).
-using Loader = std::function<Dataset(const LoadOptions&)>;
+using Loader = std::function<Dataset(const RecordOptions&)>;
 
 struct LoadedDataset {
   Signals signals;    ///< empty when loading failed
@@ -47,15 +48,6 @@ struct PartPlan {
   std::vector<OptimizerFactory> factories;
   std::vector<LoadedDataset> datasets;
   std::vector<SplitPlan> splits;
-};
-
-/// One task group, decoded from its number.
-struct GroupRef {
-  long long index = 0;
-  int part = 0, split = 0, fitset = 0, model = 0, optimizer = 0;
-  Metric metric = Metric::of_abs;
-  int runs = 0;
-  std::uint64_t key = 0;  ///< task key: runs are keyed (seed, key, run)
 };
 
 class Plan {

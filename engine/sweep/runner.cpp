@@ -25,15 +25,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
   const PartPlan& part = plan.parts()[g.part];
   const FitSet& fs = part.splits[g.split].fitsets[g.fitset];
   GroupRecord rec;
-  rec.index = index;
-  rec.part = g.part;
-  rec.split = g.split;
-  rec.fitset = g.fitset;
-  rec.model = g.model;
-  rec.optimizer = g.optimizer;
-  rec.metric = g.metric;
-  rec.runs = g.runs;
-  rec.task_key = g.key;
+  static_cast<GroupRef&>(rec) = g;
   rec.dampbench_version = dampbench_version();
   rec.build_flags = build_flags();
   rec.spec_hash = plan.spec().hash;
@@ -56,7 +48,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     IdentificationSettings settings;
     settings.runs = g.runs;
     settings.seed = part.spec->seed;
-    settings.task_key = g.key;
+    settings.task_key = g.task_key;
     settings.metric = g.metric;
     settings.budget = opt.budget;
     const Identification id = identify(model, data, resolved.bounds, part.factories[g.optimizer], settings);

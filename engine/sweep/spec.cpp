@@ -388,7 +388,7 @@ struct PartReader {
       if (std::find(part.collections.begin(), part.collections.end(), name) != part.collections.end())
         r.fail(t.get("name"), Reader::join(key, "name"), fmt::format("dataset entry name '{}' is used twice", name));
       part.collections.push_back(name);
-      LoadOptions load;
+      RecordOptions load;
       load.units = r.string(t, "units", key).value_or("");
       load.columns = r.string(t, "columns", key).value_or("");
       load.transform = r.string(t, "transform", key).value_or("");
@@ -453,7 +453,7 @@ struct PartReader {
     }
   }
 
-  void check_load_options(const toml::table& t, const std::string& key, const LoadOptions& load) const {
+  void check_load_options(const toml::table& t, const std::string& key, const RecordOptions& load) const {
     if (!load.units.empty()) r.check(t.get("units"), Reader::join(key, "units"), [&] { return parse_units_option(load.units); });
     if (!load.columns.empty()) r.check(t.get("columns"), Reader::join(key, "columns"), [&] { return split_list(load.columns, "columns"); });
     if (!load.transform.empty() && load.transform != "slider-crank" && load.transform != "slider-crank-printed")

@@ -44,26 +44,16 @@
 #include "engine/identification/identification.hpp"
 #include "engine/model/metrics.hpp"
 #include "engine/model/model.hpp"
+#include "engine/record/record_options.hpp"
 #include "optimizers/registry.hpp"
 
 namespace dampbench::sweep {
-
-/// How one record is read and prepared (mirrors the loader options of `dampbench fit`).
-struct LoadOptions {
-  std::string path;        ///< resolved file path
-  std::string units;       ///< "x=mm,F=kN"
-  std::string columns;     ///< "t,x,v,F"
-  std::string transform;   ///< "" | "slider-crank" | "slider-crank-printed"
-  std::string average;     ///< "cycles=10,drop=3"
-  std::string conditions;  ///< "" | "utfsm"
-  std::string set;         ///< "I=1,amp=0.01"
-};
 
 struct DatasetSpec {
   std::string name;        ///< unique in the part: the entry's name (one file) or the file stem (files, glob)
   std::string collection;  ///< name of the [[datasets]] entry it came from
   std::string label;       ///< longer description for tables
-  LoadOptions load;
+  RecordOptions load;
 };
 
 /// A model to identify: a registered model or a published law fixture, optionally with parameter laws.

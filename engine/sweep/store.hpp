@@ -101,13 +101,17 @@ struct SensitivityRecord {
   std::vector<double> S, SP;
 };
 
-/// One finished task group, as written and as read back.
-struct GroupRecord {
+/// One task group, decoded from its number (Plan::group): which part, split, fit set, model, optimizer.
+struct GroupRef {
   long long index = 0;
   int part = 0, split = 0, fitset = 0, model = 0, optimizer = 0;
   Metric metric = Metric::of_abs;
   int runs = 0;
-  std::uint64_t task_key = 0;
+  std::uint64_t task_key = 0;  ///< runs are keyed (seed, task_key, run)
+};
+
+/// One finished task group, as written and as read back.
+struct GroupRecord : GroupRef {
   bool failed = false;
   std::string message;
   double wall_time_s = 0, candidate_samples = 0;

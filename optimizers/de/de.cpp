@@ -37,25 +37,11 @@ void DeSettings::validate() const {
   if (!(CR >= 0 && CR <= 1)) throw InputError(fmt::format("de: CR must be in [0, 1], got {}", CR));
 }
 
-namespace {
-const DeSettings& validated(const DeSettings& s) {
-  s.validate();
-  return s;
-}
-}  // namespace
-
 De::De(const DeSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : settings_(validated(settings)), bounds_(bounds), run_key_(run_key), dim_(bounds.dim()) {
-  const int n = settings_.population;
-  population_.resize(static_cast<std::size_t>(n) * dim_);
+    : PopulationOptimizer(validated(settings).population, settings.generations, bounds, run_key),
+      settings_(settings) {
   trials_.resize(population_.size());
-  values_.assign(n, std::numeric_limits<double>::infinity());
-  for (int i = 0; i < n; ++i) {
-    RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
-    for (int j = 0; j < dim_; ++j) x(i, j) = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
-  }
-  best_position_.assign(population_.begin(), population_.begin() + dim_);
-  best_value_ = std::numeric_limits<double>::infinity();
+  values_.assign(settings_.population, std::numeric_limits<double>::infinity());
 }
 
 void De::ask(CandidateBatch& batch, int first) {

@@ -23,7 +23,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/identification/optimizer.hpp"
+#include "optimizers/population.hpp"
 
 namespace dampbench {
 
@@ -45,30 +45,19 @@ struct DeSettings {
   void validate() const;
 };
 
-class De final : public Optimizer {
+class De final : public PopulationOptimizer {
  public:
   De(const DeSettings& settings, const Bounds& bounds, std::uint64_t run_key);
 
-  [[nodiscard]] int batch_size() const override { return settings_.population; }
   void ask(CandidateBatch& batch, int first) override;
   void tell(std::span<const double> values) override;
-  [[nodiscard]] bool finished() const override { return generation_ >= settings_.generations; }
-  [[nodiscard]] std::span<const double> best_position() const override { return best_position_; }
-  [[nodiscard]] double best_value() const override { return best_value_; }
 
  private:
   void make_trials();
-  double& x(int i, int j) { return population_[static_cast<std::size_t>(i) * dim_ + j]; }
   double& u(int i, int j) { return trials_[static_cast<std::size_t>(i) * dim_ + j]; }
 
   DeSettings settings_;
-  Bounds bounds_;
-  std::uint64_t run_key_;
-  int dim_;
-  int generation_ = 0;  ///< generations told so far
-  std::vector<double> population_, values_, trials_;  ///< row-major N × dim
-  std::vector<double> best_position_;
-  double best_value_;
+  std::vector<double> values_, trials_;  ///< values of the population; trials row-major N × dim
 };
 
 }  // namespace dampbench

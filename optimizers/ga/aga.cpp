@@ -23,11 +23,6 @@ void AgaSettings::validate() const {
 
 namespace {
 
-const AgaSettings& validated(const AgaSettings& s) {
-  s.validate();
-  return s;
-}
-
 /// Position of f between the best and the mean: 0 at f_min, 1 at f_avg; −1 when f is worse
 /// than average, failed, or there is no finite mean.
 double relative_rank(double f, double f_min, double f_avg) {
@@ -49,7 +44,7 @@ double aga_mutation_probability(const AgaSettings& s, double f_parent, double f_
 }
 
 Aga::Aga(const AgaSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : GeneticAlgorithm(validated(settings), bounds, run_key), settings_(settings), dim_(bounds.dim()) {}
+    : GeneticAlgorithm(validated(settings), bounds, run_key), settings_(settings) {}
 
 GeneticAlgorithm::PairRates Aga::rates(double value_a, double value_b, const PopulationStats& stats) const {
   const double f_min = stats.best, f_avg = stats.mean_finite;

@@ -50,7 +50,6 @@ class Aga final : public GeneticAlgorithm {
  private:
   [[nodiscard]] PairRates rates(double value_a, double value_b, const PopulationStats& stats) const override;
   AgaSettings settings_;
-  int dim_;
 };
 
 }  // namespace dampbench

@@ -23,13 +23,6 @@ void GaSettings::validate() const {
   if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga: pm must be in [0, 1], got {}", *pm));
 }
 
-namespace {
-const GaSettings& validated(const GaSettings& s) {
-  s.validate();
-  return s;
-}
-}  // namespace
-
 Ga::Ga(const GaSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : GeneticAlgorithm(validated(settings), bounds, run_key), pc_(settings.pc),
       pm_(settings.pm.value_or(1.0 / std::max(bounds.dim(), 1))) {}

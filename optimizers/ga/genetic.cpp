@@ -96,18 +96,9 @@ double polynomial_mutation(double x, double lower, double upper, double eta_m, R
 }  // namespace genetic
 
 GeneticAlgorithm::GeneticAlgorithm(const GeneticSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : settings_(settings), bounds_(bounds), run_key_(run_key), dim_(bounds.dim()) {
-  const int n = settings_.population;
-  population_.resize(static_cast<std::size_t>(n) * dim_);
+    : PopulationOptimizer(settings.population, settings.generations, bounds, run_key), settings_(settings) {
   offspring_.resize(population_.size());
-  values_.assign(n, std::numeric_limits<double>::infinity());
-  for (int i = 0; i < n; ++i) {
-    RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
-    std::span<double> x = member(population_, i);
-    for (int j = 0; j < dim_; ++j) x[j] = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
-  }
-  best_position_.assign(population_.begin(), population_.begin() + dim_);
-  best_value_ = std::numeric_limits<double>::infinity();
+  values_.assign(settings_.population, std::numeric_limits<double>::infinity());
 }
 
 void GeneticAlgorithm::ask(CandidateBatch& batch, int first) {

@@ -32,7 +32,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/identification/optimizer.hpp"
+#include "optimizers/population.hpp"
 #include "engine/common/random.hpp"
 
 namespace dampbench {
@@ -69,14 +69,10 @@ double polynomial_mutation(double x, double lower, double upper, double eta_m, R
 }  // namespace genetic
 
 /// The generational GA; subclasses choose the rates.
-class GeneticAlgorithm : public Optimizer {
+class GeneticAlgorithm : public PopulationOptimizer {
  public:
-  [[nodiscard]] int batch_size() const override { return settings_.population; }
   void ask(CandidateBatch& batch, int first) override;
   void tell(std::span<const double> values) override;
-  [[nodiscard]] bool finished() const override { return generation_ >= settings_.generations; }
-  [[nodiscard]] std::span<const double> best_position() const override { return best_position_; }
-  [[nodiscard]] double best_value() const override { return best_value_; }
 
  protected:
   /// Objective values of the current population (failed candidates as +inf).
@@ -96,19 +92,10 @@ class GeneticAlgorithm : public Optimizer {
 
  private:
   void breed();
-  std::span<double> member(std::vector<double>& pool, int i) {
-    return {pool.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_)};
-  }
 
   GeneticSettings settings_;
-  Bounds bounds_;
-  std::uint64_t run_key_;
-  int dim_;
-  int generation_ = 0;  ///< generations told so far
-  std::vector<double> population_, values_;  ///< parents, row-major N × dim, and their values
-  std::vector<double> offspring_;            ///< the generation being evaluated (generation ≥ 1)
-  std::vector<double> best_position_;
-  double best_value_;
+  std::vector<double> values_;     ///< values of the parents (population_)
+  std::vector<double> offspring_;  ///< the generation being evaluated (generation ≥ 1)
 };
 
 /// A told value as the GAs read it: failures (NaN, ±inf) become +inf.

@@ -29,11 +29,6 @@ void GaLmSettings::validate() const {
 
 namespace {
 
-const GaLmSettings& validated(const GaLmSettings& s) {
-  s.validate();
-  return s;
-}
-
 constexpr int kMaxRejectedSteps = 20;
 
 }  // namespace

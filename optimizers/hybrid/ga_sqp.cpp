@@ -26,11 +26,6 @@ void GaSqpSettings::validate() const {
 
 namespace {
 
-const GaSqpSettings& validated(const GaSqpSettings& s) {
-  s.validate();
-  return s;
-}
-
 std::string status_name(nlopt_result r) {
   switch (r) {
     case NLOPT_SUCCESS: return "success";

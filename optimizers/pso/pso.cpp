@@ -24,47 +24,28 @@ void PsoSettings::validate() const {
 }
 
 PsoSettings PsoSettings::constriction() {
-  PsoSettings s;
-  s.variant = PsoVariant::constriction;
-  s.cognitive = 2.05;
-  s.social = 2.05;
-  return s;
+  return {.variant = PsoVariant::constriction, .cognitive = 2.05, .social = 2.05};
 }
 
-PsoSettings PsoSettings::linear_inertia() {
-  PsoSettings s;
-  s.inertia = 0.9;
-  s.inertia_end = 0.4;
-  s.cognitive = 2.0;
-  s.social = 2.0;
-  return s;
-}
+PsoSettings PsoSettings::linear_inertia() { return {.inertia = 0.9, .inertia_end = 0.4, .cognitive = 2.0, .social = 2.0}; }
 
 double PsoSettings::constriction_factor() const {
   const double phi = cognitive + social;
   return 2.0 / std::abs(2.0 - phi - std::sqrt(phi * phi - 4.0 * phi));
 }
 
+// Until the first tell, the best position is the first particle (PopulationOptimizer): inside the box even if
+// a run is stopped (engine budgets) before any evaluation.
 Pso::Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_key)
-    : settings_(settings), bounds_(bounds), run_key_(run_key), dim_(bounds.dim()) {
-  settings_.validate();
-  const int n = settings_.population;
-  x_.resize(static_cast<std::size_t>(n) * dim_);
-  v_.assign(x_.size(), 0.0);
-  pbest_.resize(x_.size());
-  pbest_value_.assign(n, std::numeric_limits<double>::infinity());
-  gbest_value_ = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < n; ++i) {
-    RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
-    for (int j = 0; j < dim_; ++j) x(i, j) = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
-  }
-  // Until the first tell, the best position is the first particle: inside the box even if a run is stopped
-  // (engine budgets) before any evaluation.
-  gbest_.assign(x_.begin(), x_.begin() + dim_);
+    : PopulationOptimizer(validated(settings).population, settings.iterations, bounds, run_key),
+      settings_(settings) {
+  v_.assign(population_.size(), 0.0);
+  pbest_.resize(population_.size());
+  pbest_value_.assign(settings_.population, std::numeric_limits<double>::infinity());
 }
 
 void Pso::ask(CandidateBatch& batch, int first) {
-  if (iteration_ > 0) move_swarm();
+  if (generation_ > 0) move_swarm();
   for (int i = 0; i < settings_.population; ++i)
     for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x(i, j);
 }
@@ -73,33 +54,33 @@ void Pso::tell(std::span<const double> values) {
   for (int i = 0; i < settings_.population; ++i) {
     const double value = std::isfinite(values[i]) ? values[i] : std::numeric_limits<double>::infinity();
     // The first evaluation always sets pbest (even +inf), so every particle has an attractor.
-    if (iteration_ == 0 || value < pbest_value_[i]) {
+    if (generation_ == 0 || value < pbest_value_[i]) {
       pbest_value_[i] = value;
-      std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_,
+      std::copy_n(population_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_,
                   pbest_.begin() + static_cast<std::ptrdiff_t>(i) * dim_);
     }
-    if (value < gbest_value_ || (iteration_ == 0 && i == 0)) {
-      gbest_value_ = value;
-      std::copy_n(x_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, gbest_.begin());
+    if (value < best_value_ || (generation_ == 0 && i == 0)) {
+      best_value_ = value;
+      std::copy_n(population_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, best_position_.begin());
     }
   }
-  ++iteration_;
+  ++generation_;
 }
 
 void Pso::move_swarm() {
   const double progress =
-      settings_.iterations > 1 ? static_cast<double>(iteration_ - 1) / (settings_.iterations - 1) : 0.0;
+      settings_.iterations > 1 ? static_cast<double>(generation_ - 1) / (settings_.iterations - 1) : 0.0;
   const double w = settings_.inertia + (settings_.inertia_end - settings_.inertia) * progress;
   const bool constricted = settings_.variant == PsoVariant::constriction;
   const double chi = constricted ? settings_.constriction_factor() : 1.0;
   for (int i = 0; i < settings_.population; ++i) {
-    RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(iteration_), static_cast<std::uint64_t>(i)}));
+    RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(generation_), static_cast<std::uint64_t>(i)}));
     for (int j = 0; j < dim_; ++j) {
       const double lo = bounds_.lower[j], hi = bounds_.upper[j];
       const double vmax = settings_.vmax_fraction * (hi - lo);
       const double r1 = rng.uniform(), r2 = rng.uniform();
       const double cognitive = settings_.cognitive * r1 * (pbest(i, j) - x(i, j));
-      const double social = settings_.social * r2 * (gbest_[j] - x(i, j));
+      const double social = settings_.social * r2 * (best_position_[j] - x(i, j));
       double vel = constricted ? chi * (v(i, j) + cognitive + social) : w * v(i, j) + cognitive + social;
       vel = std::clamp(vel, -vmax, vmax);
       double pos = x(i, j) + vel;

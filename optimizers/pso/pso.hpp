@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/identification/optimizer.hpp"
+#include "optimizers/population.hpp"
 
 namespace dampbench {
 
@@ -58,30 +58,20 @@ struct PsoSettings {
   void validate() const;
 };
 
-class Pso final : public Optimizer {
+class Pso final : public PopulationOptimizer {
  public:
   Pso(const PsoSettings& settings, const Bounds& bounds, std::uint64_t run_key);
 
-  [[nodiscard]] int batch_size() const override { return settings_.population; }
   void ask(CandidateBatch& batch, int first) override;
   void tell(std::span<const double> values) override;
-  [[nodiscard]] bool finished() const override { return iteration_ >= settings_.iterations; }
-  [[nodiscard]] std::span<const double> best_position() const override { return gbest_; }
-  [[nodiscard]] double best_value() const override { return gbest_value_; }
 
  private:
   void move_swarm();
-  double& x(int i, int j) { return x_[static_cast<std::size_t>(i) * dim_ + j]; }
   double& v(int i, int j) { return v_[static_cast<std::size_t>(i) * dim_ + j]; }
   double& pbest(int i, int j) { return pbest_[static_cast<std::size_t>(i) * dim_ + j]; }
 
   PsoSettings settings_;
-  Bounds bounds_;
-  std::uint64_t run_key_;
-  int dim_;
-  int iteration_ = 0;  ///< swarm evaluations told so far
-  std::vector<double> x_, v_, pbest_, pbest_value_, gbest_;
-  double gbest_value_;
+  std::vector<double> v_, pbest_, pbest_value_;  ///< velocities and personal bests (row-major N × dim)
 };
 
 }  // namespace dampbench

@@ -1,0 +1,56 @@
+#include "engine/record/record_options.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/record/record_transforms.hpp"
+
+namespace dampbench {
+
+void set_operating(Dataset& data, const std::string& text, std::string_view option) {
+  for (const auto& [name, value] : parse_key_values(text, option)) {
+    if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
+      throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", option, name));
+    data.operating[name] = parse_number(value, fmt::format("{} {}", option, name));
+  }
+}
+
+Dataset load_record(const RecordOptions& options, bool require_force) {
+  CsvOptions csv;
+  csv.require_force = require_force;
+  if (!options.units.empty()) csv.units = parse_units_option(options.units);
+  if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
+  Dataset data = load_csv(options.path, csv);
+  if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
+    SliderCrank rig;
+    rig.printed_torque = options.transform == "slider-crank-printed";
+    data = to_rotary(data, rig);
+  } else if (!options.transform.empty()) {
+    throw InputError(fmt::format("--transform: expected slider-crank or slider-crank-printed, got '{}'", options.transform));
+  }
+  if (!options.average.empty()) {
+    int cycles = 0, drop = 0;
+    for (const auto& [key, value] : parse_key_values(options.average, "--average-cycles")) {
+      const double n = parse_number(value, "--average-cycles " + key);
+      if (n != std::floor(n) || n < 0) throw InputError(fmt::format("--average-cycles {}: expected a whole number, got '{}'", key, value));
+      if (key == "cycles") cycles = static_cast<int>(n);
+      else if (key == "drop") drop = static_cast<int>(n);
+      else throw InputError(fmt::format("--average-cycles: unknown key '{}' (expected cycles, drop)", key));
+    }
+    data = average_cycles(data, cycles, drop);
+  }
+  if (options.conditions == "utfsm") {
+    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) data.operating[k] = v;
+  } else if (!options.conditions.empty()) {
+    throw InputError(fmt::format("--conditions: expected utfsm, got '{}'", options.conditions));
+  }
+  if (!options.set.empty()) set_operating(data, options.set);
+  return data;
+}
+
+}  // namespace dampbench
