@@ -56,7 +56,7 @@ Record fvd_test(const Truth& truth, const Test& test, std::uint64_t seed) {
         const double v = velocity(time);
         dy[0] = truth.A_N_m * v - truth.beta_1_m * std::fabs(v) * y[0] - truth.gamma_1_m * v * std::fabs(y[0]);
       },
-      {0.0}, r.t_s, {1e-10, 1e-6, 100000});
+      {0.0}, r.t_s, {1e-10, 1e-6, 100000, /*stop_at_each_time=*/false});
 
   std::vector<double> F(n);
   for (int k = 0; k < n; ++k) {

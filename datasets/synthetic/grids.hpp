@@ -27,7 +27,7 @@ void write_grid(const std::string& name, const std::filesystem::path& dir, std::
 enum class GridState { kPresent, kGenerated, kRegenerated };
 
 /// Makes sure `root/name` holds grid `name` as this build makes it (`identity` names the build, e.g.
-/// "dampbench 0.1.0 (Release,native=OFF,...)"); generates or regenerates it otherwise. Throws InputError
+/// "dampbench 0.2.0 (Release,native=OFF,...)"); generates or regenerates it otherwise. Throws InputError
 /// naming the folder when it cannot be written.
 GridState ensure_grid(const std::filesystem::path& root, const std::string& name, const std::string& identity);
 

@@ -89,13 +89,21 @@ ResolvedModel resolve_fixture(const std::string& name) {
 
 int models_command(const std::string& format) {
   check_format(format);
+  // The record rule of a parameter, if any ("" otherwise): its default box when a record is fitted.
+  auto rule_of = [](const Model& m, const ParameterInfo& p) {
+    for (const RecordBoundsRule& r : m.record_bounds_rules())
+      if (r.name == p.name) return r.describe();
+    return std::string();
+  };
   if (format == "json") {
     nlohmann::ordered_json models = nlohmann::ordered_json::object();
     for (const Model* m : all_models()) {
       nlohmann::ordered_json params = nlohmann::ordered_json::array();
-      for (const auto& p : m->parameters())
+      for (const auto& p : m->parameters()) {
         params.push_back({{"name", p.name}, {"unit", p.unit}, {"lower", p.lower}, {"upper", p.upper},
                           {"paper_unit", p.paper_unit}});
+        if (const std::string rule = rule_of(*m, p); !rule.empty()) params.back()["record_rule"] = rule;
+      }
       models[std::string(m->id())] = {{"citation", m->citation()}, {"law", m->law()}, {"parameters", params}};
     }
     std::cout << nlohmann::ordered_json{{"models", models}}.dump(2) << "\n";
@@ -103,9 +111,9 @@ int models_command(const std::string& format) {
   }
   for (const Model* m : all_models()) {
     Table t{std::string(m->id()), fmt::format("{} ({}): {}", m->id(), m->citation(), m->law()),
-            {"parameter", "unit (SI)", "lower", "upper"}, {}};
+            {"parameter", "unit (SI)", "lower", "upper", "when fitting a record (F, V, X: its peak force, peak velocity, amplitude)"}, {}};
     for (const auto& p : m->parameters())
-      t.rows.push_back({p.name, p.unit, format_number(p.lower), format_number(p.upper)});
+      t.rows.push_back({p.name, p.unit, format_number(p.lower), format_number(p.upper), rule_of(*m, p)});
     std::cout << t.to_markdown() << "\n";
   }
   return 0;
@@ -152,8 +160,6 @@ int fit_command(const FitOptions& o) {
   const ResolvedModel resolved = resolve_model(o.model, o.laws);
   const Model& model = *resolved.model;
   const Metric metric = parse_metric(o.metric);
-  Bounds bounds = default_bounds(model);
-  if (!o.bounds.empty()) override_bounds(bounds, model, o.bounds);
   OptimizerSpec spec{o.optimizer, o.population, o.iterations};
   for (const auto& [key, value] : parse_key_values(o.optimizer_settings, "--optimizer-settings")) spec.settings[key] = value;
   const OptimizerFactory factory = make_optimizer_factory(spec);
@@ -169,6 +175,8 @@ int fit_command(const FitOptions& o) {
   }
   std::vector<const Signals*> data;
   for (const auto& s : signals) data.push_back(&s);
+  Bounds bounds = default_bounds(model, data);
+  if (!o.bounds.empty()) override_bounds(bounds, model, o.bounds);
   double samples = 0;
   for (const auto& s : signals) samples += static_cast<double>(s.size());
 

@@ -126,8 +126,6 @@ int compare_command(const CompareOptions& o) {
   settings.identification.seed = o.seed;
   settings.identification.budget.max_evaluations = o.max_evaluations;
   if (!o.target.empty()) settings.target = parse_number(trim(o.target), "--target");
-  Bounds bounds = default_bounds(*model);
-  if (!o.bounds.empty()) override_bounds(bounds, *model, o.bounds);
 
   std::vector<ComparisonEntry> entries;
   for (const std::string& text : o.optimizers) entries.push_back({std::string(trim(text)), parse_optimizer_entry(text)});
@@ -142,6 +140,8 @@ int compare_command(const CompareOptions& o) {
   }
   std::vector<const Signals*> data;
   for (const Signals& s : signals) data.push_back(&s);
+  Bounds bounds = default_bounds(*model, data);
+  if (!o.bounds.empty()) override_bounds(bounds, *model, o.bounds);
 
   const auto start = std::chrono::steady_clock::now();
   const Comparison c = compare_optimizers(*model, data, bounds, entries, settings);

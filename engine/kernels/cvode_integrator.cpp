@@ -63,6 +63,10 @@ std::vector<std::vector<double>> integrate_cvode(const OdeRhs& rhs, std::vector<
   out.reserve(times.size());
   for (std::size_t k = 0; k < times.size(); ++k) {
     if (k > 0) {
+      // Stop at every output time: the inputs are piecewise linear with kinks there, and a step that
+      // crosses them can skip a whole half cycle of a hysteretic state when the states at both ends of the
+      // step are at rest (a saturated Bouc–Wen z before and after a reversal), with a tiny error estimate.
+      if (settings.stop_at_each_time) check(CVodeSetStopTime(s.mem, times[k]), "CVodeSetStopTime");
       sunrealtype t_reached = 0;
       check(CVode(s.mem, times[k], s.y, &t_reached, CV_NORMAL), "CVode");
     }

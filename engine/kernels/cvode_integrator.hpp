@@ -12,6 +12,10 @@ struct CvodeSettings {
   double relative_tolerance = 1e-10;
   double absolute_tolerance = 1e-12;
   long max_steps_per_output = 100000;
+  /// Never step past an output time (CVodeSetStopTime): needed for inputs with kinks at the output times
+  /// (records, piecewise linear). The fvd generator's input is a smooth cosine and keeps its committed
+  /// records by stepping freely.
+  bool stop_at_each_time = true;
 };
 
 /// dy/dt = rhs(t, y); `dydt` has y's size. Must not throw.

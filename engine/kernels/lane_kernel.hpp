@@ -151,6 +151,11 @@ class KernelModel final : public Model {
     return force;
   }
 
+  [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {
+    if constexpr (requires { Law::record_bounds_rules(); }) return Law::record_bounds_rules();
+    else return {};
+  }
+
   [[nodiscard]] std::vector<double> to_paper_units(std::span<const double> params) const override {
     if constexpr (requires { Law::to_paper_units(params); }) return Law::to_paper_units(params);
     else return Model::to_paper_units(params);

@@ -13,6 +13,15 @@
 // states change over a fraction of the stroke, whatever the sampling rate, so the rule ties the step
 // to the motion rather than to the clock.
 //
+// Stiff lanes (issue 13): a law may also give an upper estimate of its Jacobian's spectral radius λ [1/s]
+// from one lane's parameters and the record's scales (`Law::stiffness`, below). Lane l then takes
+// n_l = max(n, ceil(dt·λ_l / kStiffStep)) sub-steps on the interval, so h·λ ≤ kStiffStep, inside RK4's
+// stability interval (|h·λ| < 2.78 on the negative real axis) with room for accuracy. The block runs
+// max_l n_l sub-steps; lane l is updated only in its first n_l of them, with the same arithmetic as if the
+// whole block took n_l steps, so a lane's result depends on its own parameters and the record only (any
+// batch split gives the same bits). A lane that would need more than kMaxSubsteps on some interval is
+// masked as too stiff (the share is what `bench` reports as masked), so no candidate can stall a batch.
+//
 // Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
 // marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
 //
@@ -24,15 +33,29 @@
 //   static void rhs(const P&, int lane, const Context&, double x, double v, const Y& y, DY&& dydt);
 //   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
 //   optional: kLaneInvariants and lane_invariants(p), per-candidate constants (engine/kernels/lane_kernel.hpp)
+//   optional: template <class P> static double stiffness(const P&, int lane, const Context&, const RecordScales&)
 // where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "engine/kernels/lane_kernel.hpp"
 #include "engine/kernels/cvode_integrator.hpp"
 
 namespace dampbench {
+
+/// What a law's stiffness estimate may use of the record.
+struct RecordScales {
+  double velocity_max_abs = 0;  ///< max |v| [m/s]
+  double displacement_ptp = 0;  ///< max x − min x [m]
+};
+
+/// h·λ a stiff lane's sub-step may reach (see above; tests/test_ode_stiff_lanes.cpp holds the CVODE bound
+/// over random candidates of every default box with it).
+inline constexpr double kStiffStep = 0.5;
+/// Sub-steps per sample interval beyond which a lane is masked as too stiff.
+inline constexpr int kMaxSubsteps = 512;
 
 /// RK4 sub-steps on the sample interval [k−1, k] by the rule above.
 inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke) {
@@ -57,7 +80,15 @@ class OdeKernel {
   using State = LaneState<W>;
 
   OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
-      : p_(p), data_(data), ctx_(Law::context(data)) {}
+      : p_(p), data_(data), ctx_(Law::context(data)) {
+    if constexpr (requires { Law::stiffness(p_, 0, ctx_, RecordScales{}); }) {
+      const RecordScales scales{data.velocity_max_abs, data.displacement_ptp};
+      for (int l = 0; l < W; ++l) {
+        const double lambda = Law::stiffness(p_, l, ctx_, scales);
+        lambda_[l] = std::isfinite(lambda) ? std::max(lambda, 0.0) : std::numeric_limits<double>::infinity();
+      }
+    }
+  }
 
   void forces(std::size_t k, double* f) {
     if (k > 0) advance(k);
@@ -97,12 +128,24 @@ class OdeKernel {
   /// Integrates every lane from sample k−1 to sample k.
   void advance(std::size_t k) {
     const int n = ode_substeps(data_, k, Law::kSubstepsPerStroke);
-    const double h = (data_.t_s[k] - data_.t_s[k - 1]) / n;
+    const double dt = data_.t_s[k] - data_.t_s[k - 1];
     const double x0 = data_.x_m[k - 1], dx = data_.x_m[k] - x0;
     const double v0 = data_.v_m_s[k - 1], dv = data_.v_m_s[k] - v0;
-    for (int i = 0; i < n; ++i) {
-      const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
-      step(h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv);
+    int n_max = n;
+    for (int l = 0; l < W; ++l) {
+      const double stiff = std::ceil(dt * lambda_[l] / kStiffStep);  // +inf for an unbounded estimate
+      if (!(stiff <= kMaxSubsteps)) failed_[l] += 1.0;              // too stiff: masked, integrated cheaply
+      n_[l] = failed_[l] > 0.0 ? n : std::max(n, static_cast<int>(stiff));
+      n_max = std::max(n_max, n_[l]);
+    }
+    if (n_max == n) {  // every lane takes the record's sub-steps: one set of inputs for all
+      const double h = dt / n;
+      for (int i = 0; i < n; ++i) {
+        const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
+        step(h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv);
+      }
+    } else {
+      for (int i = 0; i < n_max; ++i) stiff_step(i, dt, x0, dx, v0, dv);
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
@@ -131,6 +174,46 @@ class OdeKernel {
     }
   }
 
+  /// Sub-step i of a block whose lanes take n_[l] sub-steps each: the step() arithmetic with per-lane step
+  /// size and inputs; lanes past their own n_[l] keep their state.
+  void stiff_step(int i, double dt, double x0, double dx, double v0, double dv) {
+    alignas(64) double h[W], xa[W], va[W], xm[W], vm[W], xb[W], vb[W];
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const int n = n_[l];
+      const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
+      h[l] = dt / n;
+      xa[l] = x0 + a * dx, va[l] = v0 + a * dv;
+      xm[l] = x0 + m * dx, vm[l] = v0 + m * dv;
+      xb[l] = x0 + b * dx, vb[l] = v0 + b * dv;
+    }
+#pragma omp simd
+    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, xa[l], va[l], State{&y_[0][l]}, State{&k_[0][0][l]});
+    stiff_stage(h, 0.5, xm, vm, 0, 1);
+    stiff_stage(h, 0.5, xm, vm, 1, 2);
+    stiff_stage(h, 1.0, xb, vb, 2, 3);
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const State y{&y_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
+      const bool active = i < n_[l];
+      for (int j = 0; j < S; ++j) {
+        const double next = y[j] + (h[l] / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        y[j] = active ? next : y[j];
+      }
+    }
+  }
+
+  /// stage() with per-lane step h·fraction and inputs.
+  void stiff_stage(const double* h, double fraction, const double* x, const double* v, int from, int to) {
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
+      const double a = fraction * h[l];
+      for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
+      Law::rhs(p_, l, ctx_, x[l], v[l], t, State{&k_[to][0][l]});
+    }
+  }
+
   /// RK4 stage: slopes k[to] at y + a·k[from], inputs (x, v).
   void stage(double a, double x, double v, int from, int to) {
 #pragma omp simd
@@ -147,7 +230,9 @@ class OdeKernel {
   alignas(64) double y_[S][W] = {};
   alignas(64) double t_[S][W] = {};      // RK4 stage input
   alignas(64) double k_[4][S][W] = {};   // RK4 stage slopes
-  alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up
+  alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up or was too stiff
+  alignas(64) double lambda_[W] = {};    // Law::stiffness of each lane [1/s] (0: the record's rule alone)
+  alignas(64) int n_[W] = {};            // sub-steps of each lane on the current interval
   bool failed_flags_[W] = {};
 };
 

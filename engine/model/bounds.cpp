@@ -1,5 +1,6 @@
 #include "engine/model/bounds.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -14,6 +15,27 @@ Bounds default_bounds(const Model& model) {
   for (const auto& p : model.parameters()) {
     b.lower.push_back(p.lower);
     b.upper.push_back(p.upper);
+  }
+  return b;
+}
+
+Bounds default_bounds(const Model& model, std::span<const Signals* const> records) {
+  Bounds b = default_bounds(model);
+  double F = 0, V = 0, X = 0;
+  for (const Signals* r : records) {
+    F = std::max(F, r->force_max_abs_N);
+    V = std::max(V, r->velocity_max_abs);
+    X = std::max(X, 0.5 * r->displacement_ptp);
+  }
+  if (!(F > 0 && V > 0 && X > 0)) return b;
+  for (const RecordBoundsRule& rule : model.record_bounds_rules()) {
+    const double scale = std::pow(F, rule.force) * std::pow(V, rule.velocity) * std::pow(X, rule.amplitude);
+    const auto params = model.parameters();
+    const auto it = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return p.name == rule.name; });
+    if (it == params.end()) continue;  // a law model replaced the parameter by its law's coefficients
+    const auto j = it - params.begin();
+    b.lower[j] = rule.lower * scale;
+    b.upper[j] = rule.upper * scale;
   }
   return b;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // Search bounds of a model's parameters: defaults from the model, overridden by name (--bounds, sweep files).
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -12,8 +13,12 @@ struct Bounds {
   [[nodiscard]] int dim() const { return static_cast<int>(lower.size()); }
 };
 
-/// The model's default bounds.
+/// The model's fixed default bounds.
 Bounds default_bounds(const Model& model);
+
+/// The default bounds for fitting these records: the fixed ones, with the model's record rules
+/// (Model::record_bounds_rules) applied with the records' scales. Records without force keep the fixed bounds.
+Bounds default_bounds(const Model& model, std::span<const Signals* const> records);
 
 /// Overrides bounds from "name=lo:hi,name=lo:hi" (SI). Throws InputError naming `option` for an unknown
 /// parameter, a malformed range, or lower > upper ("--bounds C: lower bound 5 is greater than upper bound 1").

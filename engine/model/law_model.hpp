@@ -26,6 +26,10 @@ class LawModel final : public Model {
   [[nodiscard]] std::string_view citation() const override { return citation_; }
   [[nodiscard]] std::string_view law() const override { return law_text_; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return coefficients_; }
+  /// The base model's rules; those of parameters replaced by a law do not apply.
+  [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {
+    return base().record_bounds_rules();
+  }
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override;

@@ -1,5 +1,7 @@
 #include "engine/model/model.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
@@ -14,6 +16,21 @@ int Model::parameter_index(std::string_view name) const {
     known += (i ? ", " : "") + params[i].name;
   }
   throw InputError(fmt::format("model {} has no parameter '{}' (parameters: {})", id(), name, known));
+}
+
+std::string RecordBoundsRule::describe() const {
+  std::string scale;
+  auto factor = [&](const char* symbol, double exponent) {
+    if (exponent == 0) return;
+    const bool denominator = exponent < 0;
+    const double e = std::abs(exponent);
+    std::string f = e == 1 ? symbol : fmt::format("{}^{}", symbol, e);
+    scale += (scale.empty() ? (denominator ? "1/" : "") : (denominator ? "/" : "*")) + f;
+  };
+  factor("F", force);
+  factor("V", velocity);
+  factor("X", amplitude);
+  return fmt::format("{}..{} x {}", lower, upper, scale.empty() ? "1" : scale);
 }
 
 }  // namespace dampbench

@@ -21,6 +21,18 @@ struct ParameterInfo {
   std::string paper_unit;  ///< unit of the paper's tables (see Model::to_paper_units)
 };
 
+/// A default bound that scales with the record (issue 13), so the box fits any damper size: parameter
+/// `name` in [lower, upper] × F^force · V^velocity · X^amplitude, where F = max |F| [N], V = max |v| [m/s] and
+/// X = half the peak-to-peak stroke [m] of the fitted records (the largest over several).
+struct RecordBoundsRule {
+  std::string name;
+  double lower = 0, upper = 0;
+  double force = 0, velocity = 0, amplitude = 0;  ///< exponents of F, V, X
+
+  /// "0 … 2·F/V"-style text for `dampbench models`.
+  [[nodiscard]] std::string describe() const;
+};
+
 class Model {
  public:
   virtual ~Model() = default;
@@ -60,6 +72,9 @@ class Model {
   [[nodiscard]] virtual std::vector<double> to_paper_units(std::span<const double> params) const {
     return {params.begin(), params.end()};
   }
+
+  /// Rules that replace the fixed default bounds of some parameters when a record is known (fit, sweeps).
+  [[nodiscard]] virtual std::span<const RecordBoundsRule> record_bounds_rules() const { return {}; }
 
   [[nodiscard]] int dim() const { return static_cast<int>(parameters().size()); }
   /// Index of a parameter; throws InputError naming the model and its parameters.

@@ -10,7 +10,7 @@
 
 namespace dampbench::sweep {
 
-/// DAMPBENCH_VERSION of this build ("0.1.0").
+/// DAMPBENCH_VERSION of this build ("0.2.0").
 std::string dampbench_version();
 /// DAMPBENCH_BUILD_FLAGS of this build ("Release,native=OFF,GNU-12.2.0").
 std::string build_flags();

@@ -51,7 +51,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     settings.task_key = g.task_key;
     settings.metric = g.metric;
     settings.budget = opt.budget;
-    const Identification id = identify(model, data, resolved.bounds, part.factories[g.optimizer], settings);
+    const Identification id = identify(model, data, resolved.bounds_for(data), part.factories[g.optimizer], settings);
 
     rec.wall_time_s = id.wall_time_s;
     rec.candidate_samples = id.candidate_samples;

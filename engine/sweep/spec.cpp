@@ -128,9 +128,16 @@ ResolvedModel resolve_model(const ModelSpec& spec) {
     r.model = r.keep.back().get();
   }
   r.bounds = default_bounds(*r.model);
+  r.bounds_override = spec.bounds;
   if (!spec.bounds.empty()) override_bounds(r.bounds, *r.model, spec.bounds, "bounds");
   validate_bounds(r.bounds, *r.model, "bounds");
   return r;
+}
+
+Bounds ResolvedModel::bounds_for(std::span<const Signals* const> records) const {
+  Bounds b = default_bounds(*model, records);
+  if (!bounds_override.empty()) override_bounds(b, *model, bounds_override, "bounds");
+  return b;
 }
 
 namespace {

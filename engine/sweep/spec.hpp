@@ -196,7 +196,12 @@ void ensure_generated(std::string_view text, std::vector<std::string>& notes);
 struct ResolvedModel {
   std::vector<std::shared_ptr<const Model>> keep;  ///< law models (and a fixture under them) owned here
   const Model* model = nullptr;
-  Bounds bounds;
+  Bounds bounds;                ///< fixed defaults with the entry's overrides (checked when the file is read)
+  std::string bounds_override;  ///< the entry's `bounds`
+
+  /// The box for fitting these records: the record-scaled defaults (Model::record_bounds_rules) with the
+  /// entry's overrides.
+  [[nodiscard]] Bounds bounds_for(std::span<const Signals* const> records) const;
 };
 /// Builds the model of a spec entry; InputError for unknown names, bad laws or bounds.
 ResolvedModel resolve_model(const ModelSpec& spec);
