@@ -143,10 +143,10 @@ class OdeKernel {
       const double h = dt / n;
       for (int i = 0; i < n; ++i) {
         const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
-        step(h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv);
+        step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv});
       }
     } else {
-      for (int i = 0; i < n_max; ++i) stiff_step(i, dt, x0, dx, v0, dv);
+      for (int i = 0; i < n_max; ++i) step(LaneInputs(i, n_, dt, x0, dx, v0, dv));
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
@@ -159,69 +159,78 @@ class OdeKernel {
     for (int l = 0; l < W; ++l) failed_flags_[l] = failed_[l] > 0.0;
   }
 
-  /// One RK4 step of size h with inputs at the step's start (xa, va), middle (xm, vm) and end (xb, vb).
+  /// Inputs of one sub-step, the same for every lane: step size h and (x, v) at the step's start (a),
+  /// middle (m) and end (b).
+  struct SharedInputs {
+    double h_, xa_, va_, xm_, vm_, xb_, vb_;
+    [[nodiscard]] double h(int) const { return h_; }
+    [[nodiscard]] double xa(int) const { return xa_; }
+    [[nodiscard]] double va(int) const { return va_; }
+    [[nodiscard]] double xm(int) const { return xm_; }
+    [[nodiscard]] double vm(int) const { return vm_; }
+    [[nodiscard]] double xb(int) const { return xb_; }
+    [[nodiscard]] double vb(int) const { return vb_; }
+    static constexpr bool active(int) { return true; }
+  };
+
+  /// Inputs of sub-step i of a block whose lanes take n[l] sub-steps each, computed lane by lane with the
+  /// arithmetic of SharedInputs; a lane past its own n[l] sub-steps is inactive and keeps its state.
+  struct LaneInputs {
+    LaneInputs(int i, const int* n, double dt, double x0, double dx, double v0, double dv) : i_(i), n_(n) {
+#pragma omp simd
+      for (int l = 0; l < W; ++l) {
+        const int nl = n[l];
+        const double a = static_cast<double>(i) / nl, m = (i + 0.5) / nl, b = static_cast<double>(i + 1) / nl;
+        h_[l] = dt / nl;
+        xa_[l] = x0 + a * dx, va_[l] = v0 + a * dv;
+        xm_[l] = x0 + m * dx, vm_[l] = v0 + m * dv;
+        xb_[l] = x0 + b * dx, vb_[l] = v0 + b * dv;
+      }
+    }
+    [[nodiscard]] double h(int l) const { return h_[l]; }
+    [[nodiscard]] double xa(int l) const { return xa_[l]; }
+    [[nodiscard]] double va(int l) const { return va_[l]; }
+    [[nodiscard]] double xm(int l) const { return xm_[l]; }
+    [[nodiscard]] double vm(int l) const { return vm_[l]; }
+    [[nodiscard]] double xb(int l) const { return xb_[l]; }
+    [[nodiscard]] double vb(int l) const { return vb_[l]; }
+    [[nodiscard]] bool active(int l) const { return i_ < n_[l]; }
+
+    int i_;
+    const int* n_;
+    alignas(64) double h_[W], xa_[W], va_[W], xm_[W], vm_[W], xb_[W], vb_[W];
+  };
+
+  /// One RK4 sub-step of every (active) lane with inputs `in` (SharedInputs or LaneInputs).
   /// One lane loop per stage: the lanes of a stage are independent, so the vector calls of neighbouring
   /// lane groups (log, exp of |z|^n) overlap in the CPU instead of waiting on the previous stage's result.
-  void step(double h, double xa, double va, double xm, double vm, double xb, double vb) {
+  template <class Inputs>
+  void step(const Inputs& in) {
 #pragma omp simd
-    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, xa, va, State{&y_[0][l]}, State{&k_[0][0][l]});
-    stage(0.5 * h, xm, vm, 0, 1);
-    stage(0.5 * h, xm, vm, 1, 2);
-    stage(h, xb, vb, 2, 3);
-#pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      const State y{&y_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
-      for (int j = 0; j < S; ++j) y[j] = y[j] + (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
-    }
-  }
-
-  /// Sub-step i of a block whose lanes take n_[l] sub-steps each: the step() arithmetic with per-lane step
-  /// size and inputs; lanes past their own n_[l] keep their state.
-  void stiff_step(int i, double dt, double x0, double dx, double v0, double dv) {
-    alignas(64) double h[W], xa[W], va[W], xm[W], vm[W], xb[W], vb[W];
-#pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      const int n = n_[l];
-      const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
-      h[l] = dt / n;
-      xa[l] = x0 + a * dx, va[l] = v0 + a * dv;
-      xm[l] = x0 + m * dx, vm[l] = v0 + m * dv;
-      xb[l] = x0 + b * dx, vb[l] = v0 + b * dv;
-    }
-#pragma omp simd
-    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, xa[l], va[l], State{&y_[0][l]}, State{&k_[0][0][l]});
-    stiff_stage(h, 0.5, xm, vm, 0, 1);
-    stiff_stage(h, 0.5, xm, vm, 1, 2);
-    stiff_stage(h, 1.0, xb, vb, 2, 3);
+    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, State{&k_[0][0][l]});
+    stage<false>(in, 0.5, 0, 1);
+    stage<false>(in, 0.5, 1, 2);
+    stage<true>(in, 1.0, 2, 3);
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
       const State y{&y_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
-      const bool active = i < n_[l];
+      const bool active = in.active(l);
       for (int j = 0; j < S; ++j) {
-        const double next = y[j] + (h[l] / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        const double next = y[j] + (in.h(l) / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
         y[j] = active ? next : y[j];
       }
     }
   }
 
-  /// stage() with per-lane step h·fraction and inputs.
-  void stiff_stage(const double* h, double fraction, const double* x, const double* v, int from, int to) {
+  /// RK4 stage: slopes k[to] at y + fraction·h·k[from], inputs at the step's middle (or end: kEnd).
+  template <bool kEnd, class Inputs>
+  void stage(const Inputs& in, double fraction, int from, int to) {
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
       const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
-      const double a = fraction * h[l];
+      const double a = fraction * in.h(l);
       for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
-      Law::rhs(p_, l, ctx_, x[l], v[l], t, State{&k_[to][0][l]});
-    }
-  }
-
-  /// RK4 stage: slopes k[to] at y + a·k[from], inputs (x, v).
-  void stage(double a, double x, double v, int from, int to) {
-#pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
-      for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
-      Law::rhs(p_, l, ctx_, x, v, t, State{&k_[to][0][l]});
+      Law::rhs(p_, l, ctx_, kEnd ? in.xb(l) : in.xm(l), kEnd ? in.vb(l) : in.vm(l), t, State{&k_[to][0][l]});
     }
   }
 
