@@ -53,7 +53,7 @@ struct RecordScales {
 
 /// h·λ a stiff lane's sub-step may reach (see above). Measured by tests/test_ode_stiff_lanes.cpp over 100
 /// random candidates of each MR default box: worst relative L2 to CVODE 3.2e-5 with 1.0, 8.2e-4 with 2.0,
-/// 1.9e-6 with 0.5 at twice the cost of stiff lanes.
+/// 1.6e-4 with 1.5, 1.9e-6 with 0.5 at twice the cost of stiff lanes.
 inline constexpr double kStiffStep = 1.0;
 /// Sub-steps per sample interval beyond which a lane is masked as too stiff.
 inline constexpr int kMaxSubsteps = 512;

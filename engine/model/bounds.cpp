@@ -28,9 +28,9 @@ Bounds default_bounds(const Model& model, std::span<const Signals* const> record
     X = std::max(X, 0.5 * r->displacement_ptp);
   }
   if (!(F > 0 && V > 0 && X > 0)) return b;
+  const auto params = model.parameters();
   for (const RecordBoundsRule& rule : model.record_bounds_rules()) {
     const double scale = std::pow(F, rule.force) * std::pow(V, rule.velocity) * std::pow(X, rule.amplitude);
-    const auto params = model.parameters();
     const auto it = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return p.name == rule.name; });
     if (it == params.end()) continue;  // a law model replaced the parameter by its law's coefficients
     const auto j = it - params.begin();
