@@ -19,7 +19,7 @@ namespace dampbench {
 namespace {
 
 /// The field a settings key sets: a number, an optional number (unset = the optimizer's rule) or a whole number.
-using SettingField = std::variant<double*, std::optional<double>*, int*>;
+using SettingField = std::variant<double*, std::optional<double>*, int*, std::optional<int>*>;
 
 /// Reads one optimizer's settings map: `apply` sets fields from a table of keys, `choice` and `text` read the
 /// rest; `finish` rejects any key no call asked for, listing the known ones.
@@ -43,7 +43,7 @@ class SettingsReader {
       const double v = parse_number(trim(*t), what(key));
       std::visit(
           [&](auto* f) {
-            if constexpr (std::is_same_v<decltype(f), int*>) {
+            if constexpr (std::is_same_v<decltype(f), int*> || std::is_same_v<decltype(f), std::optional<int>*>) {
               if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
                 throw InputError(fmt::format("{}: expected a whole number, got '{}'", what(key), *t));
               *f = static_cast<int>(v);

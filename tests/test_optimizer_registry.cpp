@@ -172,7 +172,7 @@ TEST(OptimizerRegistry, SettingsReachTheOptimizer) {
 
 // ---- presets and variants ----------------------------------------------------------------------------
 
-// preset=lssvm sets pc 0.6, pm 0.03, population 50 and 500 generations; its population and generations
+// preset=lssvm sets pc 0.6, pm 0.03, population 50 and 500 generations (SBX η_c 15, one elite); its population and generations
 // replace the spec's fields (which always hold the command line's values), explicit settings override its rates.
 TEST(OptimizerRegistry, LssvmPresetApplies) {
   const OptimizerFactory make = make_optimizer_factory({"ga", 20, 10, {{"preset", "lssvm"}}});
@@ -186,6 +186,8 @@ TEST(OptimizerRegistry, LssvmPresetApplies) {
   paper.pm = 0.03;
   paper.population = 50;
   paper.generations = 500;
+  paper.eta_c = 15;
+  paper.elites = 1;
   EXPECT_EQ(history_of(make, 3), history_of(testing::factory_of<Ga>(paper), 3));
 
   GaSettings overridden = paper;

@@ -27,9 +27,9 @@ void GeneticSettings::validate(std::string_view algorithm) const {
   if (tournament < 2 || tournament > population)
     throw InputError(fmt::format("{}: tournament must be in [2, population = {}], got {}", algorithm, population,
                                  tournament));
-  if (elites < 0 || elites > population / 2)
-    throw InputError(
-        fmt::format("{}: elites must be in [0, population / 2 = {}], got {}", algorithm, population / 2, elites));
+  if (elite_count() < 0 || elite_count() > population / 2)
+    throw InputError(fmt::format("{}: elites must be in [0, population / 2 = {}], got {}", algorithm, population / 2,
+                                 elite_count()));
   if (!(eta_c >= 0) || !std::isfinite(eta_c))
     throw InputError(fmt::format("{}: eta_c must be a finite number >= 0, got {}", algorithm, eta_c));
   if (!(eta_m >= 0) || !std::isfinite(eta_m))
@@ -177,7 +177,7 @@ void GeneticAlgorithm::tell(std::span<const double> values) {
     };
     std::ranges::sort(parents, better(values_));
     std::ranges::sort(offspring, better(told));
-    for (int e = 0; e < settings_.elites; ++e) {
+    for (int e = 0; e < settings_.elite_count(); ++e) {
       const int p = parents[e], o = offspring[n - 1 - e];
       if (values_[p] < told[o]) {
         std::ranges::copy(member(population_, p), member(offspring_, o).begin());

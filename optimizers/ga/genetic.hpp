@@ -24,10 +24,12 @@
 // Random numbers: initial member i from stream (run_key, 0, i); in generation g ≥ 1 pair k selects from
 // (run_key, g, k, "select"), crosses over from (run_key, g, k, "crossover"), and child c mutates from
 // (run_key, g, c, "mutate"). Nothing depends on evaluation order or batch layout.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -42,10 +44,17 @@ struct GeneticSettings {
   int population = 50;    ///< N, candidates per generation (as the fvd paper's PSO; the lssvm preset also uses 50)
   int generations = 100;  ///< evaluated generations including the initial one; budget N × generations
   int tournament = 2;     ///< tournament size: binary tournament (Goldberg & Deb 1991)
-  int elites = 1;         ///< best parents kept over the worst offspring each generation (De Jong 1975)
+  std::optional<int> elites;  ///< best parents kept over the worst offspring each generation (De Jong 1975);
+                              ///< unset: ⌈elite_share × N⌉, at least 1 (elite_count())
+  double elite_share = 0;     ///< the unset rule's share of N: 0 (one elite) here; `ga` uses 0.1
   double eta_c = 15;      ///< SBX distribution index: larger keeps children nearer their parents; NSGA-II
-                          ///< (Deb et al. 2002) uses 20, pymoo's GA 15 — the broader of the two
+                          ///< (Deb et al. 2002) uses 20, pymoo's GA 15 — the broader of the two (`ga`: 2)
   double eta_m = 20;      ///< polynomial mutation distribution index (NSGA-II, Deb et al. 2002)
+
+  /// Elites in use: `elites` if set, otherwise ⌈elite_share × N⌉, at least 1.
+  [[nodiscard]] int elite_count() const {
+    return elites.value_or(std::max(1, static_cast<int>(std::ceil(elite_share * population))));
+  }
 
   /// Throws InputError: population < 4, generations < 1, tournament outside [2, population], elites
   /// outside [0, population / 2], eta_c or eta_m negative or not finite.
