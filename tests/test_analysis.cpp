@@ -278,6 +278,16 @@ class TinyStore : public ::testing::Test {
       for (int r = 0; r < 3; ++r)
         g.run_results.push_back(run(r, 1.0 + r + d, {10.0 + 5 * d + 10 * r, 2.0 + d * d, r - 1.0},
                                     {{10, 10.0 + r + d}, {40, 1.0 + r + d}, {100, 1.0 + r + d}}));
+      // Identifiability at the best run: f_c not identifiable at d1, c0 at a bound at d2.
+      Identifiability id;
+      id.samples = 100;
+      id.std_error = {0.1 * (d + 1), 0.2, 0.3};
+      id.relative_error = {d == 1 ? 2.5 : 0.01, 0.02, 0.03};
+      id.correlation = {{1, 0.5, 0}, {0.5, 1, 0}, {0, 0, 1}};
+      id.flags = {{}, {}, {}};
+      if (d == 1) id.flags[0] = {"not identifiable"};
+      if (d == 2) id.flags[1] = {"at bound"};
+      g.identifiability = id;
       store.write(g);
     }
     // Optimizer b on d0: values {4, 5, 6}; reaches 1.01 never, so it fails the target of d0 (best known 1).
@@ -449,11 +459,36 @@ TEST_F(TinyStore, RegressionOfPerConditionFits) {
   EXPECT_EQ(r.rows[3][2].text, "f_c_I0");
   EXPECT_NEAR(value(r, 3, 3), 10.0, 1e-12);
   EXPECT_NEAR(value(r, 4, 3), 5.0, 1e-12);
+  // f_c was not identifiable at d1: the law says on how many conditions, the residuals mark the point; a bound
+  // (c0 at d2) does not make a parameter undetermined.
+  EXPECT_EQ(r.rows[3][6].text, "‡ 1 of 3");
+  EXPECT_EQ(r.rows[0][6].text, "none");
+  EXPECT_NE(r.note.find("Not identifiable at"), std::string::npos) << r.note;
   const Report& res = find(all, "regression_fc_residuals");
   ASSERT_EQ(res.rows.size(), 3u);
   EXPECT_DOUBLE_EQ(value(res, 2, 1), 6.0);   // observed c0 at I = 2
   EXPECT_DOUBLE_EQ(value(res, 2, 4), 20.0);  // observed f_c at I = 2
   EXPECT_NEAR(value(res, 2, 6), 0.0, 1e-12);
+  EXPECT_EQ(res.rows[1][4].text, "15‡");  // observed f_c at I = 1
+  EXPECT_EQ(res.rows[2][4].text, "20");
+}
+
+TEST_F(TinyStore, ParamsMarkUndeterminedAndBoundParameters) {
+  const auto all = tables("params", [](TableSpec& t) {
+    t.splits = {"each"};
+    t.optimizers = {"a"};
+    t.models = {"mrd.bingham"};
+  });
+  const Report& p = find(all, "params_mrd.bingham");
+  // Rows f_c, c0, f0, metric; columns Parameter, unit, d0, d1, d2.
+  EXPECT_EQ(p.rows[0][3].text, "15‡");
+  EXPECT_EQ(p.rows[0][2].text, "10");
+  EXPECT_EQ(p.rows[1][4].text, "6⊥");
+  EXPECT_NE(p.note.find("‡ not identifiable"), std::string::npos) << p.note;
+  const Report& se = find(all, "params_mrd.bingham_se");
+  EXPECT_EQ(se.rows[0][2].text, "250 (not identifiable)");
+  EXPECT_DOUBLE_EQ(value(se, 0, 1), 1.0);
+  EXPECT_EQ(se.rows[1][3].text, "2 (at bound)");
 }
 
 TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <numbers>
 #include <thread>
 
@@ -25,8 +26,10 @@
 #include <tbb/task_arena.h>
 
 #include "engine/record/csv_loader.hpp"
+#include "engine/record/excitation.hpp"
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/store.hpp"
+#include "models/registry.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::sweep {
@@ -288,6 +291,68 @@ glob = "{}/data/*.csv"
   EXPECT_NE(starved.output.find("† runs disagree"), std::string::npos) << starved.output;
   EXPECT_NE(generous.output.find(",6,yes"), std::string::npos) << generous.output;
   EXPECT_EQ(generous.output.find("†"), std::string::npos) << generous.output;
+}
+
+// Issue 13: identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
+// the stiffness (m·a = −mω²x: only K1 − mω² is determined), so both are marked ‡ in the params table and the
+// relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
+// keeps the evidence (read back equal to what the runner computed: the verify test compares it bit for bit).
+TEST(SweepIdentifiability, ParamsTableMarksATradeOffAndNotASeparableFit) {
+  const fs::path dir = temp_dir();
+  write_record(dir / "data" / "one_sine.csv", "", 0.01, 1, 301);
+  {
+    const Model& model = find_model("fvd.gv_linear_elastic");
+    Dataset d = testing::two_sine_record(600, 250.0);
+    d.F_N = model.simulate(std::vector<double>{300.0, 8.2e5, 0.3, 4e6}, prepare_signals(d));
+    std::string csv = "t[s],x[m],F[N]\n";
+    for (std::size_t k = 0; k < d.F_N.size(); ++k) csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", d.t_s[k], d.x_m[k], d.F_N[k]);
+    write(dir / "data" / "two_sine.csv", csv);
+  }
+  write(dir / "s.toml", fmt::format(R"toml(name = "ident"
+runs = 2
+metric = "nrmse"
+models = ["fvd.gv_linear_elastic"]
+[optimizer]
+name = "de"
+population = 30
+iterations = 150
+[[datasets]]
+name = "d"
+glob = "{}/data/*.csv"
+)toml",
+                                    dir.string()));
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", (dir / "out" / "store.sqlite").string()));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  // Rows "m,kg,<one_sine>,<two_sine>" and "K1,N/m,...": conditions in file order (one_sine, two_sine).
+  auto row = [&](const std::string& name) {
+    std::istringstream in(table.output);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(name + ",", 0) == 0) return line;
+    return std::string("(no row " + name + ")");
+  };
+  auto cells = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string c; std::getline(in, c, ',');) out.push_back(c);
+    return out;
+  };
+  for (const std::string name : {"m", "K1"}) {
+    const auto c = cells(row(name));
+    ASSERT_EQ(c.size(), 4u) << table.output;
+    EXPECT_NE(c[2].find("‡"), std::string::npos) << name << " on one sine: " << table.output;
+    EXPECT_EQ(c[3].find("‡"), std::string::npos) << name << " on two sines: " << table.output;
+  }
+  EXPECT_EQ(cells(row("C"))[3].find("‡"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("not identifiable"), std::string::npos) << table.output;  // the note and the s.e. table
+
+  const Store store = Store::open((dir / "out" / "store.sqlite").string());
+  for (const GroupRecord& g : store.groups()) {
+    ASSERT_TRUE(g.identifiability.has_value());
+    EXPECT_EQ(g.identifiability->std_error.size(), 4u);
+    EXPECT_EQ(g.identifiability->correlation.size(), 4u);
+  }
 }
 
 TEST(ProgressBar, Renders) {

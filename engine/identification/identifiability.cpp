@@ -20,6 +20,21 @@ bool Identifiability::all_identifiable() const {
   return std::all_of(flags.begin(), flags.end(), [](const auto& f) { return f.empty(); });
 }
 
+namespace {
+constexpr std::string_view kNotIdentifiable = "not identifiable", kCorrelated = "correlated", kAtBound = "at bound";
+bool has_flag(const std::vector<std::vector<std::string>>& flags, int j, std::string_view start) {
+  if (j < 0 || j >= static_cast<int>(flags.size())) return false;
+  const auto& f = flags[static_cast<std::size_t>(j)];
+  return std::any_of(f.begin(), f.end(), [&](const std::string& x) { return x.starts_with(start); });
+}
+}  // namespace
+
+bool Identifiability::determined(int j) const {
+  return !has_flag(flags, j, kNotIdentifiable) && !has_flag(flags, j, kCorrelated);
+}
+
+bool Identifiability::at_bound(int j) const { return has_flag(flags, j, kAtBound); }
+
 std::string Identifiability::summary(const Model& model) const {
   std::string out;
   for (std::size_t j = 0; j < flags.size(); ++j)
@@ -97,14 +112,14 @@ Identifiability assess_identifiability(const Model& model, std::span<const Signa
   const auto params = model.parameters();
   for (int j = 0; j < p; ++j) {
     if (fixed[j]) continue;
-    if (!(out.relative_error[j] <= kMaxRelativeError)) out.flags[j].push_back("not identifiable");
+    if (!(out.relative_error[j] <= kMaxRelativeError)) out.flags[j].emplace_back(kNotIdentifiable);
     for (int i = 0; i < p; ++i)
       if (i != j && std::abs(out.correlation[i][j]) > kMaxCorrelation)
-        out.flags[j].push_back(fmt::format("correlated with {} ({:+.3f})", params[i].name, out.correlation[i][j]));
+        out.flags[j].push_back(fmt::format("{} with {} ({:+.3f})", kCorrelated, params[i].name, out.correlation[i][j]));
     const double width = bounds.upper[j] - bounds.lower[j];
     if (width > 0 && (best_params[j] - bounds.lower[j] <= kBoundTolerance * width ||
                       bounds.upper[j] - best_params[j] <= kBoundTolerance * width))
-      out.flags[j].push_back("at bound");
+      out.flags[j].emplace_back(kAtBound);
   }
   return out;
 }

@@ -27,6 +27,10 @@ struct Identifiability {
   std::vector<std::vector<std::string>> flags;   ///< per parameter: "not identifiable", "correlated with X", "at bound"
   int samples = 0;                               ///< N, residuals summed over the datasets
   [[nodiscard]] bool all_identifiable() const;
+  /// Parameter j is determined by the data: neither "not identifiable" nor "correlated" (a bound may hold it).
+  [[nodiscard]] bool determined(int j) const;
+  /// Parameter j ended within the bound tolerance of its box.
+  [[nodiscard]] bool at_bound(int j) const;
   /// "ok", or the flags of every flagged parameter: "m: correlated with K1; K1: correlated with m".
   [[nodiscard]] std::string summary(const Model& model) const;
 };

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <memory>
 
@@ -15,6 +16,7 @@
 #include "engine/model/law_model.hpp"
 #include "engine/evaluation/sensitivity.hpp"
 #include "engine/identification/convergence.hpp"
+#include "engine/identification/identifiability.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
 
@@ -51,7 +53,8 @@ GroupRecord run_group(const Plan& plan, long long index) {
     settings.task_key = g.task_key;
     settings.metric = g.metric;
     settings.budget = opt.budget;
-    const Identification id = identify(model, data, resolved.bounds_for(data), part.factories[g.optimizer], settings);
+    const Bounds bounds = resolved.bounds_for(data);
+    const Identification id = identify(model, data, bounds, part.factories[g.optimizer], settings);
 
     rec.wall_time_s = id.wall_time_s;
     rec.candidate_samples = id.candidate_samples;
@@ -76,6 +79,10 @@ GroupRecord run_group(const Plan& plan, long long index) {
     }
     sort_dataset_metrics(rec.dataset_metrics);
 
+    // Standard errors, correlations and flags at the best run (what the params and regression tables mark).
+    const RunResult& best_run = id.runs[id.best_run()];
+    if (std::isfinite(best_run.best_value)) rec.identifiability = assess_identifiability(model, data, bounds, best_run.best_params);
+
     const SensitivitySpec& sens = part.spec->splits[g.split].sensitivity;
     if (sens.enabled && fs.fit.size() == 1 &&
         sens.where.matches(part.datasets[fs.fit[0]].signals.name, part.datasets[fs.fit[0]].signals.law_variables)) {
@@ -93,6 +100,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     rec.run_results.clear();
     rec.dataset_metrics.clear();
     rec.sensitivity.reset();
+    rec.identifiability.reset();
     rec.evaluations = 0;
     rec.candidate_samples = 0;
   }

@@ -122,6 +122,8 @@ CREATE TABLE runs(grp INTEGER, run INTEGER, best_value REAL, metrics BLOB, param
 CREATE TABLE dataset_metrics(grp INTEGER, run INTEGER, dataset INTEGER, role TEXT, metrics BLOB,
                              PRIMARY KEY(grp, run, dataset)) WITHOUT ROWID;
 CREATE TABLE sensitivity(grp INTEGER PRIMARY KEY, dataset INTEGER, S BLOB, SP BLOB);
+CREATE TABLE identifiability(grp INTEGER PRIMARY KEY, samples INTEGER, std_error BLOB, relative_error BLOB,
+                             correlation BLOB, flags TEXT);
 )sql";
 
 std::vector<double> trace_blob(const std::vector<TracePoint>& trace) {
@@ -461,7 +463,7 @@ StoreHeader Store::header() const {
 void Store::write(const GroupRecord& g) {
   exec("BEGIN IMMEDIATE");
   try {
-    for (const char* table : {"runs", "dataset_metrics", "sensitivity", "groups"}) {
+    for (const char* table : {"runs", "dataset_metrics", "sensitivity", "identifiability", "groups"}) {
       Stmt del(db_, fmt::format("DELETE FROM {} WHERE grp=?", table).c_str());
       del.bind(1, g.index).run();
     }
@@ -482,6 +484,14 @@ void Store::write(const GroupRecord& g) {
     if (g.sensitivity) {
       Stmt t(db_, "INSERT INTO sensitivity VALUES(?, ?, ?, ?)");
       t.bind(1, g.index).bind(2, g.sensitivity->dataset).bind(3, g.sensitivity->S).bind(4, g.sensitivity->SP).run();
+    }
+    if (g.identifiability) {
+      const Identifiability& id = *g.identifiability;
+      std::vector<double> correlation;
+      for (const auto& row : id.correlation) correlation.insert(correlation.end(), row.begin(), row.end());
+      Stmt t(db_, "INSERT INTO identifiability VALUES(?, ?, ?, ?, ?, ?)");
+      t.bind(1, g.index).bind(2, id.samples).bind(3, id.std_error).bind(4, id.relative_error).bind(5, correlation)
+          .bind(6, json(id.flags).dump()).run();
     }
     exec("COMMIT");
   } catch (...) {
@@ -573,6 +583,21 @@ void read_details(sqlite3* db, const std::string& where, long long grp, bool run
     while (t->step())
       if (GroupRecord* g = slot(t->integer(0)))
         g->sensitivity = SensitivityRecord{static_cast<int>(t->integer(1)), t->doubles(2), t->doubles(3)};
+    const auto i = prepare("SELECT grp, samples, std_error, relative_error, correlation, flags FROM identifiability" + filter);
+    while (i->step())
+      if (GroupRecord* g = slot(i->integer(0))) {
+        Identifiability id;
+        id.samples = static_cast<int>(i->integer(1));
+        id.std_error = i->doubles(2);
+        id.relative_error = i->doubles(3);
+        const std::vector<double> correlation = i->doubles(4);
+        const std::size_t p = id.std_error.size();
+        for (std::size_t r = 0; r < p && (r + 1) * p <= correlation.size(); ++r)
+          id.correlation.emplace_back(correlation.begin() + static_cast<std::ptrdiff_t>(r * p),
+                                      correlation.begin() + static_cast<std::ptrdiff_t>((r + 1) * p));
+        id.flags = json::parse(i->text(5)).template get<std::vector<std::vector<std::string>>>();
+        g->identifiability = std::move(id);
+      }
   }
 }
 
@@ -679,6 +704,23 @@ std::vector<std::string> compare_records(const GroupRecord& stored, const GroupR
         num(fmt::format("sensitivity S[{}]", j), x.S[j], y.S[j]);
         num(fmt::format("sensitivity SP[{}]", j), x.SP[j], y.SP[j]);
       }
+  }
+  if (a.identifiability.has_value() != b.identifiability.has_value()) {
+    diff.push_back("identifiability: present in one only");
+  } else if (a.identifiability) {
+    const auto &x = *a.identifiability, &y = *b.identifiability;
+    if (x.std_error.size() != y.std_error.size() || x.correlation.size() != y.correlation.size()) {
+      diff.push_back("identifiability: size differs");
+    } else {
+      for (std::size_t j = 0; j < x.std_error.size(); ++j) {
+        const std::string name = j < names.size() ? " " + names[j] : "";
+        num(fmt::format("identifiability std_error[{}]{}", j, name), x.std_error[j], y.std_error[j]);
+        num(fmt::format("identifiability relative_error[{}]{}", j, name), x.relative_error[j], y.relative_error[j]);
+        for (std::size_t k = 0; k < x.correlation[j].size() && k < y.correlation[j].size(); ++k)
+          num(fmt::format("identifiability correlation[{}][{}]", j, k), x.correlation[j][k], y.correlation[j][k]);
+      }
+      if (x.flags != y.flags) diff.push_back("identifiability: flags differ");
+    }
   }
   return diff;
 }

@@ -16,6 +16,9 @@
 //   runs(grp, run, best_value, metrics, params, evaluations, stop_reason, trace)
 //   dataset_metrics(grp, run, dataset, role, metrics)   per-dataset metrics of joint fits and predictions
 //   sensitivity(grp, dataset, S, SP)
+//   identifiability(grp, samples, std_error, relative_error, correlation, flags)   at the best run's parameters
+//                                          over the fit datasets (engine/identification/identifiability.hpp);
+//                                          correlation row-major p × p, flags JSON [[flag, ...] per parameter]
 #include <array>
 #include <cstdint>
 #include <map>
@@ -24,13 +27,14 @@
 #include <vector>
 
 #include "engine/identification/convergence.hpp"
+#include "engine/identification/identifiability.hpp"
 #include "engine/model/metrics.hpp"
 
 struct sqlite3;
 
 namespace dampbench::sweep {
 
-inline constexpr int kStoreFormat = 1;
+inline constexpr int kStoreFormat = 2;  ///< 2: identifiability table
 
 struct StorePart {
   std::string name, title, path, source;
@@ -120,6 +124,7 @@ struct GroupRecord : GroupRef {
   std::vector<RunRecord> run_results;
   std::vector<DatasetMetricRecord> dataset_metrics;
   std::optional<SensitivityRecord> sensitivity;
+  std::optional<Identifiability> identifiability;  ///< at the best run (absent when every run failed)
 
   [[nodiscard]] int best_run() const;  ///< lowest best_value, first on ties (-1 without runs)
 };
@@ -128,7 +133,7 @@ struct GroupQuery {
   int part = -1;           ///< -1: every part
   bool runs = true;        ///< read run results
   bool traces = false;     ///< with their traces
-  bool details = true;     ///< dataset metrics and sensitivity
+  bool details = true;     ///< dataset metrics, sensitivity and identifiability
 };
 
 class Store {

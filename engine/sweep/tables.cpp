@@ -347,6 +347,19 @@ void fvd_tables(const Context& c, std::vector<Report>& out) {
   }
 }
 
+constexpr const char* kUndeterminedMark = "‡";
+constexpr const char* kAtBoundMark = "⊥";
+constexpr const char* kIdentifiabilityNote =
+    "‡ not identifiable from this record: relative standard error > 100 % or |correlation| > 0.99 with another "
+    "parameter (sigma^2 (J^T J)^-1 at the best run; the fit fixes a combination, not this value). ⊥ at a bound of "
+    "the box (the optimum may lie outside it).";
+
+/// The identifiability marks of parameter j at a group's best run: ‡, ⊥, both or none.
+std::string identifiability_mark(const GroupRecord& g, int j) {
+  if (!g.identifiability) return "";
+  return std::string(g.identifiability->determined(j) ? "" : kUndeterminedMark) + (g.identifiability->at_bound(j) ? kAtBoundMark : "");
+}
+
 void params_tables(const Context& c, std::vector<Report>& out) {
   for (const Series& s : c.series()) {
     const Model& model = c.model(s.model);
@@ -354,23 +367,49 @@ void params_tables(const Context& c, std::vector<Report>& out) {
     for (const GroupRecord* g : s.groups) cols.push_back(c.label(*g));
     Report r = c.report("params" + c.suffix(s), fmt::format("Identified parameters of the best run per condition — {}", c.describe(s)),
                         cols);
+    std::vector<std::string> rel_cols{"Parameter"};
+    for (const GroupRecord* g : s.groups) rel_cols.push_back(c.label(*g));
+    Report rel = c.report("params" + c.suffix(s) + "_se",
+                          fmt::format("Relative standard error (%) of the identified parameters, best run per condition — {}",
+                                      c.describe(s)),
+                          rel_cols);
+    rel.paper = "";
     std::vector<std::vector<double>> best;
     for (const GroupRecord* g : s.groups)
       best.push_back(model.to_paper_units(g->run_results[static_cast<std::size_t>(g->best_run())].params));
     const auto params = model.parameters();
+    bool marked = false;
     for (int j = 0; j < model.dim(); ++j) {
-      std::vector<Cell> row{txt(params[j].name), txt(params[j].paper_unit)};
-      for (const auto& p : best) row.push_back(num(p[static_cast<std::size_t>(j)]));
+      std::vector<Cell> row{txt(params[j].name), txt(params[j].paper_unit)}, rel_row{txt(params[j].name)};
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        const GroupRecord& g = *s.groups[k];
+        const double v = best[k][static_cast<std::size_t>(j)];
+        const std::string mark = identifiability_mark(g, j);
+        marked |= !mark.empty();
+        row.push_back({format_number(v) + mark, v});
+        if (!g.identifiability) {
+          rel_row.push_back(none());
+          continue;
+        }
+        const double e = 100 * g.identifiability->relative_error[static_cast<std::size_t>(j)];
+        std::string flags;
+        for (const auto& f : g.identifiability->flags[static_cast<std::size_t>(j)]) flags += (flags.empty() ? " (" : "; ") + f;
+        rel_row.push_back({format_number(e) + flags + (flags.empty() ? "" : ")"), e});
+      }
       r.rows.push_back(std::move(row));
+      rel.rows.push_back(std::move(rel_row));
     }
     std::vector<Cell> row{txt(std::string(metric_name(s.metric))), txt("")};
     for (const GroupRecord* g : s.groups) row.push_back(num(g->run_results[static_cast<std::size_t>(g->best_run())].best_value));
     r.rows.push_back(std::move(row));
+    if (marked) r.note = kIdentifiabilityNote;
+    rel.note = "Standard errors from sigma^2 (J^T J)^-1 at the best run's parameters over the fit records "
+               "(engine/identification/identifiability.hpp); > 100 % means the record does not determine the parameter.";
     out.push_back(std::move(r));
+    out.push_back(std::move(rel));
   }
 }
 
-/// The shown metric of a group's best run on dataset d in a role, if the group covers it.
 std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int d, bool predicted, int metric) {
   const auto& fs = c.fitset(g);
   const int best = g.run_results[static_cast<std::size_t>(g.best_run())].run;
@@ -484,38 +523,57 @@ void regression_tables(const Context& c, std::vector<Report>& out) {
     std::vector<std::map<std::string, double>> x;
     std::vector<std::vector<double>> params;
     std::vector<std::string> labels;
+    std::vector<const GroupRecord*> groups;
     for (const auto& [d, g] : per_dataset) {
       x.push_back(c.dataset(d).variables);
       params.push_back(g->run_results[static_cast<std::size_t>(g->best_run())].params);
       labels.push_back(c.dataset(d).name);
+      groups.push_back(g);
     }
+    // Conditions where parameter j was not determined by its record (‡ in the params table).
+    auto undetermined = [&](int j) {
+      std::vector<bool> u;
+      for (const GroupRecord* g : groups) u.push_back(g->identifiability && !g->identifiability->determined(j));
+      return u;
+    };
     const std::string id = file_stem("regression_" + reg.name);
     Report coef = c.report(id, fmt::format("Regression of {}'s identified parameters on operating variables ({} conditions)",
                                            reg.model, per_dataset.size()),
-                           {"Parameter", "Law", "Coefficient", "Value", "R2", "RMS residual"});
+                           {"Parameter", "Law", "Coefficient", "Value", "R2", "RMS residual", "Not identifiable at"});
     coef.paper = reg.paper.empty() ? c.t.paper : reg.paper;
     std::vector<std::string> res_cols{"Condition"};
     std::vector<RegressionFit> fits;
-    std::vector<std::string> fitted_params;
+    std::vector<std::vector<bool>> fit_undetermined;
+    bool any_undetermined = false;
     try {
       for (const auto& [name, law] : parse_laws(reg.laws, "laws")) {
-        const auto j = static_cast<std::size_t>(model.parameter_index(name));
+        const int j = model.parameter_index(name);
         std::vector<double> y;
-        for (const auto& p : params) y.push_back(p[j]);
+        for (const auto& p : params) y.push_back(p[static_cast<std::size_t>(j)]);
         RegressionFit f = fit_law(law, name, x, y);
+        const std::vector<bool> u = undetermined(j);
+        const auto count = std::count(u.begin(), u.end(), true);
+        any_undetermined |= count > 0;
+        const std::string where = count == 0 ? "none" : fmt::format("{} {} of {}", kUndeterminedMark, count, u.size());
         for (std::size_t k = 0; k < f.names.size(); ++k)
           coef.rows.push_back({txt(k == 0 ? name : ""), txt(k == 0 ? law.text() : ""), txt(f.names[k]), num(f.coefficients[k]),
-                               k == 0 ? num(f.r2) : txt(""), k == 0 ? num(f.rms_residual) : txt("")});
+                               k == 0 ? num(f.r2) : txt(""), k == 0 ? num(f.rms_residual) : txt(""), txt(k == 0 ? where : "")});
         for (const char* s : {"observed", "fitted", "residual"}) res_cols.push_back(fmt::format("{} {}", name, s));
         fits.push_back(std::move(f));
-        fitted_params.push_back(name);
+        fit_undetermined.push_back(u);
       }
     } catch (const InputError& e) {
       coef.note = e.what();
     }
-    coef.note = coef.note.empty() ? fmt::format("Least squares on the best run per condition{}{} (SI units).",
+    coef.note = coef.note.empty() ? fmt::format("Least squares on the best run per condition{}{} (SI units).{}",
                                                 reg.split.empty() ? "" : ", split " + reg.split,
-                                                reg.optimizer.empty() ? "" : ", optimizer " + reg.optimizer)
+                                                reg.optimizer.empty() ? "" : ", optimizer " + reg.optimizer,
+                                                any_undetermined ? fmt::format(
+                                                    " Not identifiable at: conditions whose record does not determine the "
+                                                    "parameter ({} in the residuals; relative standard error > 100 % or "
+                                                    "|correlation| > 0.99): the regression fits their noise too.",
+                                                    kUndeterminedMark)
+                                                                 : "")
                                   : coef.note;
     out.push_back(std::move(coef));
     if (fits.empty()) continue;
@@ -523,8 +581,10 @@ void regression_tables(const Context& c, std::vector<Report>& out) {
     res.paper = "";
     for (std::size_t i = 0; i < labels.size(); ++i) {
       std::vector<Cell> row{txt(labels[i])};
-      for (const auto& f : fits) {
-        row.push_back(num(f.fitted[i] + f.residuals[i]));
+      for (std::size_t k = 0; k < fits.size(); ++k) {
+        const RegressionFit& f = fits[k];
+        const double observed = f.fitted[i] + f.residuals[i];
+        row.push_back({format_number(observed) + (fit_undetermined[k][i] ? kUndeterminedMark : ""), observed});
         row.push_back(num(f.fitted[i]));
         row.push_back(num(f.residuals[i]));
       }

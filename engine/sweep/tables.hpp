@@ -10,11 +10,13 @@
 //   ranking       best metric per model and condition
 //   fvd           runs, param-stats, variability numbered as the fvd paper's Tables 3–14, then ranking
 //   params        identified parameters of the best run per condition, paper units (crfd Tables 2–3,
-//                 mfm Table 2, fdsp Table 2)
+//                 mfm Table 2, fdsp Table 2); ‡ marks a value the record does not determine, ⊥ one at a
+//                 bound; then params…_se, the relative standard errors (%) with the identifiability flags
 //   errors        metric of each model's best run on each dataset, fitted and predicted (crfd Table 8,
 //                 mfm Tables 4–5, fdsp Table 3)
 //   regression    the sweep's [[regressions]]: law coefficients, R², residuals (crfd Tables 5–7, mfm eqs.
-//                 5–11, fdsp eqs. 13–14)
+//                 5–11, fdsp eqs. 13–14); per law, on how many conditions the parameter was not
+//                 identifiable (‡ on those residual rows)
 //   sensitivity   SP_z per parameter and condition and their mean (crfd eqs. 4.1–4.3, Fig. 9)
 //   ranksum       Mann–Whitney p-values between optimizers (same model and condition) and between models
 //   bootstrap     bootstrap 95 % interval of the mean metric per condition
