@@ -1,5 +1,6 @@
 #include "engine/identification/identification.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -29,15 +30,38 @@ Identification identify(const Model& model, const Signals& data, const Bounds& b
   return identify(model, std::vector<const Signals*>{&data}, bounds, make_optimizer, settings);
 }
 
+std::vector<std::vector<double>> scaled_residuals(const Model& model, std::span<const Signals* const> data,
+                                                  std::span<const std::vector<double>> candidates) {
+  const int count = static_cast<int>(candidates.size());
+  CandidateBatch batch(model.dim(), count);
+  for (int i = 0; i < count; ++i) batch.set_candidate(i, candidates[static_cast<std::size_t>(i)]);
+  std::size_t total = 0;
+  for (const Signals* d : data) total += d->size();
+  std::vector<std::vector<double>> r(static_cast<std::size_t>(count), std::vector<double>(total));
+  const int blocks = (count + kLanes - 1) / kLanes;
+  tbb::parallel_for(0, blocks, [&](int b) {
+    const int first = b * kLanes, n = std::min(kLanes, count - first);
+    std::vector<double> force;
+    std::size_t offset = 0;
+    for (const Signals* d : data) {
+      force.resize(static_cast<std::size_t>(n) * d->size());
+      model.simulate_block(batch, first, n, *d, force.data());
+      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+      for (int i = 0; i < n; ++i) {
+        const double* F = force.data() + static_cast<std::size_t>(i) * d->size();
+        double* out = r[static_cast<std::size_t>(first + i)].data() + offset;
+        for (std::size_t k = 0; k < d->size(); ++k) out[k] = (F[k] - d->F_N[k]) * scale;
+      }
+      offset += d->size();
+    }
+  });
+  return r;
+}
+
 std::vector<double> scaled_residuals(const Model& model, std::span<const Signals* const> data,
                                      std::span<const double> params) {
-  std::vector<double> r;
-  for (const Signals* d : data) {
-    const auto F = model.simulate(params, *d);
-    const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
-    for (std::size_t k = 0; k < F.size(); ++k) r.push_back((F[k] - d->F_N[k]) * scale);
-  }
-  return r;
+  const std::vector<double> one(params.begin(), params.end());
+  return std::move(scaled_residuals(model, data, std::span<const std::vector<double>>(&one, 1)).front());
 }
 
 namespace {
@@ -63,6 +87,10 @@ class RunProblem final : public LocalProblem {
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
     ++evaluations_;
     return scaled_residuals(evaluator_.model(), evaluator_.datasets(), params);
+  }
+  [[nodiscard]] std::vector<std::vector<double>> residuals_batch(std::span<const std::vector<double>> candidates) const override {
+    evaluations_ += static_cast<long long>(candidates.size());
+    return scaled_residuals(evaluator_.model(), evaluator_.datasets(), candidates);
   }
   [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
   [[nodiscard]] long long evaluations() const { return evaluations_; }

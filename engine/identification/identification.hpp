@@ -62,6 +62,11 @@ struct Identification {
 std::vector<double> scaled_residuals(const Model& model, std::span<const Signals* const> data,
                                      std::span<const double> params);
 
+/// scaled_residuals of many candidates, simulated kLanes at a time (Model::simulate_block) with the lane blocks
+/// across cores: the same bits as one call per candidate, at the cost of one block per kLanes candidates.
+std::vector<std::vector<double>> scaled_residuals(const Model& model, std::span<const Signals* const> data,
+                                                  std::span<const std::vector<double>> candidates);
+
 /// Identifies the model on one or more datasets (the metric is the mean over them, engine/evaluation/batch_evaluator.hpp).
 Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
                         const OptimizerFactory& make_optimizer, const IdentificationSettings& settings);

@@ -23,6 +23,13 @@ class LocalProblem {
   /// Residuals F_model − F_measured of one candidate at every sample of every dataset, each dataset's
   /// residuals divided by sqrt(N_d)·max|F_d| so that ‖r‖² = Σ_d nrmse_d² (least-squares stages).
   [[nodiscard]] virtual std::vector<double> residuals(std::span<const double> params) const = 0;
+  /// Residuals of many candidates at once (finite-difference Jacobians): the same values as one call each.
+  /// Default: one call each; the identification's problem simulates them a lane block at a time.
+  [[nodiscard]] virtual std::vector<std::vector<double>> residuals_batch(std::span<const std::vector<double>> candidates) const {
+    std::vector<std::vector<double>> out;
+    for (const auto& c : candidates) out.push_back(residuals(std::span<const double>(c)));
+    return out;
+  }
   [[nodiscard]] virtual const Bounds& bounds() const = 0;
 };
 

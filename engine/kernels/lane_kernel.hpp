@@ -151,6 +151,19 @@ class KernelModel final : public Model {
     return force;
   }
 
+  void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override {
+    Kernel kernel(gather_lanes<Law, kLanes>(batch, first, count), data);
+    const std::size_t n = data.size();
+    alignas(64) double f[kLanes];
+    for (std::size_t k = 0; k < n; ++k) {
+      kernel.forces(k, f);
+      for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[l];
+    }
+    if (const bool* failed = kernel.failed())
+      for (int l = 0; l < count; ++l)
+        if (failed[l]) std::fill(out + static_cast<std::size_t>(l) * n, out + static_cast<std::size_t>(l + 1) * n, std::nan(""));
+  }
+
   [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {
     if constexpr (requires { Law::record_bounds_rules(); }) return Law::record_bounds_rules();
     else return {};

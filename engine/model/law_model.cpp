@@ -136,6 +136,10 @@ std::vector<double> LawModel::simulate(std::span<const double> coefficients, con
   return base_.simulate(base_parameters(coefficients, data), data);
 }
 
+void LawModel::simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const {
+  base_.simulate_block(base_block(batch, first, count, data), 0, count, data, out);
+}
+
 std::optional<std::vector<double>> LawModel::simulate_reference(std::span<const double> coefficients,
                                                                 const Signals& data) const {
   return base_.simulate_reference(base_parameters(coefficients, data), data);

@@ -36,6 +36,7 @@ class LawModel final : public Model {
   void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                        MetricSums* out) const override;
   [[nodiscard]] std::vector<double> simulate(std::span<const double> coefficients, const Signals& data) const override;
+  void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override;
   [[nodiscard]] std::optional<std::vector<double>> simulate_reference(std::span<const double> coefficients,
                                                                       const Signals& data) const override;
 

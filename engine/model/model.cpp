@@ -1,5 +1,6 @@
 #include "engine/model/model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -31,6 +32,15 @@ std::string RecordBoundsRule::describe() const {
   factor("V", velocity);
   factor("X", amplitude);
   return fmt::format("{}..{} x {}", lower, upper, scale.empty() ? "1" : scale);
+}
+
+void Model::simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const {
+  std::vector<double> params(static_cast<std::size_t>(dim()));
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j < dim(); ++j) params[static_cast<std::size_t>(j)] = batch.at(first + i, j);
+    const std::vector<double> force = simulate(params, data);
+    std::copy(force.begin(), force.end(), out + static_cast<std::size_t>(i) * data.size());
+  }
 }
 
 }  // namespace dampbench

@@ -60,6 +60,13 @@ class Model {
   /// bits are those the batch path sees.
   [[nodiscard]] virtual std::vector<double> simulate(std::span<const double> params, const Signals& data) const = 0;
 
+  /// Forces of candidates [first, first + count) of `batch` (count ≤ kLanes) in one lane block: candidate i's
+  /// force at sample k in out[i·N + k], N = data.size(). Bit-identical to simulate() of each candidate (a
+  /// lane's result depends on its own parameters only); NaN throughout for a candidate that blew up. It
+  /// costs one block, where `count` calls of simulate cost `count` (finite differences, identifiability).
+  /// Default: simulate per candidate.
+  virtual void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const;
+
   /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
   /// with internal states; nullopt for algebraic models, whose force is exact.
   [[nodiscard]] virtual std::optional<std::vector<double>> simulate_reference(std::span<const double> /*params*/,

@@ -83,12 +83,23 @@ void GaLm::refine(const LocalProblem& problem) {
       report_.status = "zero residual";
       break;
     }
-    // Jacobian by forward differences: one residual vector per free parameter.
+    // Jacobian by forward differences: one residual vector per free parameter, all in one batch (lane
+    // blocks, Model::simulate_block); the same values as one call each.
+    std::vector<std::vector<double>> points;
+    std::vector<double> steps;
     for (int i = 0; i < m; ++i) {
       const double s = y[i] + settings_.fd_step <= 1.0 ? settings_.fd_step : -settings_.fd_step;
       Eigen::VectorXd yk = y;
       yk[i] += s;
-      if (std::isfinite(cost_at(yk, r_step))) J.col(i) = (r_step - r) / s;
+      points.push_back(box.to_params(std::span<const double>(yk.data(), m)));
+      steps.push_back(s);
+    }
+    const std::vector<std::vector<double>> columns = problem.residuals_batch(points);
+    report_.residual_evaluations += m;
+    for (int i = 0; i < m; ++i) {
+      const auto& res = columns[static_cast<std::size_t>(i)];
+      const Eigen::Map<const Eigen::VectorXd> r_i(res.data(), static_cast<Eigen::Index>(res.size()));
+      if (res.size() == n && std::isfinite(r_i.squaredNorm())) J.col(i) = (r_i - r) / steps[i];  // as cost_at accepts
       else J.col(i).setZero();
     }
     ++report_.iterations;
