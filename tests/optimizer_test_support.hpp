@@ -249,6 +249,7 @@ struct HybridRun {
   double ga_best = 0;
   Run run;
   std::remove_cvref_t<decltype(std::declval<const Hybrid&>().report())> report;
+  bool at_local_optimum = false;  ///< Optimizer::at_local_optimum after refine
 };
 template <class Hybrid, class Settings>
 HybridRun<Hybrid> run_hybrid(const Settings& settings, const FunctionProblem& problem, std::uint64_t seed) {
@@ -259,6 +260,7 @@ HybridRun<Hybrid> run_hybrid(const Settings& settings, const FunctionProblem& pr
   h.run.best_value = opt.best_value();
   h.run.best_position.assign(opt.best_position().begin(), opt.best_position().end());
   h.report = opt.report();
+  h.at_local_optimum = opt.at_local_optimum();
   return h;
 }
 

@@ -59,6 +59,18 @@ TEST(Convergence, ABestStillImprovingLateIsFlagged) {
   EXPECT_TRUE(assess_convergence(early).stalled);
 }
 
+// A hybrid's local stage (LM, SLSQP) improves late by design: a best run that ended at a local optimum
+// (Optimizer::at_local_optimum) is not asked to stall; the runs must still agree.
+TEST(Convergence, ALocalOptimumEndsTheLateImprovementCheck) {
+  std::vector<RunHistory> runs{{1.0, {{10, 5.0}, {900, 1.0}, {1000, 1.0}}, true}, run(1.0), run(1.0)};
+  EXPECT_TRUE(assess_convergence(runs).stalled);
+  EXPECT_EQ(assess_convergence(runs).verdict(), "converged");
+  runs[0].at_local_optimum = false;  // the same history from an LM that hit its iteration cap
+  EXPECT_EQ(assess_convergence(runs).verdict(), "still improving");
+  const std::vector<RunHistory> disagree{{1.0, {{10, 5.0}, {900, 1.0}}, true}, run(2.0), run(2.0)};
+  EXPECT_EQ(assess_convergence(disagree).verdict(), "runs disagree");
+}
+
 TEST(Convergence, OneRunIsNeverCalledConverged) {
   // The utfsm preset's single Spencer run: stuck at 0.22, stalled, but nothing shows it is the optimum.
   const std::vector<RunHistory> one{run(0.22)};

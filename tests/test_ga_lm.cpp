@@ -54,6 +54,7 @@ TEST(GaLm, RosenbrockToTheLeastSquaresOptimumWhereTheGaStops) {
     EXPECT_EQ(h.report.residual_evaluations, problem.residual_calls);
     EXPECT_LE(h.report.iterations, 100);
     EXPECT_TRUE(testing::all_points_inside(problem)) << dim;
+    EXPECT_TRUE(h.at_local_optimum) << h.report.status;  // stopped on its own test, not the cap
   }
 }
 
@@ -66,6 +67,8 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
   s.lm_iterations = 1;
   const auto h = run_hybrid(s, problem, 2);
   EXPECT_EQ(h.report.iterations, 1);
+  EXPECT_EQ(h.report.status, "iterations");
+  EXPECT_FALSE(h.at_local_optimum);  // stopped by the cap
   // start, Jacobian (2), the geodesic-acceleration probe and the accepted trial
   EXPECT_EQ(h.report.residual_evaluations, 1 + 2 + 1 + 1);
   EXPECT_EQ(problem.residual_calls, 5);
@@ -117,7 +120,9 @@ TEST(GaLm, BacksOffFromAFailureRegion) {
 TEST(GaLm, NothingToRefineWhenEveryCandidateFailed) {
   const FunctionProblem problem([](std::span<const double>) { return std::vector<double>{std::nan("")}; },
                                 testing::box(2, -1, 1));
-  EXPECT_FALSE(run_hybrid(settings(6, 2), problem, 5).report.ran);
+  const auto h = run_hybrid(settings(6, 2), problem, 5);
+  EXPECT_FALSE(h.report.ran);
+  EXPECT_FALSE(h.at_local_optimum);
 }
 
 TEST(GaLm, KeepsTheGaBestWhenTheLeastSquaresOptimumIsWorseInTheRunMetric) {

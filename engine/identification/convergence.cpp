@@ -67,14 +67,14 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   const double gain = earlier - best->best_value;
   c.late_gain_rel = rel(gain);
   c.no_history = best->trace.empty();
-  c.stalled = !c.no_history && gain <= rule.late_gain_rel * scale + rule.abs_tol;
+  c.stalled = !c.no_history && (best->at_local_optimum || gain <= rule.late_gain_rel * scale + rule.abs_tol);
   c.converged = c.runs_agree && c.stalled;
   return c;
 }
 
 Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule) {
   std::vector<RunHistory> runs;
-  for (const RunResult& r : id.runs) runs.push_back({r.best_value, improvement_points(r)});
+  for (const RunResult& r : id.runs) runs.push_back({r.best_value, improvement_points(r), r.at_local_optimum});
   return assess_convergence(runs, rule);
 }
 

@@ -7,6 +7,9 @@
 //   stalled     ⇔  value(E·(1 − late_fraction)) − best ≤ late_gain_rel·|best| + abs_tol
 //                  on the best run's best-so-far history, E its evaluations (it no longer improved in the
 //                  last fifth of its budget)
+//                  — or the best run ended in a local refinement that stopped on its own convergence test
+//                  (hybrids: LM or SLSQP at a local optimum; RunHistory::at_local_optimum), whose late gain
+//                  is by design
 //   converged   ⇔  runs agree and stalled
 // abs_tol keeps differences that no metric can show (noise-free synthetic fits reaching 1e-9 and 1e-8)
 // from counting as disagreement. A single run cannot show agreement (a run stuck in a local minimum
@@ -54,6 +57,7 @@ struct Convergence {
 struct RunHistory {
   double best_value = 0;
   std::vector<TracePoint> trace;
+  bool at_local_optimum = false;  ///< ended by a local refinement's own convergence test
 };
 
 Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule = {});

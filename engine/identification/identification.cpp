@@ -171,6 +171,7 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
     RunProblem problem(evaluator, settings.metric, bounds);
     runs[r]->refine(problem);
     result.runs[r].evaluations += problem.evaluations();
+    result.runs[r].at_local_optimum = runs[r]->at_local_optimum();
   });
 
   // Every metric at each run's best parameters, as one more batch.

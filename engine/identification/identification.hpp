@@ -48,6 +48,7 @@ struct RunResult {
   std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence)
   std::vector<long long> trace_evaluations;  ///< evaluations spent at each trace point
   std::string stop_reason;    ///< "iterations", "max_evaluations", "target", "stall" or "wall_time"
+  bool at_local_optimum = false;  ///< a local refinement ended on its own convergence test (Optimizer::at_local_optimum)
 };
 
 struct Identification {

@@ -49,6 +49,11 @@ class Optimizer {
   /// It may evaluate through `problem` and must leave best_position()/best_value() updated (best_value in
   /// the metric's terms). Default: nothing.
   virtual void refine(const LocalProblem& /*problem*/) {}
+  /// After refine(): the local stage stopped on its own convergence test (a gradient method at a local
+  /// optimum: LM's gradient, ftol, xtol; SLSQP's ftol, xtol, success), not on an iteration cap or a failure.
+  /// The convergence evidence then does not ask the run to have stopped improving (engine/identification/
+  /// convergence.hpp): the refinement's late gain is by design. Default: false (no local stage).
+  [[nodiscard]] virtual bool at_local_optimum() const { return false; }
 };
 
 /// `settings` after `settings.validate()` (which throws InputError), so that a constructor checks its settings

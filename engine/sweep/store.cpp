@@ -118,7 +118,7 @@ CREATE TABLE groups(grp INTEGER PRIMARY KEY, part INTEGER, split INTEGER, fitset
                     wall_time_s REAL, candidate_samples REAL, evaluations INTEGER, dampbench_version TEXT,
                     build_flags TEXT, spec_hash TEXT, dataset_hash TEXT, finished_at TEXT);
 CREATE TABLE runs(grp INTEGER, run INTEGER, best_value REAL, metrics BLOB, params BLOB, evaluations INTEGER,
-                  stop_reason TEXT, trace BLOB, PRIMARY KEY(grp, run)) WITHOUT ROWID;
+                  stop_reason TEXT, trace BLOB, local_optimum INTEGER, PRIMARY KEY(grp, run)) WITHOUT ROWID;
 CREATE TABLE dataset_metrics(grp INTEGER, run INTEGER, dataset INTEGER, role TEXT, metrics BLOB,
                              PRIMARY KEY(grp, run, dataset)) WITHOUT ROWID;
 CREATE TABLE sensitivity(grp INTEGER PRIMARY KEY, dataset INTEGER, S BLOB, SP BLOB);
@@ -473,10 +473,10 @@ void Store::write(const GroupRecord& g) {
         .bind(10, std::string(g.failed ? "failed" : "done")).bind(11, g.message).bind(12, g.wall_time_s)
         .bind(13, g.candidate_samples).bind(14, g.evaluations).bind(15, g.dampbench_version).bind(16, g.build_flags)
         .bind(17, g.spec_hash).bind(18, g.dataset_hash).bind(19, now_utc()).run();
-    Stmt r(db_, "INSERT INTO runs VALUES(?, ?, ?, ?, ?, ?, ?, ?)");
+    Stmt r(db_, "INSERT INTO runs VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const auto& x : g.run_results)
       r.bind(1, g.index).bind(2, x.run).bind(3, x.best_value).bind(4, x.metrics).bind(5, x.params)
-          .bind(6, x.evaluations).bind(7, x.stop_reason).bind(8, trace_blob(x.trace)).run();
+          .bind(6, x.evaluations).bind(7, x.stop_reason).bind(8, trace_blob(x.trace)).bind(9, x.at_local_optimum ? 1 : 0).run();
     Stmt d(db_, "INSERT INTO dataset_metrics VALUES(?, ?, ?, ?, ?)");
     for (const auto& x : g.dataset_metrics)
       d.bind(1, g.index).bind(2, x.run).bind(3, x.dataset).bind(4, std::string(x.predicted ? "predict" : "fit"))
@@ -556,8 +556,8 @@ void read_details(sqlite3* db, const std::string& where, long long grp, bool run
   };
   const std::string filter = where.empty() ? "" : " WHERE " + where;
   if (runs) {
-    const auto r = prepare(fmt::format("SELECT grp, run, best_value, metrics, params, evaluations, stop_reason{} FROM runs{} "
-                                       "ORDER BY grp, run",
+    const auto r = prepare(fmt::format("SELECT grp, run, best_value, metrics, params, evaluations, stop_reason, local_optimum{} "
+                                       "FROM runs{} ORDER BY grp, run",
                                        traces ? ", trace" : "", filter));
     while (r->step()) {
       GroupRecord* g = slot(r->integer(0));
@@ -569,7 +569,8 @@ void read_details(sqlite3* db, const std::string& where, long long grp, bool run
       x.params = r->doubles(4);
       x.evaluations = r->integer(5);
       x.stop_reason = r->text(6);
-      if (traces) x.trace = trace_points(r->doubles(7));
+      x.at_local_optimum = r->integer(7) != 0;
+      if (traces) x.trace = trace_points(r->doubles(8));
       g->run_results.push_back(std::move(x));
     }
   }
@@ -673,6 +674,7 @@ std::vector<std::string> compare_records(const GroupRecord& stored, const GroupR
     if (x.evaluations != y.evaluations)
       diff.push_back(fmt::format("{} evaluations: stored {} vs recomputed {}", run, x.evaluations, y.evaluations));
     if (x.stop_reason != y.stop_reason) diff.push_back(fmt::format("{} stop reason: {} vs {}", run, x.stop_reason, y.stop_reason));
+    if (x.at_local_optimum != y.at_local_optimum) diff.push_back(fmt::format("{} local optimum: {} vs {}", run, x.at_local_optimum, y.at_local_optimum));
     if (x.trace.size() != y.trace.size()) {
       diff.push_back(fmt::format("{} trace: stored {} points vs recomputed {}", run, x.trace.size(), y.trace.size()));
     } else {

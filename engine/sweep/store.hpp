@@ -13,7 +13,7 @@
 //   parts, models, optimizers, splits, datasets, fitsets   the plan, for tables and verify
 //   groups(grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, wall_time_s,
 //          candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at)
-//   runs(grp, run, best_value, metrics, params, evaluations, stop_reason, trace)
+//   runs(grp, run, best_value, metrics, params, evaluations, stop_reason, trace, local_optimum)
 //   dataset_metrics(grp, run, dataset, role, metrics)   per-dataset metrics of joint fits and predictions
 //   sensitivity(grp, dataset, S, SP)
 //   identifiability(grp, samples, std_error, relative_error, correlation, flags)   at the best run's parameters
@@ -34,7 +34,7 @@ struct sqlite3;
 
 namespace dampbench::sweep {
 
-inline constexpr int kStoreFormat = 2;  ///< 2: identifiability table
+inline constexpr int kStoreFormat = 2;  ///< 2: identifiability table, runs.local_optimum
 
 struct StorePart {
   std::string name, title, path, source;
@@ -92,6 +92,7 @@ struct RunRecord {
   long long evaluations = 0;
   std::string stop_reason;
   std::vector<TracePoint> trace;  ///< the points where the best-so-far improved, and the last one
+  bool at_local_optimum = false;  ///< RunResult::at_local_optimum
 };
 
 struct DatasetMetricRecord {

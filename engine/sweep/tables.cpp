@@ -188,14 +188,15 @@ std::vector<double> best_values(const GroupRecord& g) {
 /// Whether a group's runs converged (engine/identification/convergence.hpp), from its stored runs and traces.
 Convergence group_convergence(const GroupRecord& g) {
   std::vector<RunHistory> runs;
-  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace});
+  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
   return assess_convergence(runs);
 }
 
 constexpr const char* kUnconvergedMark = "†";
 constexpr const char* kUnconvergedNote =
     "† not converged: the runs disagree (median run > 2 % above the best), a single run cannot show agreement, or "
-    "the best still improved by > 1 % in the last fifth of its budget; raise runs, population or iterations "
+    "the best still improved by > 1 % in the last fifth of its budget (a hybrid whose local stage stopped at a local "
+    "optimum is not asked to stall); raise runs, population or iterations "
     "before trusting it.";
 
 Report runs_table(const Context& c, const Series& s, std::string id, std::string title) {

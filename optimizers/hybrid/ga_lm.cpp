@@ -33,6 +33,11 @@ constexpr int kMaxRejectedSteps = 20;
 
 }  // namespace
 
+bool GaLm::at_local_optimum() const {
+  const std::string& s = report_.status;
+  return report_.ran && (s == "gradient" || s == "ftol" || s == "xtol" || s == "zero residual");
+}
+
 GaLm::GaLm(const GaLmSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : GaHybrid(validated(settings), bounds, run_key), settings_(settings) {}
 

@@ -78,6 +78,8 @@ class GaLm final : public GaHybrid {
   GaLm(const GaLmSettings& settings, const Bounds& bounds, std::uint64_t run_key);
   void refine(const LocalProblem& problem) override;
   [[nodiscard]] const LmReport& report() const { return report_; }
+  /// The LM stopped on gradient, ftol, xtol or zero residual.
+  [[nodiscard]] bool at_local_optimum() const override;
 
  private:
   GaLmSettings settings_;

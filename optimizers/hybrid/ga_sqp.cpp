@@ -146,6 +146,11 @@ double sqp_constraint(unsigned n, const double* y, double* grad, void* data) {
 
 }  // namespace
 
+bool GaSqp::at_local_optimum() const {
+  const std::string& s = report_.status;
+  return report_.ran && (s == "success" || s == "ftol" || s == "xtol");
+}
+
 GaSqp::GaSqp(const GaSqpSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : GaHybrid(validated(settings), bounds, run_key), settings_(settings) {}
 

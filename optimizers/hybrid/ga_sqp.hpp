@@ -73,6 +73,8 @@ class GaSqp final : public GaHybrid {
   GaSqp(const GaSqpSettings& settings, const Bounds& bounds, std::uint64_t run_key);
   void refine(const LocalProblem& problem) override;
   [[nodiscard]] const SqpReport& report() const { return report_; }
+  /// SLSQP ended with NLopt's success, ftol or xtol.
+  [[nodiscard]] bool at_local_optimum() const override;
 
  private:
   GaSqpSettings settings_;
