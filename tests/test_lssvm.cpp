@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
@@ -430,6 +431,31 @@ TEST(LssvmCli, JsonReportsChosenHyperparametersAndBothPredictions) {
   EXPECT_NE(nf.output.find("lssvm: test record '" + no_force.string() + "' has no force (F column)"), std::string::npos)
       << nf.output;
   std::filesystem::remove(no_force);
+}
+
+// Issue 13: large training sets train without a flag: beyond the default cap (2000 samples) the rows are evenly
+// spaced and the output says so; --max-train 0 takes them all. Every record of datasets/lssvm (16 × ~240 rows).
+TEST(LssvmCli, LargeTrainingSetsAreSubsampledWithANote) {
+  const std::filesystem::path dir = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "lssvm";
+  std::string train;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".csv") train += " --train " + e.path().string();
+  const std::string test = " --test " + (dir / "test_2Hz_0p4A.csv").string() + " --c 10 --sigma 1";
+  const auto j = nlohmann::json::parse(testing::run_dampbench("lssvm" + train + test + " --format json").output);
+  const int available = j.at("train_samples_available").get<int>();
+  EXPECT_GT(available, 3000);
+  EXPECT_EQ(j.at("train_samples").get<int>(), 2000);
+  const auto md = testing::run_dampbench("lssvm" + train + test);
+  ASSERT_EQ(md.exit_code, 0) << md.output;
+  EXPECT_NE(md.output.find(fmt::format("2000 samples of {} (evenly spaced: the default cap of 2000 without --max-train",
+                                       available)),
+            std::string::npos)
+      << md.output;
+  const auto all = nlohmann::json::parse(testing::run_dampbench("lssvm" + train + test + " --max-train 0 --format json").output);
+  EXPECT_EQ(all.at("train_samples").get<int>(), available);
+  const auto few = testing::run_dampbench("lssvm" + train + test + " --max-train 300");
+  EXPECT_NE(few.output.find(fmt::format("300 samples of {} (evenly spaced: --max-train;", available)), std::string::npos)
+      << few.output;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // report one-step-ahead and free-run metrics on other records.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,8 @@ struct LssvmOptions {
   std::vector<std::string> train;  ///< training records
   std::vector<std::string> test;   ///< test records
   std::string lags;                ///< "d=…,v=…,y=…" lag orders (defaults documented in models/lssvm)
-  int max_train = 0;               ///< at most this many training samples (0: all)
+  std::optional<int> max_train;    ///< at most this many training samples, evenly spaced (unset: the default
+                                   ///< cap, lssvm_command.cpp; 0: all)
   std::uint64_t seed = 1;
   std::string fitness;             ///< hyperparameter fitness (validation by default; the paper's is selectable)
   int population = 50;             ///< GA population (lssvm paper)

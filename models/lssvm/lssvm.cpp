@@ -82,6 +82,7 @@ TrainingRows build_rows(std::span<const Dataset> records, const Lags& lags, int 
     selected[k] = static_cast<std::size_t>(std::uint64_t{k} * total / keep);  // k, T < 2³² (records in memory)
 
   TrainingRows rows;
+  rows.available = static_cast<int>(total);
   rows.X.resize(lags.dim(), static_cast<Eigen::Index>(keep));
   rows.y.resize(static_cast<Eigen::Index>(keep));
   rows.record.resize(keep);

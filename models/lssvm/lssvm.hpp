@@ -68,6 +68,7 @@ struct TrainingRows {
   Eigen::MatrixXd X;
   Eigen::VectorXd y;
   std::vector<int> record;  ///< index of the record each column comes from (columns in time order per record)
+  int available = 0;        ///< rows the records give before the max_rows cap
   [[nodiscard]] int size() const { return static_cast<int>(y.size()); }
 };
 
