@@ -42,19 +42,8 @@ TEST(Ga, DefaultsReachTheNoiseFloorOnKwok) {
   const Model& model = find_model("crfd.kwok");
   const std::vector<double> truth{3.0, 25.0, 0.5, 6.0, 0.8, 0.011};
   Dataset d = testing::two_sine_record(300, 250.0);
-  const std::vector<double> clean = model.simulate(truth, prepare_signals(d));
-  double rms = 0;
-  for (double f : clean) rms += f * f;
-  rms = std::sqrt(rms / static_cast<double>(clean.size()));
-  RandomStream noise(hash_key({13}));
-  d.F_N = clean;
-  double floor = 0;
-  for (double& f : d.F_N) {
-    const double e = 0.005 * rms * noise.normal();
-    f += e;
-    floor += e * e;
-  }
-  floor = std::sqrt(floor / static_cast<double>(d.F_N.size()));
+  d.F_N = model.simulate(truth, prepare_signals(d));
+  const double floor = testing::add_force_noise(d, 0.005, 13);
   const Signals data = prepare_signals(d);
 
   testing::retry(2, [&](int attempt) {

@@ -20,11 +20,7 @@ namespace {
 /// The model's force at `truth` plus Gaussian noise of `relative` × RMS from a keyed stream.
 Signals noisy(const Model& model, Dataset d, const std::vector<double>& truth, double relative) {
   d.F_N = model.simulate(truth, prepare_signals(d));
-  double rms = 0;
-  for (double f : d.F_N) rms += f * f;
-  rms = std::sqrt(rms / static_cast<double>(d.F_N.size()));
-  RandomStream rng(hash_key({42}));
-  for (double& f : d.F_N) f += relative * rms * rng.normal();
+  testing::add_force_noise(d, relative, 42);
   return prepare_signals(d);
 }
 

@@ -2,10 +2,12 @@
 // Helpers shared by the tests: synthetic records with analytic derivatives, and running the CLI.
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <string>
 
+#include "engine/common/random.hpp"
 #include "engine/record/dataset.hpp"
 #include "engine/common/error.hpp"
 #include "engine/record/excitation.hpp"
@@ -27,6 +29,22 @@ inline Dataset two_sine_record(int samples = 1000, double fs_hz = 500.0) {
     d.a_m_s2.push_back(-X1 * w1 * w1 * std::sin(w1 * t) - X2 * w2 * w2 * std::sin(w2 * t + phase));
   }
   return d;
+}
+
+/// Adds Gaussian noise of `relative` × RMS(d.F_N) to d.F_N from the keyed stream (seed); returns the RMS of the
+/// noise actually added (the noise floor a fit can reach).
+inline double add_force_noise(Dataset& d, double relative, std::uint64_t seed) {
+  double rms = 0;
+  for (double f : d.F_N) rms += f * f;
+  rms = std::sqrt(rms / static_cast<double>(d.F_N.size()));
+  RandomStream rng(hash_key({seed}));
+  double added = 0;
+  for (double& f : d.F_N) {
+    const double e = relative * rms * rng.normal();
+    f += e;
+    added += e * e;
+  }
+  return std::sqrt(added / static_cast<double>(d.F_N.size()));
 }
 
 /// The message of the InputError that fn throws, or "no error".

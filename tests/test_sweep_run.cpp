@@ -265,28 +265,33 @@ TEST_F(SmallSweep, FailedTasksAreRecordedAndTheSweepCompletes) {
   EXPECT_NE(store.header().datasets[4].error.find("expected a number"), std::string::npos);  // c9 sorts last
 }
 
-TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
-  const fs::path dir = temp_dir();
-  write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
-  auto runs_csv = [&](int population, int iterations) {
-    write(dir / "s.toml", fmt::format(R"toml(name = "conv"
-runs = 6
+/// `dampbench run` of one model fitted by DE (runs × population × iterations) to every CSV in dir/data, fresh,
+/// into dir/out; then `table --kind <kind> --format csv` of its store.
+testing::CommandResult sweep_table(const fs::path& dir, const std::string& model, int runs, int population, int iterations,
+                                   const std::string& kind) {
+  write(dir / "s.toml", fmt::format(R"toml(name = "one_model"
+runs = {}
 metric = "nrmse"
-models = ["fvd.generalized_viscous"]
+models = ["{}"]
 [optimizer]
 name = "de"
 population = {}
 iterations = {}
 [[datasets]]
-name = "c"
+name = "d"
 glob = "{}/data/*.csv"
 )toml",
-                                      population, iterations, dir.string()));
-    const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    return run_dampbench(fmt::format("table {} --kind runs --format csv", (dir / "out" / "store.sqlite").string()));
-  };
-  const auto starved = runs_csv(8, 3), generous = runs_csv(30, 200);
+                                    runs, model, population, iterations, dir.string()));
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return run_dampbench(fmt::format("table {} --kind {} --format csv", (dir / "out" / "store.sqlite").string(), kind));
+}
+
+TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
+  const fs::path dir = temp_dir();
+  write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
+  const auto starved = sweep_table(dir, "fvd.generalized_viscous", 6, 8, 3, "runs"),
+             generous = sweep_table(dir, "fvd.generalized_viscous", 6, 30, 200, "runs");
   EXPECT_NE(starved.output.find("Mean,Max,Min,Std,Runs,Converged"), std::string::npos) << starved.output;
   EXPECT_NE(starved.output.find("† runs disagree"), std::string::npos) << starved.output;
   EXPECT_NE(generous.output.find(",6,yes"), std::string::npos) << generous.output;
@@ -308,22 +313,7 @@ TEST(SweepIdentifiability, ParamsTableMarksATradeOffAndNotASeparableFit) {
     for (std::size_t k = 0; k < d.F_N.size(); ++k) csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", d.t_s[k], d.x_m[k], d.F_N[k]);
     write(dir / "data" / "two_sine.csv", csv);
   }
-  write(dir / "s.toml", fmt::format(R"toml(name = "ident"
-runs = 2
-metric = "nrmse"
-models = ["fvd.gv_linear_elastic"]
-[optimizer]
-name = "de"
-population = 30
-iterations = 150
-[[datasets]]
-name = "d"
-glob = "{}/data/*.csv"
-)toml",
-                                    dir.string()));
-  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", (dir / "out" / "store.sqlite").string()));
+  const auto table = sweep_table(dir, "fvd.gv_linear_elastic", 2, 30, 150, "params");
   ASSERT_EQ(table.exit_code, 0) << table.output;
   // Rows "m,kg,<one_sine>,<two_sine>" and "K1,N/m,...": conditions in file order (one_sine, two_sine).
   auto row = [&](const std::string& name) {

@@ -104,8 +104,7 @@ int lssvm_command(const LssvmOptions& o) {
     if (r.size() < static_cast<std::size_t>(lags.first()) + 1)
       throw InputError(fmt::format("lssvm: test record '{}' has {} samples; lags {} need at least {}", r.name, r.size(),
                                    lssvm::format_lags(lags), lags.first() + 1));
-  const int cap = o.max_train.value_or(kDefaultMaxTrain);
-  if (cap < 0) throw InputError(fmt::format("--max-train: expected a whole number ≥ 0, got {}", cap));
+  const int cap = o.max_train.value_or(kDefaultMaxTrain);  // build_rows rejects a negative one
   const lssvm::TrainingRows rows = lssvm::build_rows(train, lags, cap);
   if (cap == 0 && rows.size() > kMaxTrainAll)
     throw InputError(fmt::format("lssvm: {} training samples; the kernel matrix would take {:.1f} GB and each "
