@@ -65,17 +65,6 @@ void completed_trace(const RunResult& run, std::vector<long long>& evaluations, 
   }
 }
 
-double sorted_quantile(const std::vector<double>& v, double q) {
-  if (v.empty()) return std::nan("");
-  const double h = q * static_cast<double>(v.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, v.size() - 1);
-  const double frac = h - static_cast<double>(lo);
-  if (frac == 0 || v[lo] == v[hi]) return v[lo];
-  if (!std::isfinite(v[hi])) return kInf;
-  return v[lo] + (v[hi] - v[lo]) * frac;
-}
-
 Comparison compare_optimizers(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
                               const std::vector<ComparisonEntry>& entries, const ComparisonSettings& settings) {
   if (entries.empty()) throw InputError("compare: give at least one --optimizer");

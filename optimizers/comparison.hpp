@@ -90,9 +90,6 @@ Comparison compare_optimizers(const Model& model, const std::vector<const Signal
 /// A run's convergence trace with the local phase's end point appended (see the header comment).
 void completed_trace(const RunResult& run, std::vector<long long>& evaluations, std::vector<double>& values);
 
-/// Quantile q ∈ [0, 1] of sorted values (R type 7); +inf entries allowed (never NaN).
-double sorted_quantile(const std::vector<double>& sorted, double q);
-
 /// The summary table (one row per optimizer) and the convergence curves as CSV
 /// (optimizer,evaluations,q25,median,q75).
 Table comparison_table(const Comparison& comparison, std::string_view metric);

@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libtbb-dev libsundials-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev libnlopt-cxx-dev
+  libjs-d3            # D3, inlined into HTML reports (engine/report)
+  chromium python3    # the report test renders a report in headless Chromium (tests/report_browser_test.py)
   "$@"
 )
 missing=()

@@ -86,6 +86,32 @@ TEST(Bootstrap, KeyedAndSensible) {
 
 // ---- fixed-target runtime -----------------------------------------------------------------------------
 
+TEST(ConvergenceBand, QuantilesOfBestSoFarOverRuns) {
+  // Three runs with hand-made traces; the grid is log-spaced from 1 to 100 evaluations (3 points: 1, 10, 100).
+  const std::vector<std::vector<TracePoint>> traces{
+      {{1, 9.0}, {10, 3.0}, {100, 1.0}},  // at 1: 9, at 10: 3, at 100: 1
+      {{1, 5.0}, {50, 2.0}},              // 5, 5, 2
+      {{20, 4.0}, {60, 4.0}}};            // absent at 1 and 10 (first point at 20), 4 at 100
+  const ConvergenceBand b = convergence_band(traces, 3);
+  ASSERT_EQ(b.evaluations.size(), 3u);
+  EXPECT_DOUBLE_EQ(b.evaluations[0], 1);
+  EXPECT_NEAR(b.evaluations[1], 10, 1e-9);
+  EXPECT_EQ(b.evaluations[2], 100);  // exactly the largest evaluation count
+  EXPECT_EQ(b.runs, (std::vector<int>{2, 2, 3}));
+  // 1 evaluation: {5, 9}: type-7 median 7, quartiles 6 and 8.
+  EXPECT_DOUBLE_EQ(b.median[0], 7);
+  EXPECT_DOUBLE_EQ(b.lower_quartile[0], 6);
+  EXPECT_DOUBLE_EQ(b.upper_quartile[0], 8);
+  // 10: {3, 5} (the first run improved at exactly 10) → 4, 3.5, 4.5.
+  EXPECT_DOUBLE_EQ(b.median[1], 4);
+  EXPECT_DOUBLE_EQ(b.lower_quartile[1], 3.5);
+  // 100: {1, 2, 4} → 2, 1.5, 3.
+  EXPECT_DOUBLE_EQ(b.median[2], 2);
+  EXPECT_DOUBLE_EQ(b.lower_quartile[2], 1.5);
+  EXPECT_DOUBLE_EQ(b.upper_quartile[2], 3);
+  EXPECT_TRUE(convergence_band({}, 10).evaluations.empty());
+}
+
 TEST(Runtime, FirstHitErtAndEcdf) {
   const std::vector<TracePoint> trace{{10, 5.0}, {30, 2.0}, {50, 0.5}, {100, 0.5}};
   EXPECT_EQ(first_hit(trace, 2.0), 30);

@@ -1,4 +1,5 @@
 #include "engine/cli/commands.hpp"
+#include "engine/cli/report_command.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -201,6 +202,28 @@ int fit_command(const FitOptions& o) {
   const ConvergenceRule rule;
   const Identifiability identifiability = assess_identifiability(model, data, bounds, best.best_params);
 
+  const auto paper = model.to_paper_units(best.best_params);
+  Table params_table{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, o.runs),
+          {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit", "std. error (SI)", "rel. error",
+           "identifiable"},
+          {}};
+  for (int i = 0; i < model.dim(); ++i) {
+    std::string flags;
+    for (const auto& f : identifiability.flags[i]) flags += (flags.empty() ? "" : "; ") + f;
+    params_table.rows.push_back({params[i].name, format_number(best.best_params[i]), params[i].unit, format_number(paper[i]),
+                      params[i].paper_unit, format_number(identifiability.std_error[i]),
+                      format_number(identifiability.relative_error[i]), flags.empty() ? "yes" : "NO: " + flags});
+  }
+  Table metrics_table{"metrics", "Metrics of the best run", {"metric", "value"}, {}};
+  for (int i = 0; i < kMetricCount; ++i)
+    metrics_table.rows.push_back({std::string(metric_name(kAllMetrics[i])), format_number(best.best_metrics[i])});
+  Table runs_table{"runs", fmt::format("{} over {} runs", o.metric, s.count), {"best", "worst", "mean", "std"},
+          {{format_number(s.min), format_number(s.max), format_number(s.mean), format_number(s.std)}}};
+  if (!o.report.empty()) {
+    FitReport report{&model, o.optimizer, std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", metric, data, &id,
+                     {params_table, metrics_table, runs_table}};
+    write_fit_report(o.report, report);
+  }
   if (o.format == "json") {
     nlohmann::ordered_json j;
     j["model"] = model.id();
@@ -254,24 +277,7 @@ int fit_command(const FitOptions& o) {
     std::cout << j.dump(2) << "\n";
     return 0;
   }
-  const auto paper = model.to_paper_units(best.best_params);
-  Table p{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, o.runs),
-          {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit", "std. error (SI)", "rel. error",
-           "identifiable"},
-          {}};
-  for (int i = 0; i < model.dim(); ++i) {
-    std::string flags;
-    for (const auto& f : identifiability.flags[i]) flags += (flags.empty() ? "" : "; ") + f;
-    p.rows.push_back({params[i].name, format_number(best.best_params[i]), params[i].unit, format_number(paper[i]),
-                      params[i].paper_unit, format_number(identifiability.std_error[i]),
-                      format_number(identifiability.relative_error[i]), flags.empty() ? "yes" : "NO: " + flags});
-  }
-  Table m{"metrics", "Metrics of the best run", {"metric", "value"}, {}};
-  for (int i = 0; i < kMetricCount; ++i)
-    m.rows.push_back({std::string(metric_name(kAllMetrics[i])), format_number(best.best_metrics[i])});
-  Table r{"runs", fmt::format("{} over {} runs", o.metric, s.count), {"best", "worst", "mean", "std"},
-          {{format_number(s.min), format_number(s.max), format_number(s.mean), format_number(s.std)}}};
-  std::cout << p.to_markdown() << "\n" << m.to_markdown() << "\n" << r.to_markdown() << "\n";
+  std::cout << params_table.to_markdown() << "\n" << metrics_table.to_markdown() << "\n" << runs_table.to_markdown() << "\n";
   std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
                            "improved {:.3g} % over its last {:.0f} % of evaluations{}\n",
                            convergence.converged ? "Converged" : "NOT CONVERGED (" + convergence.verdict() + ")",

@@ -47,6 +47,7 @@ struct FitOptions {
   std::uint64_t seed = 1;
   std::string bounds;
   std::string format = "md";
+  std::string report;  ///< HTML report file ("" = none)
 };
 
 /// One or more cases (parameters + input); SP is reported per case and averaged (crfd averages
@@ -81,6 +82,7 @@ struct RunOptions {
   std::string store;       ///< SQLite store; default: <output_dir>/store.sqlite (resumed when it exists)
   bool quiet = false;      ///< no progress bar
   bool fresh = false;      ///< delete an existing store first
+  bool no_report = false;  ///< skip <output>/report.html
 };
 
 int models_command(const std::string& format);

@@ -16,6 +16,7 @@
 
 #include "engine/model/bounds.hpp"
 #include "engine/common/error.hpp"
+#include "engine/common/text_file.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/model/metrics.hpp"
@@ -98,11 +99,7 @@ nlohmann::ordered_json to_json(const Comparison& c, const CompareOptions& o, con
   return j;
 }
 
-void write_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream f(path);
-  if (!f) throw InputError(fmt::format("-o: cannot write '{}'", path.string()));
-  f << text;
-}
+void write_file(const std::filesystem::path& path, const std::string& text) { write_text_file(path.string(), text); }
 
 }  // namespace
 

@@ -7,15 +7,12 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/common/text_file.hpp"
 
 namespace dampbench::cli {
 namespace {
 
-void write_file(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw InputError(fmt::format("cannot write '{}'", path.string()));
-  out << text;
-}
+void write_file(const std::filesystem::path& path, const std::string& text) { write_text_file(path.string(), text); }
 
 struct PartFigures {
   long long groups = 0, tasks = 0, failed = 0;

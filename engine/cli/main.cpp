@@ -14,6 +14,7 @@
 #include "engine/cli/bench_command.hpp"
 #include "engine/cli/compare_command.hpp"
 #include "engine/cli/lssvm_command.hpp"
+#include "engine/cli/report_command.hpp"
 #include "engine/cli/sweep_commands.hpp"
 #include "engine/common/error.hpp"
 
@@ -85,12 +86,16 @@ int main(int argc, char** argv) {
         c->add_option("--seed", fit.seed, "seed (default 1)");
         c->add_option("--bounds", fit.bounds, "bounds in SI, name=lo:hi,...");
         c->add_option("--format", fit.format, "md (default) or json");
+        c->add_option("--report", fit.report, "also write an HTML report (loops, convergence, runs) to this file");
       },
       fit_command);
   auto* run_cmd = add_command<RunOptions>(&app, commands, "run",
       "run a preset or sweep (datasets/presets/*.toml) and write its tables", add_run_options, run_command);
   add_command<TableOptions>(&app, commands, "table", "print a table from a sweep's store", add_table_options,
                             table_command);
+  add_command<ReportOptions>(&app, commands, "report",
+      "an HTML report of a sweep's store: loops, convergence curves, run distributions, laws, tables",
+      add_report_options, report_command);
   auto* verify_cmd = add_command<VerifyOptions>(&app, commands, "verify", "re-run stored tasks and compare bit for bit",
                                             add_verify_options, verify_command);
   auto* compare_cmd = add_command<CompareOptions>(&app, commands, "compare",

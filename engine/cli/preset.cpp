@@ -7,6 +7,8 @@
 
 #include "engine/cli/fvd_tables.hpp"
 #include "engine/common/error.hpp"
+#include "engine/common/text_file.hpp"
+#include "engine/report/store_report.hpp"
 #include "engine/sweep/runner.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
@@ -55,6 +57,17 @@ int run_command(const RunOptions& options) {
 
   const sweep::StoreResults results(store);
   write_sweep_outputs(results, out_dir, {spec_path, store_path, summary}, &std::cout);
+  std::string report_note;
+  if (!options.no_report) {
+    // The tables and the store are written: a report that cannot be drawn only warns.
+    const std::string report_path = (out_dir / "report.html").string();
+    try {
+      write_text_file(report_path, report::store_report_html(store, sweep_loader()));
+      report_note = ", report " + report_path;
+    } catch (const std::exception& e) {
+      std::cerr << fmt::format("warning: no HTML report: {}\n", e.what());
+    }
+  }
 
   double stored_cs = 0, stored_wall = 0;
   for (const auto& g : results.groups) {
@@ -68,9 +81,9 @@ int run_command(const RunOptions& options) {
                       : fmt::format("nothing left to run, {:.2f} s wall (stored runs: {:.3g} candidate-samples/s)",
                                     summary.wall_time_s, stored_wall > 0 ? stored_cs / stored_wall : 0.0);
   std::cout << fmt::format("{}: {} task groups, {} tasks ({} run now, {} from the store, {} failed); {}; tables in {}, "
-                           "store {}\n",
+                           "store {}{}\n",
                            plan.spec().name, summary.groups, summary.tasks, summary.ran, summary.stored_before,
-                           summary.failed, rate, out_dir.string(), store_path);
+                           summary.failed, rate, out_dir.string(), store_path, report_note);
   return 0;
 }
 

@@ -30,6 +30,7 @@ void add_run_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_option("--store", o.store, "SQLite store (default <output>/store.sqlite); an existing one is resumed");
   cmd->add_flag("--quiet", o.quiet, "no progress bar");
   cmd->add_flag("--fresh", o.fresh, "delete an existing store first instead of resuming it");
+  cmd->add_flag("--no-report", o.no_report, "do not write <output>/report.html (dampbench report STORE writes it later)");
 }
 
 void add_datasets_options(CLI::App* cmd, DatasetsOptions& o) {

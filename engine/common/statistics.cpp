@@ -30,4 +30,15 @@ Summary summarize(std::span<const double> values) {
   return s;
 }
 
+double sorted_quantile(const std::vector<double>& v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double h = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  const double frac = h - static_cast<double>(lo);
+  if (frac == 0 || v[lo] == v[hi]) return v[lo];
+  if (!std::isfinite(v[hi])) return std::numeric_limits<double>::infinity();
+  return v[lo] + (v[hi] - v[lo]) * frac;
+}
+
 }  // namespace dampbench

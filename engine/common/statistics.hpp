@@ -1,6 +1,7 @@
 #pragma once
 // Summary statistics of repeated runs (fvd Tables 3–10: Mean, Max, Min, Std).
 #include <span>
+#include <vector>
 
 namespace dampbench {
 
@@ -13,5 +14,9 @@ struct Summary {
 /// Summary of the values, summed in index order (same input ⇒ same bits). Non-finite values (+inf
 /// metrics of failed runs) make every field +inf except count, so a failure is never averaged away.
 Summary summarize(std::span<const double> values);
+
+/// Quantile q ∈ [0, 1] of sorted values (R type 7: linear between order statistics, numpy's default);
+/// +inf entries allowed (never NaN); NaN for no values.
+double sorted_quantile(const std::vector<double>& sorted, double q);
 
 }  // namespace dampbench

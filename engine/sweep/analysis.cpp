@@ -10,6 +10,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
+#include "engine/common/statistics.hpp"
 
 namespace dampbench::sweep {
 namespace {
@@ -360,14 +361,8 @@ Interval bootstrap_mean(std::span<const double> values, std::uint64_t key, int r
     m = s / static_cast<double>(n);
   }
   std::sort(means.begin(), means.end());
-  auto quantile = [&](double q) {  // type 7
-    const double h = (static_cast<double>(means.size()) - 1) * q;
-    const auto lo = static_cast<std::size_t>(std::floor(h));
-    const std::size_t hi = std::min(lo + 1, means.size() - 1);
-    return means[lo] + (h - static_cast<double>(lo)) * (means[hi] - means[lo]);
-  };
-  out.lower = quantile((1 - level) / 2);
-  out.upper = quantile(1 - (1 - level) / 2);
+  out.lower = sorted_quantile(means, (1 - level) / 2);
+  out.upper = sorted_quantile(means, 1 - (1 - level) / 2);
   return out;
 }
 
@@ -402,6 +397,38 @@ std::vector<double> ecdf(std::span<const long long> runtimes, std::span<const do
     out.push_back(runtimes.empty() ? 0.0 : static_cast<double>(hit) / static_cast<double>(runtimes.size()));
   }
   return out;
+}
+
+ConvergenceBand convergence_band(std::span<const std::vector<TracePoint>> traces, int points) {
+  ConvergenceBand band;
+  long long first = std::numeric_limits<long long>::max(), last = 0;
+  for (const auto& t : traces)
+    if (!t.empty()) {
+      first = std::min(first, std::max<long long>(1, t.front().evaluations));
+      last = std::max(last, t.back().evaluations);
+    }
+  if (last == 0 || points < 1) return band;
+  const double ratio = static_cast<double>(std::max(last, first)) / static_cast<double>(first);
+  std::vector<double> values;
+  for (int i = 0; i < points; ++i) {
+    const double e = points == 1 ? static_cast<double>(last)
+                                 : static_cast<double>(first) * std::pow(ratio, static_cast<double>(i) / (points - 1));
+    // The last grid point is exactly the largest evaluation count (pow may round it below).
+    const double at = i == points - 1 ? static_cast<double>(last) : e;
+    values.clear();
+    for (const auto& t : traces) {
+      const auto after = std::upper_bound(t.begin(), t.end(), at,
+                                          [](double x, const TracePoint& p) { return x < static_cast<double>(p.evaluations); });
+      if (after != t.begin()) values.push_back(std::prev(after)->value);
+    }
+    band.evaluations.push_back(at);
+    band.runs.push_back(static_cast<int>(values.size()));
+    std::sort(values.begin(), values.end());
+    band.median.push_back(sorted_quantile(values, 0.5));
+    band.lower_quartile.push_back(sorted_quantile(values, 0.25));
+    band.upper_quartile.push_back(sorted_quantile(values, 0.75));
+  }
+  return band;
 }
 
 }  // namespace dampbench::sweep

@@ -61,6 +61,16 @@ struct TargetRuntime {
 /// hits[i] = first_hit of run i (or -1), spent[i] = its evaluations.
 TargetRuntime expected_runtime(std::span<const long long> hits, std::span<const long long> spent);
 
+/// The median and interquartile band over runs of the best-so-far metric, at `points` evaluation counts spaced
+/// evenly in log scale from the earliest first trace point to the largest last one (the report's convergence
+/// curves). A run counts at e from its first trace point on (its best-so-far is the value of its last point at
+/// or before e); quantiles are type 7 over the runs that count; NaN where none does.
+struct ConvergenceBand {
+  std::vector<double> evaluations, median, lower_quartile, upper_quartile;
+  std::vector<int> runs;  ///< how many runs count at each point
+};
+ConvergenceBand convergence_band(std::span<const std::vector<TracePoint>> traces, int points = 60);
+
 /// Fraction of runtimes ≤ each budget (a runtime < 0 never counts).
 std::vector<double> ecdf(std::span<const long long> runtimes, std::span<const double> budgets);
 

@@ -11,9 +11,8 @@
 #include "engine/sweep/fingerprint.hpp"
 
 namespace dampbench::sweep {
-namespace {
 
-LoadedDataset load_one(const DatasetSpec& d, const Loader& loader) {
+LoadedDataset load_dataset(const DatasetSpec& d, const Loader& loader) {
   LoadedDataset out;
   try {
     Dataset data = loader(d.load);
@@ -29,6 +28,8 @@ LoadedDataset load_one(const DatasetSpec& d, const Loader& loader) {
   }
   return out;
 }
+
+namespace {
 
 std::string value_label(const std::vector<std::string>& vars, const std::vector<double>& values) {
   std::string s;
@@ -151,7 +152,7 @@ Plan::Plan(SweepSpec spec, const Loader& loader) : spec_(std::move(spec)) {
     for (const auto& o : part.optimizers) pp.factories.push_back(make_optimizer_factory(o.spec));
     pp.datasets.resize(part.datasets.size());
     tbb::parallel_for(std::size_t{0}, part.datasets.size(),
-                      [&](std::size_t d) { pp.datasets[d] = load_one(part.datasets[d], loader); });
+                      [&](std::size_t d) { pp.datasets[d] = load_dataset(part.datasets[d], loader); });
     for (const auto& s : part.splits) pp.splits.push_back(plan_split(part, s, pp.datasets));
     parts_.push_back(std::move(pp));
   }

@@ -28,6 +28,9 @@ struct LoadedDataset {
   [[nodiscard]] bool ok() const { return error.empty(); }
 };
 
+/// Reads and prepares one dataset of a sweep file; a failure is kept in `error` (never throws).
+LoadedDataset load_dataset(const DatasetSpec& d, const Loader& loader);
+
 /// Datasets fitted together (one identification) and the datasets their result predicts.
 struct FitSet {
   std::vector<int> fit, predict;  ///< dataset indices in the part

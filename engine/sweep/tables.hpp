@@ -25,11 +25,14 @@
 //   failures      failed task groups and datasets that did not load, with their messages
 //   overview      groups, tasks, failures, wall time and candidate-samples/s
 //   sweep         (command line) every table the sweep file asks for
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/model/model.hpp"
+#include "engine/model/parameter_law.hpp"
+#include "engine/sweep/analysis.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
 
@@ -69,6 +72,24 @@ class StoreResults {
  private:
   std::vector<std::vector<ResolvedModel>> models_;
 };
+
+/// One law of a [[regressions]] entry fitted to the best run per condition (what the regression tables print
+/// and the report draws).
+struct LawRegression {
+  std::string parameter;
+  ParameterLaw law;
+  RegressionFit fit;               ///< observed_i = fitted_i + residuals_i
+  std::vector<bool> undetermined;  ///< per condition: the record did not determine the parameter (‡)
+};
+struct RegressionResult {
+  const RegressionSpec* spec = nullptr;
+  std::vector<std::string> conditions;                  ///< dataset names, one per per-condition fit
+  std::vector<std::map<std::string, double>> variables;  ///< their operating variables
+  std::vector<LawRegression> laws;
+  std::string error;  ///< why the laws could not be fitted ("" when they were)
+};
+/// Every [[regressions]] entry of a part, fitted on the lowest-metric single-dataset fit per condition.
+std::vector<RegressionResult> law_regressions(const StoreResults& results, int part);
 
 /// The tables of one kind for one part, filtered by `request` (kind, split, models, optimizers, metric,
 /// role, where, target_rel; paper and title label them).

@@ -1,0 +1,74 @@
+#include "engine/cli/report_command.hpp"
+
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "engine/cli/preset.hpp"
+#include "engine/common/error.hpp"
+#include "engine/common/text_file.hpp"
+#include "engine/identification/convergence.hpp"
+#include "engine/report/store_report.hpp"
+
+namespace dampbench::cli {
+
+void add_report_options(CLI::App* cmd, ReportOptions& o) {
+  cmd->add_option("store", o.store, "the sweep's SQLite store")->required();
+  cmd->add_option("-o,--output", o.output, "HTML file (default: report.html beside the store)");
+  cmd->add_option("--max-points", o.max_points, "samples drawn per record; longer records are drawn at every k-th sample (default 2500)");
+}
+
+int report_command(const ReportOptions& o) {
+  if (o.max_points < 2) throw InputError(fmt::format("--max-points: expected an integer >= 2, got {}", o.max_points));
+  const std::string output =
+      o.output.empty() ? (std::filesystem::path(o.store).parent_path() / "report.html").string() : o.output;
+  const sweep::Store store = sweep::Store::open(o.store);
+  report::HtmlOptions options;
+  options.max_points = o.max_points;
+  const std::string html = report::store_report_html(store, sweep_loader(), options);
+  write_text_file(output, html);
+  std::cout << fmt::format("report: {} ({:.1f} MB)\n", output, static_cast<double>(html.size()) / 1e6);
+  return 0;
+}
+
+void write_fit_report(const std::string& path, const FitReport& fit) {
+  report::ReportInput in;
+  report::FitInput f;
+  std::string names;
+  for (const Signals* s : fit.records) {
+    f.fit.push_back(static_cast<int>(in.records.size()));
+    in.records.push_back({s->name, s->source, s, ""});
+    names += (names.empty() ? "" : " + ") + s->name;
+  }
+  in.title = fmt::format("dampbench fit — {} on {}", fit.model->id(), names);
+  in.fingerprint = {{"dampbench", fit.fingerprint}, {"model", std::string(fit.model->id())}, {"optimizer", fit.optimizer}};
+  for (const Signals* s : fit.records) in.fingerprint.emplace_back("data " + s->name, s->source);
+  f.condition = names;
+  f.model_name = std::string(fit.model->id());
+  f.optimizer = fit.optimizer;
+  f.model = fit.model;
+  f.metric = fit.metric;
+  for (std::size_t r = 0; r < fit.identification->runs.size(); ++r) {
+    const RunResult& run = fit.identification->runs[r];
+    f.runs.push_back({static_cast<int>(r), run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
+                      improvement_points(run), run.at_local_optimum});
+  }
+  in.fits.push_back(std::move(f));
+  for (const Table& t : fit.tables) {
+    sweep::Report r;
+    r.id = t.id;
+    r.title = t.title;
+    r.columns = t.columns;
+    for (const auto& row : t.rows) {
+      std::vector<sweep::Cell> cells;
+      for (const auto& text : row) cells.push_back({text, std::nullopt});
+      r.rows.push_back(std::move(cells));
+    }
+    in.tables.push_back(std::move(r));
+  }
+  write_text_file(path, report::render_html(in));
+}
+
+}  // namespace dampbench::cli

@@ -1,0 +1,38 @@
+#pragma once
+// `dampbench report STORE [-o FILE]`: the HTML report of a sweep's store (engine/report).
+#include <string>
+#include <vector>
+
+#include "engine/common/table.hpp"
+#include "engine/identification/identification.hpp"
+#include "engine/model/model.hpp"
+#include "engine/record/signals.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+struct ReportOptions {
+  std::string store;
+  std::string output;    ///< default: report.html beside the store
+  int max_points = 2500;  ///< samples drawn per record
+};
+
+void add_report_options(CLI::App* cmd, ReportOptions& options);
+int report_command(const ReportOptions& options);
+
+/// What `fit --report FILE` draws: the fitted records, every run, and the fit's printed tables.
+struct FitReport {
+  const Model* model = nullptr;
+  std::string optimizer, fingerprint;
+  Metric metric = Metric::of_abs;
+  std::vector<const Signals*> records;
+  const Identification* identification = nullptr;
+  std::vector<Table> tables;
+};
+/// Writes the HTML report of one fit (engine/report), whole or not at all.
+void write_fit_report(const std::string& path, const FitReport& fit);
+
+}  // namespace dampbench::cli

@@ -1,0 +1,54 @@
+#pragma once
+// What an HTML report shows (html_report.hpp), gathered from a sweep's store (store_report.hpp) or from one
+// `dampbench fit` (engine/cli): the records, the repeated runs of every model fitted to every condition, the
+// regressions of identified parameters on operating variables, and the store's tables. Pointers refer to
+// objects the caller keeps alive while the report is rendered.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/model/metrics.hpp"
+#include "engine/model/model.hpp"
+#include "engine/record/signals.hpp"
+#include "engine/sweep/store.hpp"
+#include "engine/sweep/tables.hpp"
+
+namespace dampbench::report {
+
+/// A record the loops are drawn from; `signals` is null when it could not be read again (`unavailable` says why).
+struct RecordInput {
+  std::string name, label;
+  const Signals* signals = nullptr;
+  std::string unavailable;
+};
+
+/// The repeated runs of one model fitted by one optimizer to one condition (a sweep's task group).
+struct FitInput {
+  std::string part, split, condition;  ///< condition: the fit set's label
+  std::string model_name, optimizer;   ///< the sweep's labels
+  const Model* model = nullptr;
+  Metric metric = Metric::of_abs;
+  std::vector<int> fit, predict;  ///< indices into ReportInput::records
+  std::vector<sweep::RunRecord> runs;  ///< with their best-so-far traces
+};
+
+/// One law of a regression, drawn over the identified points.
+struct LawFigureInput {
+  std::string title;  ///< "part: regression name — model"
+  std::vector<std::string> conditions;
+  std::vector<std::map<std::string, double>> variables;
+  sweep::LawRegression law;
+};
+
+struct ReportInput {
+  std::string title;
+  std::vector<std::pair<std::string, std::string>> fingerprint;  ///< (what, value): version, build, hashes
+  std::vector<std::string> notes;                                ///< shown under the title
+  std::vector<RecordInput> records;
+  std::vector<FitInput> fits;
+  std::vector<LawFigureInput> laws;
+  std::vector<sweep::Report> ecdfs;   ///< fixed-target runtime ECDF tables (column 0: evaluations, then one per optimizer)
+  std::vector<sweep::Report> tables;  ///< the sweep's tables, as `dampbench table --kind sweep` prints them
+};
+
+}  // namespace dampbench::report

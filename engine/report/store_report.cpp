@@ -1,0 +1,144 @@
+#include "engine/report/store_report.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <optional>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "engine/common/error.hpp"
+#include "engine/sweep/spec.hpp"
+#include "engine/sweep/tables.hpp"
+
+namespace dampbench::report {
+namespace {
+
+/// Everything a store's report points into, alive while the report is rendered.
+class StoreSources {
+ public:
+  StoreSources(const sweep::Store& store, const sweep::Loader& loader) : results_(store) {
+    const sweep::StoreHeader& h = results_.header;
+    if (results_.groups.empty())
+      throw InputError(fmt::format("{}: the store holds no finished task group, so there is nothing to report (run the "
+                                   "sweep into it first: dampbench run SWEEP --store {})",
+                                   store.path(), store.path()));
+    load_records(loader);
+    const bool many_parts = results_.part_count() > 1;
+    auto prefix = [&](int p) { return many_parts ? h.parts[static_cast<std::size_t>(p)].name + ": " : std::string(); };
+
+    input_.title = fmt::format("dampbench report — {}", h.name);
+    input_.fingerprint = {{"sweep", h.name},
+                          {"store", store.path()},
+                          {"dampbench", h.dampbench_version},
+                          {"build", h.build_flags},
+                          {"spec hash", h.spec_hash},
+                          {"spec file", h.spec_path},
+                          {"task groups stored", fmt::format("{} of {}", results_.groups.size(), h.groups)}};
+    for (const auto& d : h.datasets)
+      input_.fingerprint.emplace_back(fmt::format("data {}{}", prefix(d.part), d.name), d.hash);
+    if (results_.groups.size() < static_cast<std::size_t>(h.groups))
+      input_.notes.push_back(fmt::format("The sweep is not finished: {} of {} task groups are stored; a resumed run adds "
+                                         "the rest.",
+                                         results_.groups.size(), h.groups));
+    const auto failed = std::count_if(results_.groups.begin(), results_.groups.end(), [](const auto& g) { return g.failed; });
+    if (failed > 0) input_.notes.push_back(fmt::format("{} task groups failed (see the failures table).", failed));
+
+    for (const sweep::GroupRecord& g : results_.groups) {
+      if (g.failed || g.run_results.empty()) continue;
+      const auto& fs = h.fitsets.at(static_cast<std::size_t>(h.fitset(g.part, g.split, g.fitset)));
+      FitInput f;
+      f.part = h.parts[static_cast<std::size_t>(g.part)].name;
+      f.split = h.split_name(g.part, g.split);
+      f.condition = fs.label;
+      f.model_name = h.models.at(static_cast<std::size_t>(h.model(g.part, g.model))).name;
+      f.optimizer = h.optimizers.at(static_cast<std::size_t>(h.optimizer(g.part, g.optimizer))).label;
+      f.model = &results_.model(g.part, g.model);
+      f.metric = g.metric;
+      for (int d : fs.fit) f.fit.push_back(h.dataset(g.part, d));
+      for (int d : fs.predict) f.predict.push_back(h.dataset(g.part, d));
+      f.runs = g.run_results;
+      input_.fits.push_back(std::move(f));
+    }
+    for (int p = 0; p < results_.part_count(); ++p) {
+      for (sweep::RegressionResult& r : sweep::law_regressions(results_, p))
+        for (sweep::LawRegression& law : r.laws)
+          input_.laws.push_back({fmt::format("{}{} ({}) — {}", prefix(p), r.spec->name, r.spec->model, law.parameter),
+                                 r.conditions, r.variables, std::move(law)});
+      sweep::TableSpec runtime;
+      runtime.kind = "runtime";
+      for (sweep::Report& r : sweep::make_tables(results_, p, runtime))
+        if (r.id.starts_with("runtime_ecdf") && r.columns.size() > 2) {  // only where optimizers are compared
+          r.title = prefix(p) + r.title;
+          input_.ecdfs.push_back(std::move(r));
+        }
+      for (sweep::Report& r : sweep::sweep_tables(results_, p)) {
+        r.title = prefix(p) + r.title;
+        input_.tables.push_back(std::move(r));
+      }
+    }
+  }
+
+  [[nodiscard]] const ReportInput& input() const { return input_; }
+
+ private:
+  /// Re-reads every dataset the store names, from the (re-parsed) sweep file of its part.
+  void load_records(const sweep::Loader& loader) {
+    const sweep::StoreHeader& h = results_.header;
+    std::vector<std::optional<sweep::SweepSpec>> specs(h.parts.size());
+    std::vector<std::string> spec_errors(h.parts.size());
+    for (std::size_t p = 0; p < h.parts.size(); ++p) try {
+        sweep::SpecOptions o;
+        o.datasets_optional = true;  // a missing file is reported per record below
+        specs[p] = sweep::parse_sweep(h.parts[p].source, h.parts[p].path, o);
+      } catch (const std::exception& e) {
+        spec_errors[p] = e.what();
+      }
+    loaded_.resize(h.datasets.size());
+    input_.records.resize(h.datasets.size());
+    tbb::parallel_for(std::size_t{0}, h.datasets.size(), [&](std::size_t i) {
+      const sweep::StoreDataset& d = h.datasets[i];
+      RecordInput& r = input_.records[i];
+      r.name = d.name;
+      r.label = d.label;
+      const auto p = static_cast<std::size_t>(d.part);
+      if (!specs[p]) {
+        r.unavailable = fmt::format("the sweep file could not be read again: {}", spec_errors[p]);
+        return;
+      }
+      const auto& list = specs[p]->parts.at(0).datasets;
+      const auto it = std::find_if(list.begin(), list.end(), [&](const auto& s) { return s.name == d.name; });
+      if (it == list.end()) {
+        r.unavailable = fmt::format("its file ({}) is no longer found", d.path);
+        return;
+      }
+      loaded_[i] = sweep::load_dataset(*it, loader);
+      if (!loaded_[i].ok())
+        r.unavailable = loaded_[i].error;
+      else if (loaded_[i].hash != d.hash)
+        r.unavailable = fmt::format("{} changed since the store was written (hash {}, stored {})", d.path, loaded_[i].hash, d.hash);
+      else
+        r.signals = &loaded_[i].signals;
+    });
+    for (const RecordInput& r : input_.records)
+      if (!r.signals) input_.notes.push_back(fmt::format("Record '{}' is not drawn: {}.", r.name, r.unavailable));
+  }
+
+  sweep::StoreResults results_;
+  std::vector<sweep::LoadedDataset> loaded_;
+  ReportInput input_;
+};
+
+}  // namespace
+
+nlohmann::ordered_json store_report_data(const sweep::Store& store, const sweep::Loader& loader, const HtmlOptions& options) {
+  const StoreSources sources(store, loader);
+  return report_data(sources.input(), options);
+}
+
+std::string store_report_html(const sweep::Store& store, const sweep::Loader& loader, const HtmlOptions& options) {
+  const StoreSources sources(store, loader);
+  return render_html(sources.input(), options);
+}
+
+}  // namespace dampbench::report

@@ -1,0 +1,290 @@
+#!/usr/bin/python3
+"""The HTML report in a real browser (issue 14).
+
+Runs a small sweep (Bingham per current with PSO and DE, Bouc-Wen per current, a current-dependent Bingham law
+fitted at 0 and 1 A predicting 0.5 A, a regression of f_c on I) on records made by `dampbench simulate` with
+known parameters, writes `dampbench report`, renders it in headless Chromium and checks:
+  - no message on the browser console (the page logs nothing unless something fails) and no drawing error;
+  - every figure the data calls for is present and drawn: a loop has a path with one vertex per drawn sample
+    for the measured force and for each model, every other figure has at least one drawn path or point;
+  - the loops' model forces equal `dampbench simulate` of the best run's parameters read from the SQLite store
+    (not from the report), at the drawn samples;
+  - an empty store, a file that is not a store and a missing store are refused with a message and leave no file.
+
+usage: report_browser_test.py DAMPBENCH WORK_DIR
+Exit 77 (ctest: skipped) when Chromium is not installed; scripts/install-deps.sh installs it, so CI runs it.
+"""
+import html.parser
+import json
+import os
+import shutil
+import sqlite3
+import struct
+import subprocess
+import sys
+
+DAMPBENCH, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+failures = []
+
+
+def check(ok, message):
+    if not ok:
+        failures.append(message)
+        print("FAIL:", message)
+
+
+def run(*args, ok=True):
+    p = subprocess.run([DAMPBENCH, *args], cwd=WORK, capture_output=True, text=True)
+    if ok and p.returncode != 0:
+        sys.exit(f"dampbench {' '.join(args)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+SWEEP = """
+name = "report-test"
+seed = 3
+runs = 4
+
+[[models]]
+model = "mrd.bingham"
+optimizers = ["pso", "de"]
+
+[[models]]
+model = "mrd.bouc_wen"
+optimizers = ["pso"]
+
+[[models]]
+name = "bingham(I)"
+model = "mrd.bingham"
+laws = "f_c=poly(I,1)"
+optimizers = ["pso"]
+
+[[optimizers]]
+name = "pso"
+population = 16
+iterations = 12
+
+[[optimizers]]
+name = "de"
+population = 16
+iterations = 12
+
+[[datasets]]
+name = "r"
+files = ["rec_I0.csv", "rec_I0.5.csv", "rec_I1.csv"]
+
+[[splits]]
+name = "each"
+models = ["mrd.bingham", "mrd.bouc_wen"]
+
+[[splits]]
+name = "laws"
+models = ["bingham(I)"]
+by = "all"
+fit = { I = [0, 1] }
+predict = { I = 0.5 }
+
+[[regressions]]
+name = "fc"
+model = "mrd.bingham"
+split = "each"
+laws = "f_c=poly(I,1)"
+
+[[tables]]
+kind = "runs"
+"""
+
+
+def make_sweep():
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    for current in ("0", "0.5", "1"):
+        f_c = 200 + 800 * float(current)
+        run("simulate", "--model", "mrd.bingham", "--params", f"f_c={f_c},c0=2000,f0=10", "--sine",
+            "amp=0.01,freq=1,cycles=2,fs=200", "--noise-rel", "0.02", "--seed", "7", "-o", "tmp.csv")
+        with open(os.path.join(WORK, "tmp.csv")) as f:
+            body = f.read()
+        with open(os.path.join(WORK, f"rec_I{current}.csv"), "w") as f:
+            f.write(f"# operating: I={current}\n" + body)
+    with open(os.path.join(WORK, "sweep.toml"), "w") as f:
+        f.write(SWEEP)
+    run("run", os.path.join(WORK, "sweep.toml"), "-o", "out", "--quiet")
+    run("report", "out/store.sqlite", "-o", "report.html")
+
+
+class Dom(html.parser.HTMLParser):
+    """Figures (data-kind, drawn paths with their d, points), the body's data-rendered, the error box, the data."""
+
+    def __init__(self):
+        super().__init__()
+        self.figures, self.rendered, self.errors_shown, self.data_text = [], None, False, None
+        self._depth, self._in_data, self._in_errors, self._errors_text = 0, False, False, ""
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "body":
+            self.rendered = a.get("data-rendered")
+        if tag == "figure":
+            self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0})
+        if self.figures and tag == "path" and "series" in (a.get("class") or ""):
+            self.figures[-1]["paths"].append(a.get("d") or "")
+        if self.figures and tag == "circle" and "point" in (a.get("class") or ""):
+            self.figures[-1]["points"] += 1
+        if tag == "script" and a.get("id") == "dampbench-data":
+            self._in_data = True
+        if tag == "div" and a.get("id") == "report-errors":
+            self.errors_shown = "none" not in (a.get("style") or "")
+            self._in_errors = True
+
+    def handle_endtag(self, tag):
+        if tag == "script":
+            self._in_data = False
+        if tag == "div":
+            self._in_errors = False
+
+    def handle_data(self, text):
+        if self._in_data:
+            self.data_text = (self.data_text or "") + text
+        if self._in_errors:
+            self._errors_text += text
+
+
+def vertices(d):
+    """Vertices of an SVG path drawn by d3.svg.line: one M, L, H or V command each."""
+    return sum(d.count(c) for c in "MLHV")
+
+
+def stored_best_params():
+    """(split, condition, model) → SI parameters of the lowest best_value run over optimizers, from the store."""
+    db = sqlite3.connect(os.path.join(WORK, "out", "store.sqlite"))
+    names = {m: n for m, n in db.execute("SELECT model, name FROM models WHERE part = 0")}
+    splits = {s: n for s, n in db.execute("SELECT split, name FROM splits WHERE part = 0")}
+    labels = {(s, f): l for s, f, l in db.execute("SELECT split, fitset, label FROM fitsets WHERE part = 0")}
+    best = {}
+    query = ("SELECT g.split, g.fitset, g.model, r.best_value, r.params FROM groups g JOIN runs r ON r.grp = g.grp "
+             "WHERE g.part = 0 ORDER BY g.grp, r.run")
+    for split, fitset, model, value, blob in db.execute(query):
+        key = (splits[split], labels[(split, fitset)], names[model])
+        params = list(struct.unpack(f"<{len(blob) // 8}d", blob))
+        if key not in best or value < best[key][0]:
+            best[key] = (value, params)
+    return {k: v[1] for k, v in best.items()}
+
+
+def simulated_force(model_entry, record_name, params):
+    """F of `dampbench simulate` on the record with these parameters (full precision CSV)."""
+    models = {"mrd.bingham": ("mrd.bingham", ""), "mrd.bouc_wen": ("mrd.bouc_wen", ""),
+              "bingham(I)": ("mrd.bingham", "f_c=poly(I,1)")}
+    model_id, laws = models[model_entry]
+    names = json.loads(run("models", "--format", "json").stdout)["models"][model_id]["parameters"]
+    names = [p["name"] for p in names]
+    if laws:
+        names = ["f_c_I0", "f_c_I1"] + [n for n in names if n != "f_c"]
+    assert len(names) == len(params), (model_entry, names, params)
+    args = ["simulate", "--model", model_id, "--params", ",".join(f"{n}={v!r}" for n, v in zip(names, params)),
+            "--input", f"{record_name}.csv", "-o", "sim.csv"]
+    if laws:
+        args += ["--laws", laws]
+    run(*args)
+    with open(os.path.join(WORK, "sim.csv")) as f:
+        rows = f.read().split("\n")[1:]
+    return [float(r.split(",")[4]) for r in rows if r]
+
+
+def main():
+    if not CHROMIUM:
+        print("SKIP: chromium is not installed (bash scripts/install-deps.sh installs it)")
+        return 77
+    make_sweep()
+    report = os.path.join(WORK, "report.html")
+    p = subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr", "--v=0",
+                        "--virtual-time-budget=60000", "--dump-dom", "file://" + report],
+                       capture_output=True, text=True, timeout=300)
+    check(p.returncode == 0, f"chromium exit {p.returncode}: {p.stderr[-2000:]}")
+    console = [line for line in p.stderr.splitlines() if "CONSOLE" in line or "Uncaught" in line]
+    check(not console, "browser console messages: " + " | ".join(console))
+    dom = Dom()
+    dom.feed(p.stdout)
+    check(not dom.errors_shown, "the page shows drawing errors: " + dom._errors_text)
+    data = json.loads(dom.data_text)
+
+    # Figures the data calls for: per condition 3 per drawn record, one convergence figure per model; one run
+    # distribution per (split, model); ECDFs where a split compares optimizers; one per law.
+    expected = {"loop-displacement": 0, "loop-velocity": 0, "residual": 0, "convergence": 0}
+    for c in data["conditions"]:
+        for r in c["records"]:
+            for kind in ("loop-displacement", "loop-velocity", "residual"):
+                expected[kind] += 1
+        expected["convergence"] += len(c["convergence"])
+    expected["runs"] = len(data["distributions"])
+    expected["ecdf"] = len(data["ecdfs"])
+    expected["law"] = len(data["laws"])
+    got = {}
+    for f in dom.figures:
+        got[f["kind"]] = got.get(f["kind"], 0) + 1
+    check(got == expected, f"figures drawn {got}, expected {expected}")
+    check(expected["ecdf"] >= 1 and expected["law"] >= 1 and expected["loop-displacement"] == 3 + 3,
+          f"the test sweep should give ECDF, law and 6 loop figures: {expected}")
+    check(dom.rendered == str(len(dom.figures)), f"body data-rendered={dom.rendered}, figures {len(dom.figures)}")
+    for i, f in enumerate(dom.figures):
+        drawn = sum(1 for d in f["paths"] if vertices(d) >= 2) + f["points"]
+        check(drawn > 0, f"figure {i} ({f['kind']}) is empty")
+
+    # Loops: one path per series with a vertex per drawn sample.
+    loops = [f for f in dom.figures if f["kind"] == "loop-displacement"]
+    k = 0
+    for c in data["conditions"]:
+        for r in c["records"]:
+            rec = data["records"][r["record"]]
+            n = len(rec["F"])
+            paths = loops[k]["paths"]
+            k += 1
+            check(len(paths) == 1 + len(r["models"]), f"{c['condition']}: {len(paths)} paths for {len(r['models'])} models")
+            check(all(vertices(d) == n for d in paths), f"{c['condition']}/{rec['name']}: vertices "
+                  f"{[vertices(d) for d in paths]}, expected {n} each")
+
+    # Loop data = simulate of the stored best parameters.
+    stored = stored_best_params()
+    compared = 0
+    for c in data["conditions"]:
+        for r in c["records"]:
+            rec = data["records"][r["record"]]
+            for m in r["models"]:
+                params = stored[(c["split"], c["condition"], m["model"])]
+                check(m["params"] == params, f"{m['model']} on {c['condition']}: report params {m['params']} != store {params}")
+                force = simulated_force(m["model"], rec["name"], params)
+                drawn = force[::rec["stride"]]
+                scale = max(abs(x) for x in force)
+                worst = max(abs(a - b) for a, b in zip(drawn, m["F"]))
+                check(len(drawn) == len(m["F"]) and worst <= 1e-12 * scale,
+                      f"{m['model']} on {rec['name']} ({c['condition']}): report force differs from simulate by {worst}")
+                compared += 1
+    check(compared == 3 * 2 + 3, f"compared {compared} (record, model) loops, expected 9")
+    print(f"{len(dom.figures)} figures drawn, {compared} loops equal to simulate")
+
+    # Refused stores: clear message, non-zero exit, no file written.
+    open(os.path.join(WORK, "not_a_store.sqlite"), "w").write("hello")
+    sqlite3.connect(os.path.join(WORK, "foreign.sqlite")).execute("CREATE TABLE t(x)")
+    run("run", os.path.join(WORK, "sweep.toml"), "-o", "empty", "--quiet")
+    db = sqlite3.connect(os.path.join(WORK, "empty", "store.sqlite"))
+    db.execute("DELETE FROM runs")
+    db.execute("DELETE FROM groups")
+    db.commit()
+    db.close()
+    for store, words in (("missing.sqlite", "missing"), ("not_a_store.sqlite", "not"), ("foreign.sqlite", "not"),
+                         ("empty/store.sqlite", "no finished task group")):
+        out = os.path.join(WORK, "refused.html")
+        p = run("report", store, "-o", out, ok=False)
+        check(p.returncode != 0 and "dampbench: error:" in p.stderr and words in p.stderr,
+              f"report {store}: exit {p.returncode}, stderr {p.stderr!r}")
+        check(not os.path.exists(out), f"report {store} left {out}")
+    if failures:
+        print(f"{len(failures)} failures")
+        return 1
+    print("OK")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
