@@ -199,7 +199,8 @@ def main():
     make_sweep()
     report = os.path.join(WORK, "report.html")
     p = subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr", "--v=0",
-                        "--virtual-time-budget=60000", "--dump-dom", "file://" + report],
+                        "--user-data-dir=" + os.path.join(WORK, "chromium-profile"), "--virtual-time-budget=60000",
+                        "--dump-dom", "file://" + report],
                        capture_output=True, text=True, timeout=300)
     check(p.returncode == 0, f"chromium exit {p.returncode}: {p.stderr[-2000:]}")
     console = [line for line in p.stderr.splitlines() if "CONSOLE" in line or "Uncaught" in line]

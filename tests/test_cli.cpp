@@ -147,9 +147,52 @@ TEST(Cli, RunPresetWritesTheFvdTables) {
   const auto r = run_dampbench("run " + (dir / "mini.toml").string() + " -o " + out.string() + " --threads 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* f : {"table03_of_abs_fvd.linear_viscous.csv", "table05_params_fvd.linear_viscous.csv",
-                        "table08_variability_fvd.gv_linear_elastic.csv", "ranking.csv", "tables.md", "summary.md"})
+                        "table08_variability_fvd.gv_linear_elastic.csv", "ranking.csv", "tables.md", "summary.md",
+                        "report.html"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
   EXPECT_NE(r.output.find("candidate-samples/s"), std::string::npos);
+}
+
+/// The JSON document embedded in an HTML report (engine/report/html_report.hpp).
+nlohmann::json report_data_of(const std::filesystem::path& html_file) {
+  std::ifstream in(html_file);
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string open = "<script type=\"application/json\" id=\"dampbench-data\">";
+  const auto begin = html.find(open);
+  if (begin == std::string::npos) return nullptr;
+  const auto end = html.find("</script>", begin);
+  return nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+}
+
+TEST(Cli, FitWritesAReportOfItsRuns) {
+  const auto dir = temp_dir();
+  const std::string data = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/test1_20mm_92mms.csv";
+  const auto file = dir / "fit.html";
+  const auto r = run_dampbench("fit --model fvd.linear_viscous --data " + data +
+                               " --runs 3 --pop 10 --iters 5 --format json --report " + file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto fit = nlohmann::json::parse(r.output);
+  const auto j = report_data_of(file);
+  ASSERT_FALSE(j.is_null());
+  ASSERT_EQ(j.at("conditions").size(), 1u);
+  const auto& model = j.at("conditions")[0].at("records")[0].at("models")[0];
+  EXPECT_EQ(model.at("runs"), 3);
+  EXPECT_EQ(model.at("value").get<double>(), fit.at("runs").at("best").get<double>());
+  EXPECT_EQ(model.at("params")[1].get<double>(), fit.at("best_params").at("C").get<double>());
+  EXPECT_EQ(j.at("conditions")[0].at("convergence")[0].at("optimizers")[0].at("runs").size(), 3u);
+
+  // A report that cannot be written is refused before the fit runs.
+  expect_error("fit --model fvd.linear_viscous --data " + data + " --runs 3 --report " + (dir / "no/such/dir/x.html").string(),
+               "--report: the folder");
+}
+
+TEST(Cli, ReportOfAStoreAndItsErrors) {
+  const auto dir = temp_dir();
+  expect_error("report " + (dir / "missing.sqlite").string(), "dampbench: error:");
+  write(dir / "text.sqlite", "not a database");
+  expect_error("report " + (dir / "text.sqlite").string() + " -o " + (dir / "r.html").string(), "dampbench: error:");
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
+  expect_error("report x.sqlite --max-points 1", "--max-points");
 }
 
 TEST(Cli, BadPresetIsReportedWithFileLineAndKey) {

@@ -158,6 +158,11 @@ int simulate_command(const SimulateOptions& o) {
 
 int fit_command(const FitOptions& o) {
   check_format(o.format);
+  if (!o.report.empty()) {  // before the fit, not after it
+    const auto folder = std::filesystem::absolute(o.report).parent_path();
+    if (!std::filesystem::is_directory(folder))
+      throw InputError(fmt::format("--report: the folder of '{}' does not exist", o.report));
+  }
   const ResolvedModel resolved = resolve_model(o.model, o.laws);
   const Model& model = *resolved.model;
   const Metric metric = parse_metric(o.metric);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
@@ -107,6 +108,16 @@ GroupRecord run_group(const Plan& plan, long long index) {
   return rec;
 }
 
+namespace {
+/// Paths are stored absolute, so that `report` and `verify` find the files from any working directory.
+std::string absolute_path(const std::string& path) {
+  if (path.empty()) return path;
+  std::error_code ec;
+  const auto p = std::filesystem::absolute(path, ec);
+  return ec ? path : p.lexically_normal().string();
+}
+}  // namespace
+
 StoreHeader make_store_header(const Plan& plan, const std::string& spec_path) {
   StoreHeader h;
   h.name = plan.spec().name;
@@ -119,7 +130,7 @@ StoreHeader make_store_header(const Plan& plan, const std::string& spec_path) {
   for (int p = 0; p < static_cast<int>(plan.parts().size()); ++p) {
     const PartPlan& part = plan.parts()[p];
     const PartSpec& s = *part.spec;
-    h.parts.push_back({s.name, s.title, s.path, s.source, s.seed, s.runs});
+    h.parts.push_back({s.name, s.title, absolute_path(s.path), s.source, s.seed, s.runs});
     for (int m = 0; m < static_cast<int>(s.models.size()); ++m) {
       StoreModel sm{p, s.models[m].name, s.models[m].model, s.models[m].fixture, s.models[m].laws, s.models[m].bounds, {}};
       for (const auto& info : part.models[m].model->parameters()) sm.params.push_back(info.name);
@@ -131,7 +142,7 @@ StoreHeader make_store_header(const Plan& plan, const std::string& spec_path) {
     for (int d = 0; d < static_cast<int>(s.datasets.size()); ++d) {
       const auto& ds = s.datasets[d];
       const auto& ld = part.datasets[d];
-      h.datasets.push_back({p, ds.name, ds.collection, ds.label, ds.load.path, ld.hash, ld.error,
+      h.datasets.push_back({p, ds.name, ds.collection, ds.label, absolute_path(ds.load.path), ld.hash, ld.error,
                             static_cast<long long>(ld.signals.size()), ld.signals.law_variables});
     }
     for (int sp = 0; sp < static_cast<int>(part.splits.size()); ++sp)

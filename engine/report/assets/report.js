@@ -20,6 +20,17 @@
   }
   var queue = [], figures = 0;
   function later(draw) { queue.push(draw); }
+  // A collapsed condition (reports of more than 12) is drawn when it is first opened.
+  function whenOpen(box, draw) {
+    if (box.property('open')) { draw(); return; }
+    var drawn = false;
+    box.on('toggle', function () {
+      if (drawn || !box.property('open')) return;
+      drawn = true;
+      draw();
+      setTimeout(drain, 0);
+    });
+  }
   function drain() {
     var start = Date.now();
     while (queue.length && Date.now() - start < 30) queue.shift()();
@@ -59,20 +70,24 @@
     if (!yLog && !o.yDomain) y.nice();
     var svg = fig.append('svg').attr('width', W).attr('height', H).attr('viewBox', '0 0 ' + W + ' ' + H);
     var g = svg.append('g').attr('transform', 'translate(' + m.left + ',' + m.top + ')');
-    var xAxis = d3.svg.axis().scale(x).orient('bottom').ticks(5, xLog ? ',.1s' : undefined);
-    var yAxis = d3.svg.axis().scale(y).orient('left').ticks(5, yLog ? '.2g' : undefined);
+    var xAxis = d3.svg.axis().scale(x).orient('bottom').ticks(5);
+    var yAxis = d3.svg.axis().scale(y).orient('left').ticks(5);
+    if (xLog) logTicks(xAxis, x, d3.format('.2s'));
+    if (yLog) logTicks(yAxis, y, d3.format('.3g'));
     g.append('g').attr('class', 'axis').attr('transform', 'translate(0,' + h + ')').call(xAxis);
     g.append('g').attr('class', 'axis').call(yAxis);
     g.append('text').attr('class', 'label').attr('x', w / 2).attr('y', h + 34).attr('text-anchor', 'middle').text(o.xLabel);
     g.append('text').attr('class', 'label').attr('transform', 'rotate(-90)').attr('x', -h / 2).attr('y', -60)
       .attr('text-anchor', 'middle').text(o.yLabel);
-    var plot = g.append('g').attr('clip-path', null);
+    var plot = g.append('g');
+    function px(v) { return Math.round(v * 10) / 10; }  // 0.1 px: shorter paths, same picture
     function ok(v, log) { return finite(v) && (!log || v > 0); }
     o.series.forEach(function (s) {
       var idx = d3.range(s.x.length);
       if (s.kind === 'band') {
         var area = d3.svg.area().defined(function (i) { return ok(s.x[i], xLog) && ok(s.y0[i], yLog) && ok(s.y1[i], yLog); })
-          .x(function (i) { return x(s.x[i]); }).y0(function (i) { return y(s.y0[i]); }).y1(function (i) { return y(s.y1[i]); });
+          .x(function (i) { return px(x(s.x[i])); }).y0(function (i) { return px(y(s.y0[i])); })
+          .y1(function (i) { return px(y(s.y1[i])); });
         plot.append('path').attr('class', 'series band').attr('d', area(idx)).style('fill', s.color).style('opacity', 0.18);
       } else if (s.kind === 'points') {
         plot.selectAll('circle.none').data(idx.filter(function (i) { return ok(s.x[i], xLog) && ok(s.y[i], yLog); })).enter()
@@ -82,7 +97,7 @@
           .append('title').text(function (i) { return (s.titles ? s.titles[i] + ': ' : '') + fmt(s.y[i]); });
       } else {
         var line = d3.svg.line().defined(function (i) { return ok(s.x[i], xLog) && ok(s.y[i], yLog); })
-          .x(function (i) { return x(s.x[i]); }).y(function (i) { return y(s.y[i]); })
+          .x(function (i) { return px(x(s.x[i])); }).y(function (i) { return px(y(s.y[i])); })
           .interpolate(s.kind === 'step' ? 'step-after' : 'linear');
         plot.append('path').attr('class', 'series line').attr('d', line(idx)).style('stroke', s.color)
           .style('stroke-width', s.faint ? 0.8 : 1.6).style('opacity', s.faint ? 0.35 : 1)
@@ -97,6 +112,14 @@
       item.append('span').text(s.label);
     });
     return fig;
+  }
+
+  // At most 6 labelled ticks on a log axis, whatever its range (D3's own choice labels none within a decade).
+  function logTicks(axis, scale, format) {
+    var d = scale.domain();
+    var all = d[1] / d[0] < 10 ? d3.scale.linear().domain(d).ticks(4) : scale.ticks(), step = Math.ceil(all.length / 6);
+    var values = all.length ? all.filter(function (_, i) { return i % step === 0; }) : scale.domain();
+    axis.tickValues(values).tickFormat(format);
   }
 
   function el(parent, tag, text, cls) {
@@ -135,7 +158,7 @@
     el(root, 'h2', 'Hysteresis loops').attr('id', 'loops');
     el(root, 'p', 'Measured force (black) against the force of each model\'s best run, simulated by dampbench from ' +
       'its stored parameters. Residual = model − measured. Records longer than the drawing limit are drawn at ' +
-      'every k-th sample (the caption says which).', 'help');
+      'every k-th sample (the caption says which).' + (collapsed ? ' Open a condition to draw its figures.' : ''), 'help');
     data.conditions.forEach(function (c) {
       var box = el(root, 'details', undefined, 'condition');
       if (!collapsed) box.attr('open', '');
@@ -146,7 +169,7 @@
         if (rec.unavailable) { el(box, 'p', head + ': not drawn, ' + rec.unavailable, 'note'); return; }
         var row = el(box, 'div', undefined, 'row');
         var every = rec.stride > 1 ? ', every ' + rec.stride + 'th of ' + rec.samples + ' samples' : '';
-        later(function () {
+        whenOpen(box, function () { later(function () {
           var measured = {label: 'measured', color: '#000', kind: 'line'};
           function loop(xKey, kind, xLabel) {
             var series = [Object.assign({}, measured, {x: rec[xKey], y: rec.F})];
@@ -163,7 +186,7 @@
                     y: m.F.map(function (f, i) { return finite(f) && finite(rec.F[i]) ? f - rec.F[i] : null; })};
           });
           chart(row, {kind: 'residual', title: head + ': residual over time' + every, xLabel: 't [s]', yLabel: 'F model − measured', series: residuals});
-        });
+        }); });
       });
     });
   }
@@ -179,7 +202,7 @@
       el(box, 'summary', conditionTitle(c));
       var row = el(box, 'div', undefined, 'row');
       c.convergence.forEach(function (mc) {
-        later(function () {
+        whenOpen(box, function () { later(function () {
           var series = [], verdicts = [];
           mc.optimizers.forEach(function (o) {
             var col = colorOf('opt:' + o.optimizer);
@@ -193,7 +216,7 @@
           });
           chart(row, {kind: 'convergence', title: mc.model, xLabel: 'evaluations', yLabel: 'best-so-far ' + mc.optimizers[0].metric,
                       xLog: true, yLog: true, series: series});
-        });
+        }); });
       });
     });
   }
@@ -204,7 +227,8 @@
     el(root, 'p', 'Final metric of every run per condition: box from the 25 % to the 75 % quantile with the median, ' +
       'whiskers to the best and worst run, one dot per run.', 'help');
     data.distributions.forEach(function (d) {
-      later(function () { distribution(root, d); });
+      var slot = el(root, 'div', undefined, 'row');  // the figure's place, filled when its turn comes
+      later(function () { distribution(slot, d); });
     });
   }
 
@@ -287,12 +311,12 @@
         var series = [];
         l.groups.forEach(function (gr, k) {
           var col = palette[k % palette.length];
-          series.push({kind: 'line', color: col, label: (gr.label ? gr.label + ': ' : '') + l.law, x: gr.curve.x, y: gr.curve.y});
+          series.push({kind: 'line', color: col, label: gr.label || l.law, x: gr.curve.x, y: gr.curve.y});
           series.push({kind: 'points', color: col, noLegend: true, x: gr.points.map(function (p) { return p.x; }),
                        y: gr.points.map(function (p) { return p.y; }), titles: gr.points.map(function (p) { return p.condition; }),
                        hollow: gr.points.map(function (p) { return p.undetermined; })});
         });
-        chart(lrow, {kind: 'law', title: l.title + ' (R² ' + fmt(l.r2) + ')', xLabel: l.variable, yLabel: l.parameter, series: series});
+        chart(lrow, {kind: 'law', title: l.title + ' = ' + l.law + ' (R² ' + fmt(l.r2) + ')', xLabel: l.variable, yLabel: l.parameter, series: series});
       });
     });
   }
