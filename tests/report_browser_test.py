@@ -9,7 +9,9 @@ known parameters, writes `dampbench report`, renders it in headless Chromium and
     for the measured force and for each model, every other figure has at least one drawn path or point;
   - the loops' model forces equal `dampbench simulate` of the best run's parameters read from the SQLite store
     (not from the report), at the drawn samples;
-  - an empty store, a file that is not a store and a missing store are refused with a message and leave no file.
+  - an empty store, a file that is not a store and a missing store are refused with a message and leave no file;
+  - a report of 13 conditions starts with them collapsed (only the run distribution drawn) and draws each
+    condition's loops and convergence curve when it is opened.
 
 usage: report_browser_test.py DAMPBENCH WORK_DIR
 Exit 77 (ctest: skipped) when Chromium is not installed; scripts/install-deps.sh installs it, so CI runs it.
@@ -192,12 +194,8 @@ def simulated_force(model_entry, record_name, params):
     return [float(r.split(",")[4]) for r in rows if r]
 
 
-def main():
-    if not CHROMIUM:
-        print("SKIP: chromium is not installed (bash scripts/install-deps.sh installs it)")
-        return 77
-    make_sweep()
-    report = os.path.join(WORK, "report.html")
+def render(report):
+    """The DOM after the page's scripts ran, and the browser's console lines."""
     p = subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr", "--v=0",
                         "--user-data-dir=" + os.path.join(WORK, "chromium-profile"), "--virtual-time-budget=60000",
                         "--dump-dom", "file://" + report],
@@ -208,6 +206,45 @@ def main():
     dom = Dom()
     dom.feed(p.stdout)
     check(not dom.errors_shown, "the page shows drawing errors: " + dom._errors_text)
+    return dom
+
+
+def check_collapsed_conditions():
+    """A report of more than 12 conditions starts collapsed and draws a condition when it is opened."""
+    files = []
+    for k in range(13):
+        name = f"many_{k}.csv"
+        run("simulate", "--model", "mrd.bingham", "--params", f"f_c={200 + 50 * k},c0=2000,f0=10", "--sine",
+            "amp=0.01,freq=1,cycles=1,fs=100", "--noise-rel", "0.02", "--seed", str(k + 1), "-o", name)
+        files.append(name)
+    with open(os.path.join(WORK, "many.toml"), "w") as f:
+        f.write('name = "many"\nruns = 2\nmodels = ["mrd.bingham"]\n[optimizer]\nname = "pso"\npopulation = 8\n'
+                'iterations = 5\n[[datasets]]\nname = "m"\nfiles = ' + json.dumps(files) + "\n")
+    run("run", os.path.join(WORK, "many.toml"), "-o", "many", "--quiet", "--no-report")
+    run("report", "many/store.sqlite", "-o", "many.html")
+    kinds = lambda dom: sorted({f["kind"] for f in dom.figures})
+    closed = render(os.path.join(WORK, "many.html"))
+    check(kinds(closed) == ["runs"], f"collapsed report draws {kinds(closed)}, expected only the run distribution")
+    with open(os.path.join(WORK, "many.html")) as f:
+        page = f.read()
+    with open(os.path.join(WORK, "many_open.html"), "w") as f:
+        f.write(page.replace("</body>", "<script>document.querySelectorAll('details.condition')"
+                             ".forEach(function (d) { d.open = true; });</script></body>", 1))
+    opened = render(os.path.join(WORK, "many_open.html"))
+    count = {k: sum(1 for f in opened.figures if f["kind"] == k) for k in kinds(opened)}
+    check(count == {"loop-displacement": 13, "loop-velocity": 13, "residual": 13, "convergence": 13, "runs": 1},
+          f"opened conditions drew {count}")
+    check(opened.rendered == str(len(opened.figures)), f"data-rendered={opened.rendered}, figures {len(opened.figures)}")
+    for i, f in enumerate(opened.figures):
+        check(sum(1 for d in f["paths"] if vertices(d) >= 2) + f["points"] > 0, f"opened figure {i} ({f['kind']}) is empty")
+
+
+def main():
+    if not CHROMIUM:
+        print("SKIP: chromium is not installed (bash scripts/install-deps.sh installs it)")
+        return 77
+    make_sweep()
+    dom = render(os.path.join(WORK, "report.html"))
     data = json.loads(dom.data_text)
 
     # Figures the data calls for: per condition 3 per drawn record, one convergence figure per model; one run
@@ -280,6 +317,7 @@ def main():
         check(p.returncode != 0 and "dampbench: error:" in p.stderr and words in p.stderr,
               f"report {store}: exit {p.returncode}, stderr {p.stderr!r}")
         check(not os.path.exists(out), f"report {store} left {out}")
+    check_collapsed_conditions()
     if failures:
         print(f"{len(failures)} failures")
         return 1
