@@ -195,6 +195,44 @@ TEST(Cli, ReportOfAStoreAndItsErrors) {
   expect_error("report x.sqlite --max-points 1", "--max-points");
 }
 
+TEST(Cli, EveryErrorHasThePrefixAndTheExitCodeOfItsClass) {
+  const auto dir = temp_dir();
+  const std::string data = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/test1_20mm_92mms.csv";
+  write(dir / "bad.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"\n");  // unclosed array
+  write(dir / "not_a_store.sqlite", "hello");
+  write(dir / "file", "a regular file");
+  struct Case {
+    std::string args;
+    int code;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      // usage (2): command-line syntax from CLI11 and option values
+      {"fit --model fvd.linear_viscous --data " + data + " --pop abc", 2, "Could not convert: --pop = abc"},
+      {"--threads 0 models", 2, "--threads"},
+      {"no-such-command", 2, "no-such-command"},
+      {"models --bogus", 2, "--bogus"},
+      {"fit --model fvd.linear_viscous --data " + data + " --metric r2", 2, "unknown metric 'r2'"},
+      // input data (3): records and sweep files
+      {"fit --model fvd.linear_viscous --data " + (dir / "missing.csv").string(), 3, "cannot open data file"},
+      {"run " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), 3, "bad.toml:"},
+      // store and output (4)
+      {"table " + (dir / "not_a_store.sqlite").string() + " --kind runs", 4, "is not a dampbench store"},
+      {"report " + (dir / "missing.sqlite").string(), 4, "no store at"},
+      {"simulate --model fvd.linear_viscous --params m=0,C=1e6 --sine amp=0.01,freq=1,cycles=1,fs=100 -o " +
+           (dir / "file" / "x.csv").string(),
+       4, "x.csv"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_dampbench(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("dampbench: error: ", 0), 0u) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_EQ(run_dampbench("--version").exit_code, 0);
+  EXPECT_EQ(run_dampbench("fit --help").exit_code, 0);
+}
+
 TEST(Cli, BadPresetIsReportedWithFileLineAndKey) {
   const auto dir = temp_dir();
   write(dir / "bad.toml", "name = \"bad\"\nruns = 0\nmodels = [\"fvd.linear_viscous\"]\n");

@@ -427,7 +427,7 @@ TEST(LssvmCli, JsonReportsChosenHyperparametersAndBothPredictions) {
   }
   const auto nf = testing::run_dampbench("lssvm --train " + (dir / "train_2Hz_0p4A.csv").string() + " --test " +
                                          no_force.string() + " --c 1 --sigma 1");
-  EXPECT_EQ(nf.exit_code, 2);
+  EXPECT_EQ(nf.exit_code, 3);  // input data
   EXPECT_NE(nf.output.find("lssvm: test record '" + no_force.string() + "' has no force (F column)"), std::string::npos)
       << nf.output;
   std::filesystem::remove(no_force);

@@ -482,7 +482,7 @@ files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
   text.replace(text.find("runs = 2"), 8, "runs = 3");
   write(spec_, text);
   r = run_dampbench(args(store));
-  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(r.exit_code, 4) << r.output;  // store
   EXPECT_NE(r.output.find("belongs to another sweep spec ('small' from"), std::string::npos) << r.output;
   r = run_dampbench(args(store) + " --fresh");
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -495,7 +495,7 @@ TEST_F(ExeSweep, NothingStartsUntilTheWholeFileIsValid) {
                            dir_.string()));
   const fs::path store = dir_ / "never.sqlite";
   const auto r = run_dampbench(args(store));
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 3);  // input data: the sweep file
   EXPECT_NE(r.output.find("sweep.toml:6: key 'tables[0]': unknown table kind 'plots'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(store));
 }

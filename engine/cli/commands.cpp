@@ -146,7 +146,7 @@ int simulate_command(const SimulateOptions& o) {
   std::ofstream file;
   if (!o.output.empty()) {
     file.open(o.output);
-    if (!file) throw InputError(fmt::format("-o: cannot write '{}'", o.output));
+    if (!file) throw StoreError(fmt::format("-o: cannot write '{}'", o.output));
   }
   std::ostream& out = o.output.empty() ? std::cout : file;
   out << "t,x,v,a,F\n";

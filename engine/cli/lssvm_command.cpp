@@ -97,7 +97,7 @@ int lssvm_command(const LssvmOptions& o) {
   const std::vector<Dataset> test = load_records(o.test, o.data);
   for (const Dataset& r : test)
     if (!r.has_force())
-      throw InputError(fmt::format("lssvm: test record '{}' has no force (F column); it is needed for one-step "
+      throw DataError(fmt::format("lssvm: test record '{}' has no force (F column); it is needed for one-step "
                                    "prediction and the metrics",
                                    r.source.empty() ? r.name : r.source));
   for (const Dataset& r : test)

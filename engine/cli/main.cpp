@@ -1,6 +1,10 @@
-// dampbench command line: models, simulate, fit, run. Bad input ends with "dampbench: error: ..." and
-// exit code 2; nothing here crashes on user input.
+// dampbench command line: models, simulate, fit, run, ... Every error, whatever raised it (CLI11, toml++,
+// SQLite, the file system, dampbench), is printed as "dampbench: error: ..." on stderr and ends with the exit
+// code of its class (engine/common/error.hpp ExitCode; README "Exit codes"); nothing here crashes on user input.
 #include <cstdio>
+#include <filesystem>
+#include <new>
+#include <string>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -137,10 +141,37 @@ int main(int argc, char** argv) {
   for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, verify_cmd, compare_cmd, lssvm_cmd})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
 
+  using namespace dampbench;
+  auto fail = [](int code, const std::string& message) {
+    std::fprintf(stderr, "dampbench: error: %s\n", message.c_str());
+    return code;
+  };
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 says "A subcommand is required" for a misspelt command too: name it and list the commands.
+    for (int i = 1; i < argc; ++i) {
+      const std::string word = argv[i];
+      if (word.starts_with("-")) {
+        if (word == "--threads") ++i;
+        continue;
+      }
+      try {
+        (void)app.get_subcommand(word);
+      } catch (const CLI::OptionNotFound&) {
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+        return fail(kExitUsage, "unknown command '" + word + "' (commands: " + names + ")");
+      }
+      break;
+    }
+    return fail(kExitUsage, std::string(e.what()) + " (run with --help for the options)");
   }
 
   try {
@@ -148,12 +179,18 @@ int main(int argc, char** argv) {
     if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     for (const Command& command : commands)
       if (command.app->parsed()) return command.run();
-  } catch (const dampbench::InputError& e) {
-    std::fprintf(stderr, "dampbench: error: %s\n", e.what());
-    return 2;
+  } catch (const StoreError& e) {
+    return fail(kExitStore, e.what());
+  } catch (const DataError& e) {
+    return fail(kExitData, e.what());
+  } catch (const InputError& e) {
+    return fail(kExitUsage, e.what());
+  } catch (const std::filesystem::filesystem_error& e) {  // output folders and files
+    return fail(kExitStore, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(kExitInternal, "out of memory");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dampbench: internal error: %s\n", e.what());
-    return 3;
+    return fail(kExitInternal, std::string("internal error (please report it): ") + e.what());
   }
-  return 0;
+  return kExitOk;
 }

@@ -52,7 +52,7 @@ int run_command(const RunOptions& options) {
   if (summary.interrupted) {
     std::cerr << fmt::format("{}: interrupted: {} of {} task groups are in {}; run the same command again to resume\n",
                              plan.spec().name, summary.stored_before + summary.ran, summary.groups, store_path);
-    return 130;
+    return kExitInterrupted;
   }
 
   const sweep::StoreResults results(store);

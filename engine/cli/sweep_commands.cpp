@@ -109,7 +109,7 @@ int table_command(const TableOptions& o) {
   }
   if (reports.empty()) {
     std::cerr << fmt::format("dampbench: no '{}' table in {} (no stored task group matches)\n", o.kind, o.store);
-    return 1;
+    return kExitDifferent;
   }
   std::cout << sweep::format_reports(reports, o.format);
   return 0;
@@ -134,7 +134,7 @@ int verify_command(const VerifyOptions& o) {
   if (now.datasets.size() != header.datasets.size()) {
     std::cout << fmt::format("DIFFERENT: the sweep now has {} datasets, the store {}\n", now.datasets.size(),
                              header.datasets.size());
-    return 1;
+    return kExitDifferent;
   }
   for (std::size_t i = 0; i < now.datasets.size(); ++i)
     if (now.datasets[i].hash != header.datasets[i].hash || now.datasets[i].name != header.datasets[i].name) {
@@ -142,7 +142,7 @@ int verify_command(const VerifyOptions& o) {
                                header.datasets[i].path, header.datasets[i].hash, now.datasets[i].hash);
       ++problems;
     }
-  if (problems) return 1;
+  if (problems) return kExitDifferent;
 
   std::vector<long long> stored;
   const auto finished = store.finished();
@@ -184,7 +184,7 @@ int verify_command(const VerifyOptions& o) {
           }));
   if (differing) {
     std::cout << fmt::format("verify: {} of {} re-run task groups differ from the store {}\n", differing, chosen.size(), o.store);
-    return 1;
+    return kExitDifferent;
   }
   std::cout << fmt::format("verify: {} task groups ({} runs) re-run, every stored number identical bit for bit ({} of {} "
                            "stored groups checked)\n",

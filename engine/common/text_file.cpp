@@ -16,7 +16,7 @@ void write_text_file(const std::string& path, const std::string& text) {
   const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
   auto fail = [&](const std::string& what, int error) {
     std::remove(temporary.c_str());
-    throw InputError("cannot write '" + path + "': " + what + ": " + std::strerror(error));
+    throw StoreError("cannot write '" + path + "': " + what + ": " + std::strerror(error));
   };
   std::FILE* f = std::fopen(temporary.c_str(), "wb");
   if (!f) fail("cannot create a file in its folder", errno);

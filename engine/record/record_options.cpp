@@ -20,7 +20,13 @@ void set_operating(Dataset& data, const std::string& text, std::string_view opti
   }
 }
 
+static Dataset load_record_as_given(const RecordOptions& options, bool require_force);
+
 Dataset load_record(const RecordOptions& options, bool require_force) {
+  return as_data_error([&] { return load_record_as_given(options, require_force); });
+}
+
+static Dataset load_record_as_given(const RecordOptions& options, bool require_force) {
   CsvOptions csv;
   csv.require_force = require_force;
   if (!options.units.empty()) csv.units = parse_units_option(options.units);

@@ -20,7 +20,7 @@ class StoreSources {
   StoreSources(const sweep::Store& store, const sweep::Loader& loader) : results_(store) {
     const sweep::StoreHeader& h = results_.header;
     if (results_.groups.empty())
-      throw InputError(fmt::format("{}: the store holds no finished task group, so there is nothing to report (run the "
+      throw StoreError(fmt::format("{}: the store holds no finished task group, so there is nothing to report (run the "
                                    "sweep into it first: dampbench run SWEEP --store {})",
                                    store.path(), store.path()));
     load_records(loader);

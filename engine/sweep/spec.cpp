@@ -814,7 +814,13 @@ std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
 }  // namespace
 
+static SweepSpec parse_sweep_text(std::string_view text, const std::string& path, const SpecOptions& options);
+
 SweepSpec parse_sweep(std::string_view text, const std::string& path, const SpecOptions& options) {
+  return as_data_error([&] { return parse_sweep_text(text, path, options); });
+}
+
+static SweepSpec parse_sweep_text(std::string_view text, const std::string& path, const SpecOptions& options) {
   SweepSpec spec;
   spec.path = path;
   std::vector<std::string> notes;
@@ -852,7 +858,7 @@ SweepSpec parse_sweep(std::string_view text, const std::string& path, const Spec
 
 SweepSpec load_sweep(const std::string& path, const SpecOptions& options) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("cannot open preset file '{}'", path));
+  if (!fs::is_regular_file(path, ec)) throw DataError(fmt::format("cannot open preset file '{}'", path));
   return parse_sweep(read_text(path, "preset file"), path, options);
 }
 

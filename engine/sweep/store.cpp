@@ -26,7 +26,7 @@ namespace {
 using json = nlohmann::json;
 
 [[noreturn]] void sql_fail(sqlite3* db, std::string_view what) {
-  throw std::runtime_error(fmt::format("store: {}: {}", what, db ? sqlite3_errmsg(db) : "out of memory"));
+  throw StoreError(fmt::format("store: {}: {}", what, db ? sqlite3_errmsg(db) : "out of memory"));
 }
 
 /// A prepared statement with positional binds (1-based) and typed columns (0-based).
@@ -157,7 +157,7 @@ sqlite3* open_db(const std::string& path, int flags) {
   if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
     const std::string msg = db ? sqlite3_errmsg(db) : "out of memory";
     sqlite3_close(db);
-    throw InputError(fmt::format("cannot open store '{}': {}", path, msg));
+    throw StoreError(fmt::format("cannot open store '{}': {}", path, msg));
   }
   sqlite3_busy_timeout(db, 10000);
   return db;
@@ -262,7 +262,7 @@ void Store::exec(const char* sql) const {
   if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
     const std::string msg = err ? err : "?";
     sqlite3_free(err);
-    throw std::runtime_error(fmt::format("store '{}': {}", path_, msg));
+    throw StoreError(fmt::format("store '{}': {}", path_, msg));
   }
 }
 
@@ -274,7 +274,7 @@ std::string Store::meta(const std::string& key) const {
 
 Store Store::open(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("no store at '{}'", path));
+  if (!std::filesystem::is_regular_file(path, ec)) throw StoreError(fmt::format("no store at '{}'", path));
   Store store(open_db(path, SQLITE_OPEN_READWRITE), path);
   int version = 0;
   try {
@@ -283,12 +283,12 @@ Store Store::open(const std::string& path) {
   } catch (const std::runtime_error&) {
     version = -1;
   }
-  if (version == -1 || (version == 0)) throw InputError(fmt::format("'{}' is not a dampbench store", path));
+  if (version == -1 || (version == 0)) throw StoreError(fmt::format("'{}' is not a dampbench store", path));
   if (version != kStoreFormat)
-    throw InputError(fmt::format("store '{}' has format {}, this dampbench ({}) reads format {}", path, version,
+    throw StoreError(fmt::format("store '{}' has format {}, this dampbench ({}) reads format {}", path, version,
                                  dampbench_version(), kStoreFormat));
   if (const std::string metrics = store.meta("metrics"); metrics != metric_list())
-    throw InputError(fmt::format("store '{}' records the metrics ({}), this dampbench computes ({}): it was written by "
+    throw StoreError(fmt::format("store '{}' records the metrics ({}), this dampbench computes ({}): it was written by "
                                  "another build",
                                  path, metrics, metric_list()));
   return store;
@@ -373,24 +373,24 @@ Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {
   Store store = open(path);
   const std::string version = store.meta("dampbench_version"), flags = store.meta("build_flags");
   if (version != h.dampbench_version || flags != h.build_flags)
-    throw InputError(fmt::format(
+    throw StoreError(fmt::format(
         "store '{}' was written by dampbench {} ({}), this is dampbench {} ({}): its results would not be "
         "bit-identical; give another --store or --fresh to start over",
         path, version, flags, h.dampbench_version, h.build_flags));
   if (const std::string hash = store.meta("spec_hash"); hash != h.spec_hash)
-    throw InputError(fmt::format(
+    throw StoreError(fmt::format(
         "store '{}' belongs to another sweep spec ('{}' from {}, spec hash {}; this spec '{}' has hash {}): give "
         "another --store, or --fresh to start over",
         path, store.meta("name"), store.meta("spec_path"), hash, h.name, h.spec_hash));
   const StoreHeader stored = store.header();
   if (stored.datasets.size() != h.datasets.size())
-    throw InputError(fmt::format("store '{}' was written for {} datasets, the sweep now has {} (a glob matches other "
+    throw StoreError(fmt::format("store '{}' was written for {} datasets, the sweep now has {} (a glob matches other "
                                  "files?): give another --store, or --fresh to start over",
                                  path, stored.datasets.size(), h.datasets.size()));
   for (std::size_t i = 0; i < h.datasets.size(); ++i) {
     const auto &a = stored.datasets[i], &b = h.datasets[i];
     if (a.name != b.name || a.hash != b.hash || a.part != b.part)
-      throw InputError(fmt::format("store '{}': dataset '{}' ({}) changed since the store was written (hash {}, now "
+      throw StoreError(fmt::format("store '{}': dataset '{}' ({}) changed since the store was written (hash {}, now "
                                    "'{}' hash {}): give another --store, or --fresh to start over",
                                    path, a.name, a.path, a.hash, b.name, b.hash));
   }

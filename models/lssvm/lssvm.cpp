@@ -51,7 +51,7 @@ void check_length(const Dataset& record, const Lags& lags, std::string_view role
 
 void check_force(const Dataset& record, std::string_view role) {
   if (!record.has_force())
-    throw InputError(fmt::format("lssvm: {} record '{}' has no force (F column); it is needed for {}", role, record.name,
+    throw DataError(fmt::format("lssvm: {} record '{}' has no force (F column); it is needed for {}", role, record.name,
                                  role == "training" ? "training" : "one-step prediction and the metrics"));
 }
 

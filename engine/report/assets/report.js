@@ -202,8 +202,13 @@
       el(box, 'summary', conditionTitle(c));
       var row = el(box, 'div', undefined, 'row');
       c.convergence.forEach(function (mc) {
+        var stored = mc.optimizers.some(function (o) { return o.runs.some(function (r) { return r.length > 0; }); });
+        if (!stored) {  // a store written without best-so-far traces
+          el(row, 'p', mc.model + ': no convergence history in this store', 'note');
+          return;
+        }
         whenOpen(box, function () { later(function () {
-          var series = [], verdicts = [];
+          var series = [];
           mc.optimizers.forEach(function (o) {
             var col = colorOf('opt:' + o.optimizer);
             o.runs.forEach(function (run) {

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Fuzzing (issue 17): builds the libFuzzer targets of tests/fuzz with clang (AddressSanitizer and UBSan on all of
+# dampbench's code they reach) and runs each for FUZZ_SECONDS (default 60) from seed corpora made of the
+# repository's records, sweep files, law strings and a real store. Fails on the first crash, sanitizer finding,
+# timeout (10 s per input) or out-of-memory; the input that did it is kept in build-fuzz/findings/<target>/
+# (copy it to tests/fuzz/regressions/<target>/ and it is replayed by every later run).
+# Usage: bash scripts/fuzz.sh [target ...]   (default: every target)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh clang libclang-rt-14-dev
+seconds="${FUZZ_SECONDS:-60}"
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_record fuzz_sweep_spec fuzz_laws fuzz_key_values fuzz_store)
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DDAMPBENCH_FUZZ=ON \
+  -DDAMPBENCH_BUILD_TESTS=OFF -DDAMPBENCH_BUILD_BENCH=OFF > /dev/null
+cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]}"
+
+# Seed corpora: what the tests and presets read.
+corpus=build-fuzz/corpus
+rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fuzz_key_values,fuzz_store}
+for f in datasets/fvd/*.csv docs/examples/*.txt; do  # the first byte picks the loader options
+  for option in 0 1 3; do { printf "\\$(printf %03o $option)"; head -c 20000 "$f"; } > "$corpus/fuzz_record/$option-$(basename "$f")"; done
+done
+cp datasets/presets/*.toml docs/examples/*.toml "$corpus/fuzz_sweep_spec/"
+i=0
+for law in "c0=poly(I,1);alpha=poly(I,2);k0=poly(I,1)" "A=prod(poly(I,2),poly(amp,1),poly(freq,1))" "c=power(w)" \
+           "k=gauss2(w)" "n=0.9929;c_r=poly(phi,3)" "x=free"; do
+  printf '%s' "$law" > "$corpus/fuzz_laws/$((i++))"
+done
+for kv in "m=300,C=8.2e5,alpha=0.3,K1=4e6" "pc=0.6,pm=0.03" "t,x,v,F" "x=mm,v=mm/s,F=kN" "1.5e-3" "+2" \
+          "amp=0.02,vpeak=0.46,cycles=3,fs=1000"; do
+  printf '%s' "$kv" > "$corpus/fuzz_key_values/$((i++))"
+done
+store_seed=build-fuzz/seed-store
+rm -rf "$store_seed"
+"${DAMPBENCH:-./build/dampbench}" run docs/examples/quick.toml -o "$store_seed" --quiet --no-report > /dev/null
+cp "$store_seed/store.sqlite" "$corpus/fuzz_store/quick.sqlite"
+
+for t in "${targets[@]}"; do
+  mkdir -p "build-fuzz/findings/$t"
+  dirs=("$corpus/$t")
+  [ -d "tests/fuzz/regressions/$t" ] && dirs+=("tests/fuzz/regressions/$t")
+  echo "== $t: ${seconds} s"
+  log="build-fuzz/findings/$t.log"
+  status=0
+  ASAN_OPTIONS=detect_leaks=1 "./build-fuzz/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$t/" "${dirs[@]}" > "$log" 2>&1 || status=$?
+  grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)" "$log" || true
+  if [ "$status" -ne 0 ]; then
+    tail -40 "$log" >&2
+    echo "fuzz: $t failed (exit $status); the input is in build-fuzz/findings/$t/" >&2
+    exit 1
+  fi
+done
+echo "fuzz: ${#targets[@]} targets, ${seconds} s each, no crash"
