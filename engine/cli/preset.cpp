@@ -32,6 +32,7 @@ int run_command(const RunOptions& options) {
 
   const fs::path out_dir = options.output_dir.empty() ? fs::path("results") / plan.spec().name : fs::path(options.output_dir);
   const std::string store_path = options.store.empty() ? (out_dir / "store.sqlite").string() : options.store;
+  const sweep::StoreLock lock(store_path);  // before --fresh deletes anything: another run may be writing it
   if (options.fresh)
     for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(store_path + suffix);
   const std::string spec_path = fs::absolute(options.preset).lexically_normal().string();

@@ -18,7 +18,7 @@ LoadedDataset load_dataset(const DatasetSpec& d, const Loader& loader) {
     Dataset data = loader(d.load);
     data.name = d.name;
     out.signals = prepare_signals(data);
-    if (!out.signals.has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d.name));
+    if (!out.signals.has_force()) throw DataError(fmt::format("dataset '{}' has no force column F", d.name));
     out.hash = dataset_hash(out.signals);
   } catch (const std::exception& e) {
     out.signals = Signals{};
@@ -54,11 +54,11 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
   if (candidates.empty()) return sp;  // only optional datasets, all skipped (SweepSpec::notes says so)
   const std::vector<int> fit = selected(split.fit);
   if (fit.empty())
-    throw InputError(fmt::format("{}: 'fit' selects no dataset (of {} candidates)", where, candidates.size()));
+    throw DataError(fmt::format("{}: 'fit' selects no dataset (of {} candidates)", where, candidates.size()));
   std::vector<int> predict;
   if (split.predict) {
     predict = selected(*split.predict);
-    if (predict.empty()) throw InputError(fmt::format("{}: 'predict' selects no dataset", where));
+    if (predict.empty()) throw DataError(fmt::format("{}: 'predict' selects no dataset", where));
   }
   auto without = [](std::vector<int> v, const std::vector<int>& drop) {
     std::erase_if(v, [&](int d) { return std::find(drop.begin(), drop.end(), d) != drop.end(); });
@@ -95,7 +95,7 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
         }
         if (values.size() != split.by_variables.size()) {
           if (data[d].ok())
-            throw InputError(fmt::format("{}: dataset '{}' has no operating variable '{}' to group by", where,
+            throw DataError(fmt::format("{}: dataset '{}' has no operating variable '{}' to group by", where,
                                          name_of(d), split.by_variables[values.size()]));
           failed.push_back({{}, {d}});  // fails with its loading message
           continue;
@@ -133,7 +133,7 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
       sp.pairs.emplace_back(m, o);
     }
   }
-  if (sp.pairs.empty()) throw InputError(fmt::format("{}: no (model, optimizer) pair to identify", where));
+  if (sp.pairs.empty()) throw DataError(fmt::format("{}: no (model, optimizer) pair to identify", where));
   const long long metrics = static_cast<long long>(part.metrics.size());
   sp.groups = static_cast<long long>(sp.fitsets.size()) * static_cast<long long>(sp.pairs.size()) * metrics;
   long long runs = 0;

@@ -207,29 +207,26 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-extern "C" void on_sigint(int) {
+extern "C" void on_stop_signal(int) {
   if (g_interrupted.exchange(true)) _exit(130);
   const char msg[] = "\ndampbench: interrupted: finishing the task groups in flight (Ctrl-C again to quit now)\n";
   const ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
   (void)ignored;
 }
 
+void set_stop_handler(void (*handler)(int)) {
+  struct sigaction sa {};
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM}) sigaction(sig, &sa, nullptr);
+}
+
 }  // namespace
 
 std::atomic<bool>& interrupt_flag() { return g_interrupted; }
 
-void install_interrupt_handler() {
-  struct sigaction sa {};
-  sa.sa_handler = on_sigint;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-}
+void install_interrupt_handler() { set_stop_handler(on_stop_signal); }
 
-void restore_interrupt_handler() {
-  struct sigaction sa {};
-  sa.sa_handler = SIG_DFL;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-}
+void restore_interrupt_handler() { set_stop_handler(SIG_DFL); }
 
 }  // namespace dampbench::sweep

@@ -41,8 +41,8 @@ struct RunnerSummary {
 
 RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options = {});
 
-/// SIGINT handling for `dampbench run`: the first Ctrl-C sets the flag (no new group starts; groups in flight
-/// finish and are stored), a second one ends the process at once (the store stays valid).
+/// SIGINT and SIGTERM handling for `dampbench run`: the first signal sets the flag (no new group starts; groups
+/// in flight finish and are stored), a second one ends the process at once (the store stays valid).
 std::atomic<bool>& interrupt_flag();
 void install_interrupt_handler();
 void restore_interrupt_handler();

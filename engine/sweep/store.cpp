@@ -1,7 +1,12 @@
 #include "engine/sweep/store.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -292,6 +297,32 @@ Store Store::open(const std::string& path) {
                                  "another build",
                                  path, metrics, metric_list()));
   return store;
+}
+
+StoreLock::StoreLock(const std::string& store_path) {
+  const std::string lock_path = store_path + ".lock";
+  std::error_code ec;
+  if (const auto dir = std::filesystem::path(store_path).parent_path(); !dir.empty()) {
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw StoreError(fmt::format("cannot create the folder '{}' of store '{}': {}", dir.string(), store_path, ec.message()));
+  }
+  fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw StoreError(fmt::format("cannot create the lock file '{}' of store '{}': {}", lock_path, store_path, std::strerror(errno)));
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(fd_);
+    fd_ = -1;
+    if (error == EWOULDBLOCK)
+      throw StoreError(fmt::format("store '{}' is in use by another dampbench run (it holds '{}'): wait for it to "
+                                   "finish, or give this run another --store",
+                                   store_path, lock_path));
+    throw StoreError(fmt::format("cannot lock store '{}' ({}): {}", store_path, lock_path, std::strerror(error)));
+  }
+}
+
+StoreLock::~StoreLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the flock
 }
 
 Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {

@@ -170,6 +170,21 @@ class Store {
   std::string path_;
 };
 
+/// Exclusive use of a store by one `dampbench run`: an flock on "<store>.lock", released when the process ends
+/// (even by SIGKILL), so a second run on the same store is refused at once instead of both writing it.
+class StoreLock {
+ public:
+  /// Creates the store's folder if needed and takes the lock; StoreError naming the store when another process
+  /// holds it or the lock file cannot be created.
+  explicit StoreLock(const std::string& store_path);
+  StoreLock(const StoreLock&) = delete;
+  StoreLock& operator=(const StoreLock&) = delete;
+  ~StoreLock();
+
+ private:
+  int fd_ = -1;
+};
+
 /// Orders per-dataset metrics by (run, dataset), the order the store reads them back in.
 void sort_dataset_metrics(std::vector<DatasetMetricRecord>& metrics);
 
