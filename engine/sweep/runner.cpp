@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <exception>
 #include <filesystem>
 #include <memory>
 
@@ -166,6 +167,11 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
   const auto start = std::chrono::steady_clock::now();
 
   long long next = 0;
+  // A store that cannot be written (full disk, ...) stops the sweep: no new group starts, the groups in flight
+  // finish unstored, and the error is rethrown after the pipeline (an exception thrown through it would drop
+  // the records in flight without destroying them).
+  std::exception_ptr write_error;
+  std::atomic<bool> write_failed{false};
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Record = std::shared_ptr<GroupRecord>;
   tbb::parallel_pipeline(
@@ -174,6 +180,10 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
                                         [&](tbb::flow_control& fc) -> long long {
                                           while (next < plan.groups() && done[static_cast<std::size_t>(next)]) ++next;
                                           if (next >= plan.groups()) {
+                                            fc.stop();
+                                            return -1;
+                                          }
+                                          if (write_failed.load(std::memory_order_acquire)) {
                                             fc.stop();
                                             return -1;
                                           }
@@ -187,7 +197,14 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
           tbb::make_filter<long long, Record>(tbb::filter_mode::parallel,
                                               [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i)); }) &
           tbb::make_filter<Record, void>(tbb::filter_mode::serial_out_of_order, [&](const Record& r) {
-            store.write(*r);
+            if (write_error) return;
+            try {
+              store.write(*r);
+            } catch (...) {
+              write_error = std::current_exception();
+              write_failed.store(true, std::memory_order_release);
+              return;
+            }
             ++sum.ran;
             sum.ran_tasks += r->runs;
             sum.failed += r->failed;
@@ -198,6 +215,7 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
             bar.advance(r->runs, r->evaluations);
           }));
   bar.finish();
+  if (write_error) std::rethrow_exception(write_error);
   sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (options.stop && options.stop->load() && sum.stored_before + sum.ran < sum.groups) sum.interrupted = true;
   return sum;
