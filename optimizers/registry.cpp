@@ -37,7 +37,9 @@ class SettingsReader {
 
   /// Sets each field whose key is given.
   void apply(std::initializer_list<std::pair<std::string_view, SettingField>> table) {
-    for (const auto& [key, field] : table) {
+    for (const auto& entry : table) {
+      const std::string_view key = entry.first;  // not a structured binding: clang 14 cannot capture one
+      const SettingField& field = entry.second;
       const std::string* t = text(key);
       if (!t) continue;
       const double v = parse_number(trim(*t), what(key));
