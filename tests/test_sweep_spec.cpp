@@ -297,6 +297,26 @@ TEST(SweepSpec, OptionalDatasetsAreSkippedWithANote) {
   EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "p2.toml").string()); }).find("no file matches"), std::string::npos);
 }
 
+TEST(SweepSpec, GlobOfASweepFileInTheCurrentFolder) {
+  // `dampbench run sweep.toml` from the sweep's folder: its glob has no folder part and means this folder.
+  const auto dir = temp_dir();
+  write_record(dir / "r1.csv", "I=0");
+  write_record(dir / "r2.csv", "I=1");
+  write(dir / "sweep.toml", kHead + "[[datasets]]\nname = \"r\"\nglob = \"r*.csv\"\n");
+  const auto previous = fs::current_path();
+  fs::current_path(dir);
+  std::string error;
+  std::vector<std::string> files;
+  try {
+    for (const auto& d : load_sweep("sweep.toml").parts[0].datasets) files.push_back(d.load.path);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  fs::current_path(previous);
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(files, (std::vector<std::string>{"r1.csv", "r2.csv"}));
+}
+
 TEST(SweepSpec, NamedFoldersResolve) {
   EXPECT_EQ(resolve_path("b/c.csv", "/a"), "/a/b/c.csv");
   EXPECT_EQ(resolve_path("/x/y.csv", "/a"), "/x/y.csv");

@@ -353,7 +353,7 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
 std::vector<std::string> expand_glob(const std::string& pattern) {
   const fs::path p(pattern);
   const std::string name = p.filename().string();
-  const fs::path dir = p.parent_path();
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");  // a bare pattern: the current folder
   auto match = [](std::string_view pat, std::string_view s, auto&& self) -> bool {
     if (pat.empty()) return s.empty();
     if (pat[0] == '*') return self(pat.substr(1), s, self) || (!s.empty() && self(pat, s.substr(1), self));
@@ -366,7 +366,7 @@ std::vector<std::string> expand_glob(const std::string& pattern) {
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (!e.is_regular_file()) continue;
     const std::string f = e.path().filename().string();
-    if (match(name, f, match)) out.push_back((dir / f).string());
+    if (match(name, f, match)) out.push_back(p.has_parent_path() ? (dir / f).string() : f);
   }
   std::sort(out.begin(), out.end());
   return out;
