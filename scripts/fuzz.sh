@@ -7,7 +7,7 @@
 # Usage: bash scripts/fuzz.sh [target ...]   (default: every target)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh clang libclang-rt-14-dev
+bash scripts/install-deps.sh
 seconds="${FUZZ_SECONDS:-60}"
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(fuzz_record fuzz_sweep_spec fuzz_laws fuzz_key_values fuzz_store)

@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev libnlopt-cxx-dev
   libjs-d3            # D3, inlined into HTML reports (engine/report)
   chromium python3    # the report test renders a report in headless Chromium (tests/report_browser_test.py)
+  clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (tests/fuzz)
   "$@"
 )
 missing=()

@@ -308,7 +308,8 @@ TEST(SweepSpec, GlobOfASweepFileInTheCurrentFolder) {
   std::string error;
   std::vector<std::string> files;
   try {
-    for (const auto& d : load_sweep("sweep.toml").parts[0].datasets) files.push_back(d.load.path);
+    const SweepSpec spec = load_sweep("sweep.toml");  // (a range-for over a temporary's member would dangle)
+    for (const auto& d : spec.parts[0].datasets) files.push_back(d.load.path);
   } catch (const std::exception& e) {
     error = e.what();
   }
