@@ -9,7 +9,6 @@
 #include "engine/cli/preset.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
-#include "engine/identification/convergence.hpp"
 #include "engine/report/store_report.hpp"
 
 namespace dampbench::cli {
@@ -50,11 +49,8 @@ void write_fit_report(const std::string& path, const FitReport& fit) {
   f.optimizer = fit.optimizer;
   f.model = fit.model;
   f.metric = fit.metric;
-  for (std::size_t r = 0; r < fit.identification->runs.size(); ++r) {
-    const RunResult& run = fit.identification->runs[r];
-    f.runs.push_back({static_cast<int>(r), run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
-                      improvement_points(run), run.at_local_optimum});
-  }
+  for (std::size_t r = 0; r < fit.identification->runs.size(); ++r)
+    f.runs.push_back(sweep::run_record(static_cast<int>(r), fit.identification->runs[r]));
   in.fits.push_back(std::move(f));
   for (const Table& t : fit.tables) {
     sweep::Report r;

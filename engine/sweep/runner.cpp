@@ -64,8 +64,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     for (int r = 0; r < g.runs; ++r) {
       const RunResult& run = id.runs[r];
       rec.evaluations += run.evaluations;
-      rec.run_results.push_back({r, run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
-                                 improvement_points(run), run.at_local_optimum});
+      rec.run_results.push_back(run_record(r, run));
       best.set_candidate(r, run.best_params);
     }
 

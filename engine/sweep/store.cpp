@@ -299,6 +299,11 @@ Store Store::open(const std::string& path) {
   return store;
 }
 
+RunRecord run_record(int index, const RunResult& run) {
+  return {index, run.best_value, run.best_metrics, run.best_params, run.evaluations, run.stop_reason,
+          improvement_points(run), run.at_local_optimum};
+}
+
 StoreLock::StoreLock(const std::string& store_path) {
   const std::string lock_path = store_path + ".lock";
   std::error_code ec;

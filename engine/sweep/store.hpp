@@ -95,6 +95,9 @@ struct RunRecord {
   bool at_local_optimum = false;  ///< RunResult::at_local_optimum
 };
 
+/// Run `index` of an identification as the store keeps it (its best-so-far history reduced by improvement_points).
+RunRecord run_record(int index, const RunResult& run);
+
 struct DatasetMetricRecord {
   int run = 0, dataset = 0;
   bool predicted = false;  ///< a prediction (else a fit dataset of a joint fit)
