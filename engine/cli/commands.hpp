@@ -83,12 +83,20 @@ struct RunOptions {
   bool quiet = false;      ///< no progress bar
   bool fresh = false;      ///< delete an existing store first
   bool no_report = false;  ///< skip <output>/report.html
+  std::string shard;       ///< "i/n": only this shard's task groups, into its own store (job arrays)
+};
+
+/// `dampbench merge OUT PART...` (engine/distributed/merge.hpp).
+struct MergeOptions {
+  std::string out;
+  std::vector<std::string> parts;
 };
 
 int models_command(const std::string& format);
 int simulate_command(const SimulateOptions& options);
 int fit_command(const FitOptions& options);
 int run_command(const RunOptions& options);
+int merge_command(const MergeOptions& options);
 int sensitivity_command(const SensitivityOptions& options);
 int evaluate_command(const EvaluateOptions& options);
 

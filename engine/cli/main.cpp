@@ -21,6 +21,7 @@
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/sweep_commands.hpp"
 #include "engine/common/error.hpp"
+#include "engine/distributed/mpi_runner.hpp"
 
 namespace {
 
@@ -47,7 +48,8 @@ CLI::App* add_command(CLI::App* parent, std::vector<Command>& commands, const ch
 
 int main(int argc, char** argv) {
   CLI::App app{"dampbench: identify damper models from test data and compare models and optimizers at scale"};
-  app.set_version_flag("--version", std::string("dampbench ") + DAMPBENCH_VERSION + " (" + DAMPBENCH_BUILD_FLAGS + ")");
+  app.set_version_flag("--version", std::string("dampbench ") + DAMPBENCH_VERSION + " (" + DAMPBENCH_BUILD_FLAGS + ")" +
+                                        (dampbench::distributed::built_with_mpi() ? ", with MPI" : ", without MPI"));
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
@@ -95,6 +97,8 @@ int main(int argc, char** argv) {
       fit_command);
   auto* run_cmd = add_command<RunOptions>(&app, commands, "run",
       "run a preset or sweep (datasets/presets/*.toml) and write its tables", add_run_options, run_command);
+  add_command<MergeOptions>(&app, commands, "merge",
+      "merge the stores of a sweep's shards (run --shard i/n) into one store", add_merge_options, merge_command);
   add_command<TableOptions>(&app, commands, "table", "print a table from a sweep's store", add_table_options,
                             table_command);
   add_command<ReportOptions>(&app, commands, "report",
@@ -143,7 +147,8 @@ int main(int argc, char** argv) {
 
   using namespace dampbench;
   auto fail = [](int code, const std::string& message) {
-    std::fprintf(stderr, "dampbench: error: %s\n", message.c_str());
+    std::fprintf(stderr, "dampbench: error: %s%s\n", distributed::rank_prefix().c_str(), message.c_str());
+    distributed::abort_job_if_running(code);  // under mpirun: the other ranks must not wait for this one
     return code;
   };
   try {

@@ -2,14 +2,17 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "engine/cli/fvd_tables.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
+#include "engine/distributed/mpi_runner.hpp"
 #include "engine/report/store_report.hpp"
 #include "engine/sweep/runner.hpp"
+#include "engine/sweep/schedule.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
 #include "engine/sweep/tables.hpp"
@@ -22,38 +25,69 @@ sweep::Loader sweep_loader() {
 
 int run_command(const RunOptions& options) {
   namespace fs = std::filesystem;
+  // Under mpirun every rank builds the same plan; rank 0 owns the store and writes everything
+  // (engine/distributed/mpi_runner.hpp), the other ranks only identify groups.
+  std::optional<distributed::MpiJob> job;
+  if (distributed::launched_by_mpi()) job.emplace();
+  const bool rank0 = !job || job->rank() == 0;
+  const sweep::Shard shard = options.shard.empty() ? sweep::Shard{} : sweep::parse_shard(options.shard);
+
   // The whole file, every dataset and every split are checked before anything runs.
   sweep::SweepSpec spec = sweep::load_sweep(options.preset);
-  for (const auto& note : spec.notes) std::cerr << "note: " << note << "\n";
+  if (rank0)
+    for (const auto& note : spec.notes) std::cerr << "note: " << note << "\n";
   const sweep::Plan plan(std::move(spec), sweep_loader());
+  if (!rank0) {
+    distributed::work(*job, plan);
+    return 0;
+  }
   for (const auto& part : plan.parts())
     for (const auto& d : part.datasets)
       if (!d.ok()) std::cerr << fmt::format("warning: dataset '{}' did not load: {}\n", d.signals.name, d.error);
 
   const fs::path out_dir = options.output_dir.empty() ? fs::path("results") / plan.spec().name : fs::path(options.output_dir);
-  const std::string store_path = options.store.empty() ? (out_dir / "store.sqlite").string() : options.store;
+  const std::string default_store =
+      shard.whole() ? "store.sqlite" : fmt::format("shard-{}-of-{}.sqlite", shard.index + 1, shard.count);
+  const std::string store_path = options.store.empty() ? (out_dir / default_store).string() : options.store;
   const sweep::StoreLock lock(store_path);  // before --fresh deletes anything: another run may be writing it
   if (options.fresh)
     for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(store_path + suffix);
   const std::string spec_path = fs::absolute(options.preset).lexically_normal().string();
-  sweep::Store store = sweep::Store::create_or_resume(store_path, sweep::make_store_header(plan, spec_path));
+  sweep::StoreHeader header = sweep::make_store_header(plan, spec_path);
+  header.shard = shard.text();
+  sweep::Store store = sweep::Store::create_or_resume(store_path, header);
 
   sweep::RunnerOptions ro;
   ro.progress = !options.quiet;
-  ro.stop = &sweep::interrupt_flag();
-  sweep::install_interrupt_handler();
+  ro.shard = shard;
   sweep::RunnerSummary summary;
-  try {
-    summary = sweep::run_sweep(plan, store, ro);
-  } catch (...) {
+  if (job && job->size() > 1) {
+    // Ctrl-C reaches mpirun, which ends every rank; the store keeps every group committed so far.
+    summary = distributed::coordinate(*job, plan, store, ro);
+  } else {
+    ro.stop = &sweep::interrupt_flag();
+    sweep::install_interrupt_handler();
+    try {
+      summary = sweep::run_sweep(plan, store, ro);
+    } catch (...) {
+      sweep::restore_interrupt_handler();
+      throw;
+    }
     sweep::restore_interrupt_handler();
-    throw;
   }
-  sweep::restore_interrupt_handler();
   if (summary.interrupted) {
     std::cerr << fmt::format("{}: interrupted: {} of {} task groups are in {}; run the same command again to resume\n",
                              plan.spec().name, summary.stored_before + summary.ran, summary.groups, store_path);
     return kExitInterrupted;
+  }
+  if (!shard.whole()) {
+    // One shard's tables would be partial: they come from the merged store.
+    std::cout << fmt::format("{}: shard {}: {} of the sweep's {} task groups ({} run now, {} from the store, {} failed), "
+                             "{:.2f} s wall, store {}; when every shard is done: dampbench merge OUT.sqlite "
+                             "<the shards' stores>, then dampbench table OUT.sqlite --kind sweep\n",
+                             plan.spec().name, shard.text(), summary.groups, plan.groups(), summary.ran,
+                             summary.stored_before, summary.failed, summary.wall_time_s, store_path);
+    return 0;
   }
 
   const sweep::StoreResults results(store);
@@ -81,10 +115,11 @@ int run_command(const RunOptions& options) {
                                     summary.candidate_samples / summary.wall_time_s)
                       : fmt::format("nothing left to run, {:.2f} s wall (stored runs: {:.3g} candidate-samples/s)",
                                     summary.wall_time_s, stored_wall > 0 ? stored_cs / stored_wall : 0.0);
-  std::cout << fmt::format("{}: {} task groups, {} tasks ({} run now, {} from the store, {} failed); {}; tables in {}, "
+  const std::string ranks = job && job->size() > 1 ? fmt::format(" on {} MPI ranks", job->size()) : "";
+  std::cout << fmt::format("{}: {} task groups, {} tasks ({} run now, {} from the store, {} failed); {}{}; tables in {}, "
                            "store {}{}\n",
                            plan.spec().name, summary.groups, summary.tasks, summary.ran, summary.stored_before,
-                           summary.failed, rate, out_dir.string(), store_path, report_note);
+                           summary.failed, rate, ranks, out_dir.string(), store_path, report_note);
   return 0;
 }
 

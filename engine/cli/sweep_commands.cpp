@@ -15,6 +15,7 @@
 #include "datasets/synthetic/grids.hpp"
 #include "engine/cli/preset.hpp"
 #include "engine/common/error.hpp"
+#include "engine/distributed/merge.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/runner.hpp"
@@ -31,6 +32,14 @@ void add_run_options(CLI::App* cmd, RunOptions& o) {
   cmd->add_flag("--quiet", o.quiet, "no progress bar");
   cmd->add_flag("--fresh", o.fresh, "delete an existing store first instead of resuming it");
   cmd->add_flag("--no-report", o.no_report, "do not write <output>/report.html (dampbench report STORE writes it later)");
+  cmd->add_option("--shard", o.shard,
+                  "i/n: run only shard i of n (a fixed 1/n of the task groups, for job arrays) into its own store "
+                  "(default <output>/shard-i-of-n.sqlite); `dampbench merge` joins the shards' stores");
+}
+
+void add_merge_options(CLI::App* cmd, MergeOptions& o) {
+  cmd->add_option("out", o.out, "the merged store (created, or resumed when it exists)")->required();
+  cmd->add_option("parts", o.parts, "the shards' stores (dampbench run --shard i/n)")->required();
 }
 
 void add_datasets_options(CLI::App* cmd, DatasetsOptions& o) {
@@ -70,6 +79,20 @@ void add_verify_options(CLI::App* cmd, VerifyOptions& o) {
   cmd->add_option("--sample", o.sample, "re-run this many stored task groups, spread over the store (default: all)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--spec", o.spec, "the sweep file (default: the path recorded in the store)");
+}
+
+int merge_command(const MergeOptions& o) {
+  const distributed::MergeSummary m = distributed::merge_stores(o.out, o.parts);
+  std::string shards;
+  for (const auto& s : m.shards) shards += (shards.empty() ? "" : ", ") + s;
+  std::cout << fmt::format("merge: {} task groups merged into {} from {} stores (shards {}), {} found twice and "
+                           "identical; {} of {} groups in the merged store\n",
+                           m.merged, o.out, o.parts.size(), shards, m.duplicates, m.groups - m.missing, m.groups);
+  if (m.missing > 0)
+    std::cerr << fmt::format("warning: {} task groups of the sweep are in no part (a shard not finished, or not given): "
+                             "tables from {} are partial; merge again when they are done\n",
+                             m.missing, o.out);
+  return 0;
 }
 
 int table_command(const TableOptions& o) {

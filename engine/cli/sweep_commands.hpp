@@ -1,6 +1,6 @@
 #pragma once
 // Sweeps (`dampbench run SWEEP.toml`), their SQLite store, the commands that read it back
-// (`dampbench table STORE`, `dampbench verify STORE`), and the synthetic grids presets read
+// (`dampbench table STORE`, `dampbench verify STORE`, `dampbench merge OUT PARTS`), and the synthetic grids presets read
 // (`dampbench datasets generate`).
 #include <string>
 #include <vector>
@@ -38,6 +38,7 @@ struct DatasetsOptions {
 };
 
 void add_run_options(CLI::App* cmd, RunOptions& options);
+void add_merge_options(CLI::App* cmd, MergeOptions& options);
 void add_datasets_options(CLI::App* cmd, DatasetsOptions& options);
 int datasets_command(const DatasetsOptions& options);
 void add_table_options(CLI::App* cmd, TableOptions& options);

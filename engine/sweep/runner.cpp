@@ -151,21 +151,50 @@ StoreHeader make_store_header(const Plan& plan, const std::string& spec_path) {
   return h;
 }
 
-RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options) {
-  RunnerSummary sum;
-  sum.groups = plan.groups();
-  sum.tasks = plan.tasks();
+GroupWriter::GroupWriter(const Plan& plan, Store& store, const RunnerOptions& options)
+    : plan_(plan), store_(store), options_(options), start_(std::chrono::steady_clock::now()) {
   const std::vector<char> done = store.finished();
+  const std::vector<char> mine = shard_groups(plan, options.shard);
   long long tasks_done = 0;
-  for (long long i = 0; i < plan.groups(); ++i)
-    if (done[static_cast<std::size_t>(i)]) {
-      ++sum.stored_before;
-      tasks_done += plan.group(i).runs;
+  for (long long i = 0; i < plan.groups(); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!mine[k]) continue;
+    const int runs = plan.group(i).runs;
+    ++summary_.groups;
+    summary_.tasks += runs;
+    if (done[k]) {
+      ++summary_.stored_before;
+      tasks_done += runs;
     }
-  ProgressBar bar(options.progress, sum.tasks, tasks_done);
-  const auto start = std::chrono::steady_clock::now();
+  }
+  todo_ = schedule(plan, done, options.shard);
+  bar_.emplace(options.progress, summary_.tasks, tasks_done);
+}
 
-  long long next = 0;
+void GroupWriter::write(const GroupRecord& r) {
+  store_.write(r);
+  ++summary_.ran;
+  summary_.ran_tasks += r.runs;
+  summary_.failed += r.failed;
+  summary_.evaluations += r.evaluations;
+  summary_.candidate_samples += r.candidate_samples;
+  if (r.failed) bar_->log(fmt::format("failed: {}: {}", plan_.describe(plan_.group(r.index)), r.message));
+  if (options_.on_group) options_.on_group(r, plan_.describe(plan_.group(r.index)));
+  bar_->advance(r.runs, r.evaluations);
+}
+
+RunnerSummary GroupWriter::finish() {
+  bar_->finish();
+  summary_.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (options_.stop && options_.stop->load() && summary_.stored_before + summary_.ran < summary_.groups)
+    summary_.interrupted = true;
+  return summary_;
+}
+
+RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options) {
+  GroupWriter writer(plan, store, options);
+  const std::vector<long long>& todo = writer.todo();
+  std::size_t next = 0;
   // A store that cannot be written (full disk, ...) stops the sweep: no new group starts, the groups in flight
   // finish unstored, and the error is rethrown after the pipeline (an exception thrown through it would drop
   // the records in flight without destroying them).
@@ -177,46 +206,26 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
       tokens,
       tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
                                         [&](tbb::flow_control& fc) -> long long {
-                                          while (next < plan.groups() && done[static_cast<std::size_t>(next)]) ++next;
-                                          if (next >= plan.groups()) {
+                                          if (next >= todo.size() || write_failed.load(std::memory_order_acquire) ||
+                                              (options.stop && options.stop->load())) {
                                             fc.stop();
                                             return -1;
                                           }
-                                          if (write_failed.load(std::memory_order_acquire)) {
-                                            fc.stop();
-                                            return -1;
-                                          }
-                                          if (options.stop && options.stop->load()) {
-                                            sum.interrupted = true;
-                                            fc.stop();
-                                            return -1;
-                                          }
-                                          return next++;
+                                          return todo[next++];
                                         }) &
           tbb::make_filter<long long, Record>(tbb::filter_mode::parallel,
                                               [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i)); }) &
           tbb::make_filter<Record, void>(tbb::filter_mode::serial_out_of_order, [&](const Record& r) {
             if (write_error) return;
             try {
-              store.write(*r);
+              writer.write(*r);
             } catch (...) {
               write_error = std::current_exception();
               write_failed.store(true, std::memory_order_release);
-              return;
             }
-            ++sum.ran;
-            sum.ran_tasks += r->runs;
-            sum.failed += r->failed;
-            sum.evaluations += r->evaluations;
-            sum.candidate_samples += r->candidate_samples;
-            if (r->failed) bar.log(fmt::format("failed: {}: {}", plan.describe(plan.group(r->index)), r->message));
-            if (options.on_group) options.on_group(*r, plan.describe(plan.group(r->index)));
-            bar.advance(r->runs, r->evaluations);
           }));
-  bar.finish();
+  RunnerSummary sum = writer.finish();
   if (write_error) std::rethrow_exception(write_error);
-  sum.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.stop && options.stop->load() && sum.stored_before + sum.ran < sum.groups) sum.interrupted = true;
   return sum;
 }
 

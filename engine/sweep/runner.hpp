@@ -1,16 +1,22 @@
 #pragma once
 // Running a sweep: every task group not yet in the store is identified and written to it.
 //
-// Scheduling: a oneTBB pipeline hands out group numbers in order (skipping stored ones), runs up to
+// Scheduling: a oneTBB pipeline hands out group numbers largest first (schedule.hpp; skipping stored ones
+// and those of other shards), runs up to
 // 2 × threads groups at once (each group's batch is itself split across cores by identify()), and writes
 // finished groups to the store one transaction each, in whatever order they finish. Only groups in flight
 // are held in memory. A group's result depends only on its number and the plan, never on what ran beside
 // it, so resumed sweeps are bit-identical to uninterrupted ones.
 #include <atomic>
+#include <chrono>
+#include <optional>
+#include <vector>
 #include <functional>
 #include <string>
 
 #include "engine/sweep/plan.hpp"
+#include "engine/sweep/progress.hpp"
+#include "engine/sweep/schedule.hpp"
 #include "engine/sweep/store.hpp"
 
 namespace dampbench::sweep {
@@ -27,11 +33,12 @@ struct RunnerOptions {
   const std::atomic<bool>* stop = nullptr;     ///< checked between groups: no new group starts once set
   /// Called (serially) for each group written, with its description; e.g. to report failures.
   std::function<void(const GroupRecord&, const std::string&)> on_group;
+  Shard shard;                                 ///< only this shard's groups (default: all)
 };
 
 struct RunnerSummary {
-  long long groups = 0, tasks = 0;                 ///< in the sweep
-  long long stored_before = 0;                     ///< groups already in the store
+  long long groups = 0, tasks = 0;                 ///< in the sweep (in the shard, for a shard)
+  long long stored_before = 0;                     ///< of those, groups already in the store
   long long ran = 0, ran_tasks = 0, failed = 0;    ///< this session
   long long evaluations = 0;                       ///< this session
   double candidate_samples = 0;                    ///< this session
@@ -40,6 +47,33 @@ struct RunnerSummary {
 };
 
 RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options = {});
+
+/// The serial end of a run, shared by run_sweep and the MPI coordinator (engine/distributed): writes each
+/// finished group to the store in its own transaction, counts it into the summary, logs failures and draws
+/// the progress bar. Construction works out what is left to run (schedule()) and the counts already stored.
+class GroupWriter {
+ public:
+  GroupWriter(const Plan& plan, Store& store, const RunnerOptions& options);
+  GroupWriter(const GroupWriter&) = delete;
+  GroupWriter& operator=(const GroupWriter&) = delete;
+
+  /// The groups to run, largest first.
+  [[nodiscard]] const std::vector<long long>& todo() const { return todo_; }
+  /// Writes one group (StoreError from the store propagates; nothing is counted then).
+  void write(const GroupRecord& group);
+  /// Clears the progress bar and returns the summary (wall time since construction; interrupted when the stop
+  /// flag is set and groups of the run are missing from the store).
+  RunnerSummary finish();
+
+ private:
+  const Plan& plan_;
+  Store& store_;
+  const RunnerOptions& options_;
+  RunnerSummary summary_;
+  std::vector<long long> todo_;
+  std::optional<ProgressBar> bar_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 /// SIGINT and SIGTERM handling for `dampbench run`: the first signal sets the flag (no new group starts; groups
 /// in flight finish and are stored), a second one ends the process at once (the store stays valid).

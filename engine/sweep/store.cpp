@@ -356,6 +356,7 @@ Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {
                {"groups", std::to_string(h.groups)}, {"tasks", std::to_string(h.tasks)}, {"metrics", metric_list()},
                {"created", now_utc()}})
         s.bind(1, k).bind(2, v).run();
+      if (!h.shard.empty()) s.bind(1, std::string("shard")).bind(2, h.shard).run();
     }
     {
       Stmt s(store.db_, "INSERT INTO parts VALUES(?, ?, ?, ?, ?, ?, ?)");
@@ -418,6 +419,10 @@ Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {
         "store '{}' belongs to another sweep spec ('{}' from {}, spec hash {}; this spec '{}' has hash {}): give "
         "another --store, or --fresh to start over",
         path, store.meta("name"), store.meta("spec_path"), hash, h.name, h.spec_hash));
+  if (const std::string shard = store.meta("shard"); shard != h.shard)
+    throw StoreError(fmt::format("store '{}' holds {}, this run {}: give the store of this shard with --store",
+                                 path, shard.empty() ? "the whole sweep" : "shard " + shard,
+                                 h.shard.empty() ? "the whole sweep" : "shard " + h.shard));
   const StoreHeader stored = store.header();
   if (stored.datasets.size() != h.datasets.size())
     throw StoreError(fmt::format("store '{}' was written for {} datasets, the sweep now has {} (a glob matches other "
@@ -450,6 +455,7 @@ StoreHeader Store::header() const {
   h.spec_path = meta("spec_path");
   h.dampbench_version = meta("dampbench_version");
   h.build_flags = meta("build_flags");
+  h.shard = meta("shard");
   h.groups = count(meta("groups"));
   h.tasks = count(meta("tasks"));
   {

@@ -9,7 +9,8 @@
 // datasets (names and hashes): anything else is refused with a message saying what differs.
 //
 // Tables (schema version kStoreFormat):
-//   meta(key, value)                       format, dampbench_version, build_flags, spec_hash, spec_path, name, ...
+//   meta(key, value)                       format, dampbench_version, build_flags, spec_hash, spec_path, name,
+//                                          shard ("i/n" for a shard's store, absent otherwise), ...
 //   parts, models, optimizers, splits, datasets, fitsets   the plan, for tables and verify
 //   groups(grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, wall_time_s,
 //          candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at)
@@ -68,7 +69,8 @@ struct StoreFitSet {
 struct StoreHeader {
   std::string name, spec_hash, spec_path;
   std::string dampbench_version, build_flags;
-  long long groups = 0, tasks = 0;
+  std::string shard;  ///< "i/n" for the store of one shard (run --shard), "" for the whole sweep
+  long long groups = 0, tasks = 0;  ///< in the whole sweep
   std::vector<StorePart> parts;
   std::vector<StoreModel> models;
   std::vector<StoreOptimizer> optimizers;

@@ -1,0 +1,80 @@
+#include "engine/sweep/schedule.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <numeric>
+#include <queue>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+
+namespace dampbench::sweep {
+
+std::string Shard::text() const { return whole() ? std::string() : fmt::format("{}/{}", index + 1, count); }
+
+Shard parse_shard(std::string_view text, std::string_view what) {
+  const auto slash = text.find('/');
+  int i = 0, n = 0;
+  auto number = [](std::string_view s, int& v) {
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+  };
+  if (slash == std::string_view::npos || !number(text.substr(0, slash), i) || !number(text.substr(slash + 1), n) ||
+      n < 1 || i < 1 || i > n)
+    throw InputError(fmt::format("{}: expected i/n with 1 <= i <= n (e.g. 2/8), got '{}'", what, text));
+  return {i - 1, n};
+}
+
+double estimated_cost(const Plan& plan, const GroupRef& g) {
+  const PartPlan& part = plan.parts()[g.part];
+  const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
+  double evaluations = static_cast<double>(opt.spec.population) * (opt.spec.iterations + 1);
+  if (opt.budget.max_evaluations > 0) evaluations = std::min(evaluations, static_cast<double>(opt.budget.max_evaluations));
+  double samples = 0;
+  for (int d : part.splits[g.split].fitsets[g.fitset].fit) samples += static_cast<double>(part.datasets[d].signals.size());
+  return g.runs * evaluations * std::max(samples, 1.0) * part.models[g.model].model->dim();
+}
+
+namespace {
+/// Every group's cost, and the group numbers in decreasing cost (ties: lower number first).
+std::vector<long long> by_decreasing_cost(const Plan& plan, std::vector<double>& cost) {
+  cost.resize(static_cast<std::size_t>(plan.groups()));
+  for (long long i = 0; i < plan.groups(); ++i) cost[static_cast<std::size_t>(i)] = estimated_cost(plan, plan.group(i));
+  std::vector<long long> order(cost.size());
+  std::iota(order.begin(), order.end(), 0LL);
+  std::stable_sort(order.begin(), order.end(), [&](long long a, long long b) {
+    return cost[static_cast<std::size_t>(a)] > cost[static_cast<std::size_t>(b)];
+  });
+  return order;
+}
+}  // namespace
+
+std::vector<char> shard_groups(const Plan& plan, const Shard& shard) {
+  std::vector<char> in(static_cast<std::size_t>(plan.groups()), shard.whole() ? 1 : 0);
+  if (shard.whole()) return in;
+  std::vector<double> cost;
+  const std::vector<long long> order = by_decreasing_cost(plan, cost);
+  // (work so far, shard) in a min-heap: the least loaded shard, lowest number on ties.
+  using Load = std::pair<double, int>;
+  std::priority_queue<Load, std::vector<Load>, std::greater<>> load;
+  for (int s = 0; s < shard.count; ++s) load.emplace(0.0, s);
+  for (long long i : order) {
+    auto [work, s] = load.top();
+    load.pop();
+    if (s == shard.index) in[static_cast<std::size_t>(i)] = 1;
+    load.emplace(work + cost[static_cast<std::size_t>(i)], s);
+  }
+  return in;
+}
+
+std::vector<long long> schedule(const Plan& plan, const std::vector<char>& done, const Shard& shard) {
+  const std::vector<char> in = shard_groups(plan, shard);
+  std::vector<double> cost;
+  std::vector<long long> todo;
+  for (long long i : by_decreasing_cost(plan, cost))
+    if (in[static_cast<std::size_t>(i)] && !done[static_cast<std::size_t>(i)]) todo.push_back(i);
+  return todo;
+}
+
+}  // namespace dampbench::sweep
