@@ -1,0 +1,249 @@
+// Sweeps beyond one process (engine/distributed, engine/sweep/schedule.hpp): a task group survives its trip as
+// bytes bit for bit, and truncated messages are refused; shards split the sweep into disjoint parts that cover
+// it, with balanced estimated cost; merging the shards' stores gives the store of one process, refuses parts of
+// another sweep and a group whose numbers differ. (Runs under mpirun: tests/mpi_test.py.)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <fmt/format.h>
+#include <tbb/task_arena.h>
+
+#include "engine/common/error.hpp"
+#include "engine/distributed/group_codec.hpp"
+#include "engine/distributed/merge.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/sweep/runner.hpp"
+#include "engine/sweep/schedule.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench::distributed {
+namespace {
+
+namespace fs = std::filesystem;
+using sweep::Plan;
+using sweep::Shard;
+using sweep::Store;
+
+fs::path temp_dir() {
+  const auto dir = fs::temp_directory_path() /
+                   ("dampbench_distributed_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// The repository's fvd records; an algebraic and an ODE model; one split per record with a sensitivity study,
+/// one joint fit of the ±20 mm tests predicting the ±17 mm one (per-dataset metrics): every field of a record.
+std::string sweep_text(int seed) {
+  const std::string fvd = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/";
+  return fmt::format(R"toml(name = "distributed"
+seed = {}
+runs = 3
+models = ["fvd.generalized_viscous", "mrd.bouc_wen"]
+[optimizer]
+name = "pso"
+population = 12
+iterations = 8
+[[datasets]]
+name = "fvd"
+files = ["{f}test1_20mm_92mms.csv", "{f}test2_20mm_230mms.csv", "{f}test3_20mm_460mms.csv", "{f}test4_17mm_460mms.csv"]
+[[splits]]
+name = "each"
+sensitivity = {{ points = 5, range = 0.5, objective = "rms" }}
+[[splits]]
+name = "joint"
+by = "all"
+fit = {{ amp = 0.02 }}
+predict = {{ amp = 0.017 }}
+)toml",
+                     seed, fmt::arg("f", fvd));
+}
+
+Plan make_plan(const fs::path& dir, int seed = 4) {
+  std::ofstream(dir / "sweep.toml") << sweep_text(seed);
+  return Plan(sweep::load_sweep((dir / "sweep.toml").string()),
+              [](const RecordOptions& o) { return load_record(o, true); });
+}
+
+/// Runs `shard` of the plan into a new store at `path` (2 threads).
+void run_into(const Plan& plan, const fs::path& dir, const std::string& path, const Shard& shard = {}) {
+  sweep::StoreHeader header = sweep::make_store_header(plan, (dir / "sweep.toml").string());
+  header.shard = shard.text();
+  Store store = Store::create_or_resume(path, header);
+  sweep::RunnerOptions options;
+  options.shard = shard;
+  tbb::task_arena(2).execute([&] { (void)sweep::run_sweep(plan, store, options); });
+}
+
+TEST(GroupCodec, EveryFieldOfEveryGroupSurvivesTheTripBitForBit) {
+  const fs::path dir = temp_dir();
+  const Plan plan = make_plan(dir);
+  int with_sensitivity = 0, with_dataset_metrics = 0, with_identifiability = 0;
+  for (long long i = 0; i < plan.groups(); ++i) {
+    const sweep::GroupRecord sent = sweep::run_group(plan, i);
+    ASSERT_FALSE(sent.failed) << sent.message;
+    const sweep::GroupRecord got = decode_group(encode_group(sent));
+    const auto diff = sweep::compare_records(sent, got);
+    EXPECT_TRUE(diff.empty()) << "group " << i << ": " << diff.front();
+    // compare_records leaves out what may differ between two computations; a message must keep it too.
+    EXPECT_EQ(got.index, sent.index);
+    EXPECT_EQ(std::tie(got.part, got.split, got.fitset, got.model, got.optimizer, got.runs),
+              std::tie(sent.part, sent.split, sent.fitset, sent.model, sent.optimizer, sent.runs));
+    EXPECT_EQ(got.metric, sent.metric);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(got.wall_time_s), std::bit_cast<std::uint64_t>(sent.wall_time_s));
+    EXPECT_EQ(std::tie(got.dampbench_version, got.build_flags, got.spec_hash, got.dataset_hash),
+              std::tie(sent.dampbench_version, sent.build_flags, sent.spec_hash, sent.dataset_hash));
+    ASSERT_EQ(got.identifiability.has_value(), sent.identifiability.has_value());
+    if (sent.identifiability) {
+      EXPECT_EQ(got.identifiability->samples, sent.identifiability->samples);
+    }
+    with_sensitivity += sent.sensitivity.has_value();
+    with_dataset_metrics += !sent.dataset_metrics.empty();
+    with_identifiability += sent.identifiability.has_value();
+  }
+  // The sweep exercises every optional part of a record.
+  EXPECT_GT(with_sensitivity, 0);
+  EXPECT_GT(with_dataset_metrics, 0);
+  EXPECT_GT(with_identifiability, 0);
+}
+
+TEST(GroupCodec, TruncatedOrPaddedMessagesAreRefused) {
+  const fs::path dir = temp_dir();
+  const Plan plan = make_plan(dir);
+  const std::string bytes = encode_group(sweep::run_group(plan, plan.groups() - 1));
+  for (std::size_t cut : {std::size_t{0}, std::size_t{1}, std::size_t{7}, bytes.size() / 3, bytes.size() / 2, bytes.size() - 1})
+    EXPECT_THROW((void)decode_group(std::string_view(bytes).substr(0, cut)), DataError) << "cut at " << cut;
+  EXPECT_THROW((void)decode_group(bytes + "x"), DataError);
+  // A length prefix far beyond the message (a corrupted count) is refused before anything is allocated.
+  std::string corrupt = bytes;
+  const std::size_t message_length_at = 8 + 5 * 4 + sizeof(Metric) + 4 + 8 + 1;  // after index .. failed
+  for (int k = 0; k < 8; ++k) corrupt[message_length_at + static_cast<std::size_t>(k)] = '\x7f';
+  EXPECT_THROW((void)decode_group(corrupt), DataError);
+}
+
+TEST(Shards, TextIsParsedOrRefusedWithTheExpectedForm) {
+  EXPECT_EQ(sweep::parse_shard("2/3"), (Shard{1, 3}));
+  EXPECT_EQ(sweep::parse_shard("1/1"), (Shard{0, 1}));
+  EXPECT_EQ(sweep::parse_shard("8/8").text(), "8/8");
+  for (const char* bad : {"0/3", "4/3", "a/3", "3", "1/0", "", "1/3x", "-1/3", "1//3"}) {
+    const std::string message = testing::error_of([&] { (void)sweep::parse_shard(bad); });
+    EXPECT_NE(message.find("expected i/n"), std::string::npos) << bad << ": " << message;
+  }
+}
+
+TEST(Shards, CoverTheSweepOnceWithBalancedCost) {
+  const fs::path dir = temp_dir();
+  const Plan plan = make_plan(dir);
+  ASSERT_GE(plan.groups(), 6);
+  double total = 0, largest = 0;
+  for (long long i = 0; i < plan.groups(); ++i) {
+    const double c = sweep::estimated_cost(plan, plan.group(i));
+    EXPECT_GT(c, 0);
+    total += c;
+    largest = std::max(largest, c);
+  }
+  for (int n = 1; n <= 5; ++n) {
+    std::vector<int> owners(static_cast<std::size_t>(plan.groups()), 0);
+    for (int s = 0; s < n; ++s) {
+      const auto in = sweep::shard_groups(plan, {s, n});
+      double cost = 0;
+      long long count = 0;
+      for (long long i = 0; i < plan.groups(); ++i)
+        if (in[static_cast<std::size_t>(i)]) {
+          ++owners[static_cast<std::size_t>(i)];
+          cost += sweep::estimated_cost(plan, plan.group(i));
+          ++count;
+        }
+      EXPECT_GT(count, 0) << s + 1 << "/" << n;
+      // Greedy assignment in decreasing cost: no shard exceeds the mean by more than one group.
+      EXPECT_LE(cost, total / n + largest) << s + 1 << "/" << n;
+      // The schedule of a shard lists exactly its groups, largest first.
+      const auto order = sweep::schedule(plan, std::vector<char>(in.size(), 0), {s, n});
+      EXPECT_EQ(static_cast<long long>(order.size()), count);
+      for (std::size_t k = 1; k < order.size(); ++k)
+        EXPECT_GE(sweep::estimated_cost(plan, plan.group(order[k - 1])), sweep::estimated_cost(plan, plan.group(order[k])));
+    }
+    for (long long i = 0; i < plan.groups(); ++i) EXPECT_EQ(owners[static_cast<std::size_t>(i)], 1) << "group " << i;
+  }
+}
+
+/// Every group of two stores, compared number by number.
+void expect_same_results(const std::string& a_path, const std::string& b_path) {
+  const Store a = Store::open(a_path), b = Store::open(b_path);
+  ASSERT_EQ(a.header().groups, b.header().groups);
+  ASSERT_EQ(a.stored_groups(), a.header().groups);
+  ASSERT_EQ(b.stored_groups(), b.header().groups);
+  for (long long i = 0; i < a.header().groups; ++i) {
+    const auto diff = sweep::compare_records(*a.group(i), *b.group(i));
+    EXPECT_TRUE(diff.empty()) << "group " << i << ": " << diff.front();
+  }
+}
+
+TEST(Merge, ThreeShardsMergeIntoTheStoreOfOneProcess) {
+  const fs::path dir = temp_dir();
+  const Plan plan = make_plan(dir);
+  run_into(plan, dir, (dir / "whole.sqlite").string());
+  std::vector<std::string> parts;
+  for (int s = 0; s < 3; ++s) {
+    parts.push_back((dir / fmt::format("part{}.sqlite", s + 1)).string());
+    run_into(plan, dir, parts.back(), {s, 3});
+    EXPECT_EQ(Store::open(parts.back()).header().shard, fmt::format("{}/3", s + 1));
+  }
+  // Two shards first (partial), then all three again: groups already merged are checked, not written twice.
+  const MergeSummary first = merge_stores((dir / "merged.sqlite").string(), {parts[0], parts[1]});
+  EXPECT_GT(first.missing, 0);
+  const MergeSummary all = merge_stores((dir / "merged.sqlite").string(), parts);
+  EXPECT_EQ(all.missing, 0);
+  EXPECT_EQ(all.merged, first.missing);
+  EXPECT_EQ(all.duplicates, first.merged);
+  EXPECT_EQ(all.shards, (std::vector<std::string>{"1/3", "2/3", "3/3"}));
+  EXPECT_EQ(Store::open((dir / "merged.sqlite").string()).header().shard, "");
+  expect_same_results((dir / "whole.sqlite").string(), (dir / "merged.sqlite").string());
+}
+
+TEST(Merge, PartsOfAnotherSweepOrWithOtherNumbersAreRefused) {
+  const fs::path dir = temp_dir();
+  const std::string part1 = (dir / "part1.sqlite").string(), other = (dir / "other.sqlite").string();
+  {
+    const Plan plan = make_plan(dir);
+    run_into(plan, dir, part1, {0, 2});
+  }
+  {
+    const Plan plan = make_plan(dir, 5);  // another seed: another spec hash
+    run_into(plan, dir, other, {1, 2});
+  }
+  const std::string message =
+      testing::error_of([&] { (void)merge_stores((dir / "merged.sqlite").string(), {part1, other}); });
+  EXPECT_NE(message.find("another sweep spec"), std::string::npos) << message;
+  EXPECT_NE(message.find(other), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(dir / "merged.sqlite"));  // nothing written before every part is checked
+
+  // A copy of part 1 with one number changed by one ulp: the same group with other bits.
+  const Plan plan = make_plan(dir);
+  const std::string altered = (dir / "altered.sqlite").string();
+  fs::copy_file(part1, altered);
+  {
+    Store store = Store::create_or_resume(altered, Store::open(part1).header());
+    const auto stored = store.finished();
+    const auto first = std::find(stored.begin(), stored.end(), 1) - stored.begin();
+    sweep::GroupRecord g = *store.group(first);
+    g.run_results[0].best_value = std::nextafter(g.run_results[0].best_value, 1e300);
+    store.write(g);
+  }
+  const std::string differs =
+      testing::error_of([&] { (void)merge_stores((dir / "merged2.sqlite").string(), {part1, altered}); });
+  EXPECT_NE(differs.find("differs"), std::string::npos) << differs;
+  EXPECT_NE(differs.find("best_value"), std::string::npos) << differs;
+  // A shard's store is not resumed as another shard's or as the whole sweep's.
+  sweep::StoreHeader whole = sweep::make_store_header(plan, (dir / "sweep.toml").string());
+  EXPECT_THROW((void)Store::create_or_resume(part1, whole), StoreError);
+}
+
+}  // namespace
+}  // namespace dampbench::distributed
