@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzing (issue 17): builds the libFuzzer targets of tests/fuzz with clang (AddressSanitizer and UBSan on all of
 # dampbench's code they reach) and runs each for FUZZ_SECONDS (default 60) from seed corpora made of the
-# repository's records, sweep files, law strings and a real store. Fails on the first crash, sanitizer finding,
-# timeout (10 s per input) or out-of-memory; the input that did it is kept in build-fuzz/findings/<target>/
+# repository's records, sweep files, law strings, a real store and its groups as MPI messages. Fails on the first
+# crash, sanitizer finding, timeout (10 s per input) or out-of-memory; the input that did it is kept in build-fuzz/findings/<target>/
 # (copy it to tests/fuzz/regressions/<target>/ and it is replayed by every later run).
 # Usage: bash scripts/fuzz.sh [target ...]   (default: every target)
 set -euo pipefail
@@ -10,14 +10,14 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 seconds="${FUZZ_SECONDS:-60}"
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_record fuzz_sweep_spec fuzz_laws fuzz_key_values fuzz_store)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_record fuzz_sweep_spec fuzz_laws fuzz_key_values fuzz_store fuzz_group_message)
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DDAMPBENCH_FUZZ=ON \
   -DDAMPBENCH_BUILD_TESTS=OFF -DDAMPBENCH_BUILD_BENCH=OFF > /dev/null
 cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]}"
 
 # Seed corpora: what the tests and presets read.
 corpus=build-fuzz/corpus
-rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fuzz_key_values,fuzz_store}
+rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fuzz_key_values,fuzz_store,fuzz_group_message}
 for f in datasets/fvd/*.csv docs/examples/*.txt; do  # the first byte picks the loader options
   for option in 0 1 3; do { printf "\\$(printf %03o $option)"; head -c 20000 "$f"; } > "$corpus/fuzz_record/$option-$(basename "$f")"; done
 done
@@ -35,6 +35,8 @@ store_seed=build-fuzz/seed-store
 rm -rf "$store_seed"
 "${DAMPBENCH:-./build/dampbench}" run docs/examples/quick.toml -o "$store_seed" --quiet --no-report > /dev/null
 cp "$store_seed/store.sqlite" "$corpus/fuzz_store/quick.sqlite"
+# fuzz_group_message writes the store's groups, encoded as MPI messages, into its corpus when it starts.
+export DAMPBENCH_FUZZ_SEED_STORE="$PWD/$store_seed/store.sqlite" DAMPBENCH_FUZZ_SEED_DIR="$PWD/$corpus/fuzz_group_message"
 
 for t in "${targets[@]}"; do
   mkdir -p "build-fuzz/findings/$t"

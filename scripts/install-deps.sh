@@ -10,6 +10,7 @@ packages=(
   libjs-d3            # D3, inlined into HTML reports (engine/report)
   chromium python3    # the report test renders a report in headless Chromium (tests/report_browser_test.py)
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (tests/fuzz)
+  libopenmpi-dev openmpi-bin  # mpirun -np K dampbench run (engine/distributed; tests/mpi_test.py)
   "$@"
 )
 missing=()

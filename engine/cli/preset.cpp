@@ -115,7 +115,12 @@ int run_command(const RunOptions& options) {
                                     summary.candidate_samples / summary.wall_time_s)
                       : fmt::format("nothing left to run, {:.2f} s wall (stored runs: {:.3g} candidate-samples/s)",
                                     summary.wall_time_s, stored_wall > 0 ? stored_cs / stored_wall : 0.0);
-  const std::string ranks = job && job->size() > 1 ? fmt::format(" on {} MPI ranks", job->size()) : "";
+  const std::string ranks =
+      job && job->size() > 1
+          ? fmt::format(" on {} MPI ranks (rank 0: {} messages, {:.3g} bytes, {:.3g} s handling them, {:.3g} ms per group)",
+                        job->size(), summary.messages, summary.message_bytes, summary.coordinator_busy_s,
+                        summary.ran > 0 ? 1e3 * summary.coordinator_busy_s / static_cast<double>(summary.ran) : 0.0)
+          : "";
   std::cout << fmt::format("{}: {} task groups, {} tasks ({} run now, {} from the store, {} failed); {}{}; tables in {}, "
                            "store {}{}\n",
                            plan.spec().name, summary.groups, summary.tasks, summary.ran, summary.stored_before,

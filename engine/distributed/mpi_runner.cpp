@@ -154,6 +154,8 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   std::vector<int> in_flight(static_cast<std::size_t>(job.size()), 0);
   long long in_flight_total = 0;
   std::exception_ptr write_error;
+  long long messages = 0;
+  double message_bytes = 0, busy_s = 0;
   while (finished_workers < job.size() - 1 || in_flight_total > 0) {
     int arrived = 0;
     MPI_Status status;
@@ -162,8 +164,11 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
       std::this_thread::sleep_for(kPollInterval);
       continue;
     }
+    const auto busy_from = std::chrono::steady_clock::now();
     const int from = status.MPI_SOURCE;
     const std::string bytes = receive_bytes(status);
+    ++messages;
+    message_bytes += static_cast<double>(bytes.size());
     switch (status.MPI_TAG) {
       case kHello: {
         const auto newline = bytes.rfind('\n');
@@ -186,6 +191,8 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
           ++finished_workers;
         }
         check(MPI_Send(&group, 1, MPI_LONG_LONG, from, kAssign, MPI_COMM_WORLD), "MPI_Send");
+        ++messages;
+        message_bytes += sizeof group;
         break;
       }
       case kResult: {
@@ -203,8 +210,12 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
       default:
         throw StoreError(fmt::format("MPI: unexpected message (tag {}) from rank {}", status.MPI_TAG, from));
     }
+    busy_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - busy_from).count();
   }
   sweep::RunnerSummary summary = writer.finish();
+  summary.messages = messages;
+  summary.message_bytes = message_bytes;
+  summary.coordinator_busy_s = busy_s;
   if (write_error) std::rethrow_exception(write_error);
   return summary;
 }

@@ -44,6 +44,11 @@ struct RunnerSummary {
   double candidate_samples = 0;                    ///< this session
   double wall_time_s = 0;                          ///< this session
   bool interrupted = false;
+  /// Under MPI (engine/distributed): messages rank 0 received and sent, their bytes, and the time rank 0 spent
+  /// handling them (decoding, committing to the store): its serial cost per group, which bounds the ranks a
+  /// sweep can use (docs/performance.md).
+  long long messages = 0;
+  double message_bytes = 0, coordinator_busy_s = 0;
 };
 
 RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options = {});
