@@ -9,13 +9,16 @@ itself, and every table file):
   - an MPI job killed with SIGKILL (the whole process group) mid-way, resumed by another mpirun;
   - an MPI job whose worker rank is killed mid-way: the job ends with an error, the store stays valid, and a
     single-process run resumes it.
-Merging parts of two different sweeps is refused with exit code 2 and a message naming the part.
+  - shard 2/3 run under `mpirun -np 3`.
+Merging parts of two different sweeps is refused with exit code 2 and a message naming the part; ranks that run
+another sweep file than rank 0 (an MPMD launch) are refused with both fingerprints.
 
 usage: mpi_test.py DAMPBENCH WORK_DIR
 Exit 77 (ctest: skipped) when mpirun is missing or dampbench was built without MPI; scripts/install-deps.sh
 installs OpenMPI, so CI runs it. Ranks are oversubscribed on one machine (--oversubscribe); as root, OpenMPI
 needs OMPI_ALLOW_RUN_AS_ROOT (set here).
 """
+import fcntl
 import glob
 import os
 import shutil
@@ -41,12 +44,36 @@ def check(ok, message):
         print("FAIL:", message, flush=True)
 
 
-def run(args, ok=True, mpi=0):
+def run(args, ok=True, mpi=0, timeout=600):
+    """dampbench ARGS, under `mpirun -np MPI` if given; a job that hangs is killed whole (its process group)."""
     cmd = ([MPIRUN, "--oversubscribe", "-np", str(mpi)] if mpi else []) + [DAMPBENCH, *args]
-    p = subprocess.run(cmd, cwd=WORK, capture_output=True, text=True, env=ENV)
+    proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        sys.exit(f"{' '.join(cmd)}: no end after {timeout} s (a deadlock?); killed")
+    p = subprocess.CompletedProcess(cmd, proc.returncode, out, err)
     if ok and p.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
     return p
+
+
+def wait_unlocked(store, seconds=60):
+    """Waits until no process holds the store's lock (ranks of a killed job may take a moment to go)."""
+    deadline = time.time() + seconds
+    with open(store + ".lock", "a") as f:
+        while True:
+            try:
+                fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                fcntl.flock(f, fcntl.LOCK_UN)
+                return True
+            except OSError:
+                if time.time() > deadline:
+                    return False
+                time.sleep(0.1)
 
 
 MIXED = """
@@ -216,10 +243,28 @@ def main():
           f"merge of two sweeps: exit {p.returncode}, {p.stderr}")
     check(not os.path.exists(os.path.join(WORK, "wrong.sqlite")), "merge of two sweeps left a store")
 
+    # A shard under mpirun: the same groups as that shard in one process.
+    run(["run", FVD, "--shard", "2/3", "--store", "mpi-shard.sqlite", "--quiet"], mpi=3)
+    diff = support.differences(support.contents(os.path.join(WORK, "fvd-part2.sqlite")),
+                               support.contents(os.path.join(WORK, "mpi-shard.sqlite")))
+    check(not diff, f"shard 2/3 on 3 ranks differs from shard 2/3 in one process: {diff}")
+
+    # Ranks that would not compute the same thing (here: another sweep file on rank 1) are refused.
+    other = os.path.join(WORK, "fvd-other-seed.toml")
+    with open(FVD) as f, open(other, "w") as g:
+        g.write(f.read().replace("seed = 1", "seed = 2").replace('file = "../fvd/', f'file = "{support.ROOT}/datasets/fvd/'))
+    cmd = [MPIRUN, "--oversubscribe", "-np", "1", DAMPBENCH, "run", FVD, "-o", "mixed-ranks", "--quiet", ":",
+           "-np", "1", DAMPBENCH, "run", other, "-o", "mixed-ranks", "--quiet"]
+    p = subprocess.run(cmd, cwd=WORK, capture_output=True, text=True, env=ENV, timeout=300)
+    check(p.returncode != 0 and "is not running the same computation as rank 0" in p.stderr,
+          f"ranks with different sweep files: exit {p.returncode}, {p.stderr[-800:]}")
+
     # The whole job killed with SIGKILL mid-way, resumed by another mpirun.
     single_store = os.path.join(WORK, "fvd-single", "store.sqlite")
     store = os.path.join(WORK, "killed", "store.sqlite")
-    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "run", FVD, "-o", "killed", "--quiet", "--no-report"]
+    # One thread per rank, so that groups finish one by one and the kill lands mid-way on any machine.
+    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", FVD, "-o", "killed", "--quiet",
+           "--no-report"]
     proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     reached = wait_for(store, 3, proc)
@@ -228,13 +273,15 @@ def main():
     time.sleep(0.5)
     stored = support.stored_groups(store)
     check(reached and 3 <= stored < total_groups(store), f"kill -9 of the job: {stored} groups stored (expected some, not all)")
+    check(wait_unlocked(store), "kill -9 of the job: a rank still holds the store's lock after 60 s")
     run(["run", FVD, "-o", "killed", "--quiet", "--no-report"], mpi=2)
     same_as_single(f"job killed after {stored} groups, resumed on 2 ranks", store, single_store)
     print(f"fvd: job killed after {stored} groups and resumed: identical to one process", flush=True)
 
     # A worker rank killed mid-way: the job ends with an error and a valid store, which one process resumes.
     store = os.path.join(WORK, "worker-died", "store.sqlite")
-    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "run", FVD, "-o", "worker-died", "--quiet", "--no-report"]
+    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", FVD, "-o", "worker-died", "--quiet",
+           "--no-report"]
     proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     reached = wait_for(store, 2, proc)
@@ -249,8 +296,11 @@ def main():
         _, err = proc.communicate()
         check(False, "worker death: the job did not end within 120 s")
     check(proc.returncode != 0, f"worker death: mpirun exited {proc.returncode}")
-    check("rank" in err or "process" in err, f"worker death: no message names the lost process: {err[-500:]}")
+    check("noticed that process rank" in err and "signal 9" in err,
+          f"worker death: no message names the lost rank: {err[-500:]}")
     stored = support.stored_groups(store)
+    check(stored < total_groups(store), f"worker death: the job stored all {stored} groups (killed too late)")
+    check(wait_unlocked(store), "worker death: a rank still holds the store's lock after 60 s")
     run(["run", FVD, "-o", "worker-died", "--quiet", "--no-report"])
     same_as_single(f"worker killed after {stored} stored groups, resumed in one process", store, single_store)
     print(f"fvd: worker killed after {stored} groups; job ended with exit {proc.returncode}; resumed: identical", flush=True)

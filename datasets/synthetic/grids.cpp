@@ -49,7 +49,10 @@ GridState ensure_grid(const fs::path& root, const std::string& name, const std::
   const bool existed = fs::exists(dir, ec);
   if (existed && read_stamp(dir) == stamp) return GridState::kPresent;
 
-  const fs::path tmp = root / fmt::format(".{}.tmp-{}", name, ::getpid());
+  // Host and process in the name: the ranks of an MPI job on several nodes may share the cache folder.
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  const fs::path tmp = root / fmt::format(".{}.tmp-{}-{}", name, host, ::getpid());
   try {
     fs::remove_all(tmp);
     write_grid(name, tmp, kGridSeed);

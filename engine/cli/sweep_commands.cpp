@@ -108,6 +108,9 @@ int table_command(const TableOptions& o) {
     throw InputError(fmt::format("--role: expected fit or predict, got '{}'", o.role));
   if (!o.metric.empty()) (void)parse_metric(o.metric);
   const sweep::Store store = sweep::Store::open(o.store);
+  if (const std::string shard = store.meta("shard"); !shard.empty())
+    std::cerr << fmt::format("note: {} holds shard {} of the sweep only: its tables are partial (dampbench merge joins "
+                             "the shards' stores)\n", o.store, shard);
   const sweep::StoreResults results(store);
   std::vector<sweep::Report> reports;
   for (int p = 0; p < results.part_count(); ++p) {

@@ -1,6 +1,7 @@
 #include "engine/distributed/group_codec.hpp"
 
 #include <cstdint>
+#include <array>
 #include <cstring>
 #include <type_traits>
 
@@ -11,11 +12,15 @@
 namespace dampbench::distributed {
 namespace {
 
-/// Appends trivially copyable values, strings and vectors (length first) to a byte string.
+/// Values written as their bytes: numbers, enums, trace points, fixed arrays of doubles.
+template <class T>
+concept Raw = std::is_arithmetic_v<T> || std::is_enum_v<T> || std::is_same_v<T, TracePoint> ||
+              std::is_same_v<T, std::array<double, kMetricCount>>;
+
+/// Appends raw values, strings and vectors (length first), optionals and the records' structs to a byte string.
 class Writer {
  public:
-  template <class T>
-    requires std::is_trivially_copyable_v<T>
+  template <Raw T>
   void put(const T& v) {
     out_.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
@@ -67,12 +72,23 @@ class Writer {
   std::string out_;
 };
 
+/// Bytes of a default T as Writer writes it: the least any element of type T takes, so that a length prefix can
+/// be checked against the bytes left before anything is allocated.
+template <class T>
+std::size_t encoded_size() {
+  static const std::size_t bytes = [] {
+    Writer w;
+    w.put(T{});
+    return w.take().size();
+  }();
+  return bytes;
+}
+
 /// Reads what Writer wrote, in the same order; DataError instead of reading past the end.
 class Reader {
  public:
   explicit Reader(std::string_view in) : in_(in) {}
-  template <class T>
-    requires std::is_trivially_copyable_v<T>
+  template <Raw T>
   void get(T& v) {
     need(sizeof v);
     std::memcpy(&v, in_.data() + at_, sizeof v);
@@ -85,7 +101,7 @@ class Reader {
   }
   template <class T>
   void get(std::vector<T>& v) {
-    v.resize(length(std::is_trivially_copyable_v<T> ? sizeof(T) : 1));
+    v.resize(length(encoded_size<T>()));
     for (auto& x : v) get(x);
   }
   template <class T>

@@ -36,28 +36,30 @@ MergeSummary merge_stores(const std::string& out_path, const std::vector<std::st
     if (std::filesystem::equivalent(p, out_path, ec))
       throw InputError(fmt::format("merge: the output store {} is also given as a part", out_path));
 
-  std::vector<sweep::Store> parts;
-  std::vector<sweep::StoreHeader> headers;
+  // Every header first (one part open at a time: a job array may have thousands), then the groups.
   MergeSummary sum;
+  sweep::StoreHeader first;
   for (const auto& p : part_paths) {
-    parts.push_back(sweep::Store::open(p));
-    headers.push_back(parts.back().header());
-    if (const std::string diff = header_difference(headers.front(), headers.back()); !diff.empty())
+    const sweep::StoreHeader h = sweep::Store::open(p).header();
+    if (&p == &part_paths.front()) first = h;
+    if (const std::string diff = header_difference(first, h); !diff.empty())
       throw InputError(fmt::format("merge: {} comes from {} than {}: not merged", p, diff, part_paths.front()));
-    sum.shards.push_back(headers.back().shard.empty() ? "whole" : headers.back().shard);
+    sum.shards.push_back(h.shard.empty() ? "whole" : h.shard);
   }
-  sweep::StoreHeader whole = headers.front();
+  sweep::StoreHeader whole = first;
   whole.shard.clear();
+  const sweep::StoreLock lock(out_path);  // no `run` or other merge writes OUT meanwhile
   sweep::Store out = sweep::Store::create_or_resume(out_path, whole);
   sum.groups = whole.groups;
 
   std::vector<char> have = out.finished();
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    const std::vector<char> in_part = parts[k].finished();
+  for (const auto& p : part_paths) {
+    const sweep::Store part = sweep::Store::open(p);
+    const std::vector<char> in_part = part.finished();
     for (long long i = 0; i < sum.groups; ++i) {
       const auto u = static_cast<std::size_t>(i);
       if (!in_part[u]) continue;
-      const auto record = parts[k].group(i, true);
+      const auto record = part.group(i, true);
       if (!have[u]) {
         out.write(*record);
         have[u] = 1;
@@ -68,7 +70,7 @@ MergeSummary merge_stores(const std::string& out_path, const std::vector<std::st
       if (!diff.empty())
         throw InputError(fmt::format("merge: task group {} of {} differs from the one already merged ({}{}): the "
                                      "parts are not results of the same computation; {} holds the groups merged so far",
-                                     i, part_paths[k], diff.front(), diff.size() > 1 ? ", ..." : "", out_path));
+                                     i, p, diff.front(), diff.size() > 1 ? ", ..." : "", out_path));
       ++sum.duplicates;
     }
   }

@@ -2,18 +2,23 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
 #include "engine/distributed/group_codec.hpp"
 #include "engine/sweep/fingerprint.hpp"
 
@@ -25,11 +30,16 @@
 
 namespace dampbench::distributed {
 
-bool launched_by_mpi() {
-  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
-    if (std::getenv(var)) return true;
-  return false;
+int launcher_job_size() {
+  // OpenMPI's mpirun, MPICH/PMI (also srun --mpi=pmi2), Slurm's srun with PMIx (whose own variables hold no size).
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* v = std::getenv(var)) return std::max(1, std::atoi(v));
+  if (!std::getenv("PMIX_RANK")) return 1;
+  const char* tasks = std::getenv("SLURM_STEP_NUM_TASKS");
+  return tasks ? std::max(1, std::atoi(tasks)) : 2;
 }
+
+bool launched_by_mpi() { return launcher_job_size() > 1; }
 
 namespace {
 /// This process's job once MPI is initialized, until it is finalized (for abort_job_if_running and rank_prefix,
@@ -68,10 +78,34 @@ enum Tag : int { kHello = 1, kRequest = 2, kAssign = 3, kResult = 4 };
 constexpr long long kNoMoreGroups = -1;
 constexpr auto kPollInterval = std::chrono::microseconds(200);
 
-/// What must be equal on every rank for their results to be the same bits: binary, sweep spec, datasets.
+/// Hash of this process's executable: two builds of one version differ here.
+std::string executable_hash() {
+  std::ifstream in("/proc/self/exe", std::ios::binary);
+  std::uint64_t h = hash_name("executable");
+  std::vector<char> chunk(1 << 16);
+  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
+    h = hash_key({h, hash_name(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())))});
+    if (!in) break;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+/// The vector ISA levels glibc's math functions choose between at run time (their results may differ).
+std::string cpu_features() {
+  std::string f;
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) f += "avx512f ";
+  if (__builtin_cpu_supports("avx2")) f += "avx2 ";
+  if (__builtin_cpu_supports("fma")) f += "fma ";
+  return f.empty() ? "sse2" : f.substr(0, f.size() - 1);
+}
+
+/// What must be equal on every rank for their results to be the same bits: binary, the CPU's math paths, sweep
+/// spec, datasets.
 std::string plan_fingerprint(const sweep::Plan& plan) {
-  std::string f = fmt::format("dampbench {} ({}), spec {}, {} groups, datasets", sweep::dampbench_version(),
-                              sweep::build_flags(), plan.spec().hash, plan.groups());
+  std::string f = fmt::format("dampbench {} ({}), executable {}, cpu {}, spec {}, {} groups, datasets",
+                              sweep::dampbench_version(), sweep::build_flags(), executable_hash(), cpu_features(),
+                              plan.spec().hash, plan.groups());
   for (const auto& part : plan.parts())
     for (const auto& d : part.datasets) f += " " + d.hash;
   return f;
@@ -107,15 +141,31 @@ std::string receive_bytes(const MPI_Status& probed) {
   return bytes;
 }
 
-/// Waits until every rank calls it, sleeping between tests (a blocking barrier would spin a core each).
-void sleeping_barrier() {
-  MPI_Request request;
-  check(MPI_Ibarrier(MPI_COMM_WORLD, &request), "MPI_Ibarrier");
+/// Waits for a non-blocking operation, sleeping between tests: OpenMPI's blocking calls spin a core, which on
+/// a shared or oversubscribed node takes it from the ranks that compute.
+void wait_sleeping(MPI_Request& request, std::chrono::microseconds interval) {
   for (int done = 0;;) {
     check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
     if (done) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::this_thread::sleep_for(interval);
   }
+}
+
+/// Waits until every rank calls it, sleeping.
+void sleeping_barrier() {
+  MPI_Request request;
+  check(MPI_Ibarrier(MPI_COMM_WORLD, &request), "MPI_Ibarrier");
+  wait_sleeping(request, std::chrono::milliseconds(1));
+}
+
+/// Refuses a result that is not the group `from` was given, or whose identity differs from the plan's.
+void check_result(const sweep::Plan& plan, const sweep::GroupRecord& r, int from, std::set<long long>& assigned) {
+  if (assigned.erase(r.index) == 0)
+    throw StoreError(fmt::format("MPI: rank {} sent a result for task group {}, which it was not given", from, r.index));
+  const sweep::GroupRef g = plan.group(r.index);
+  if (std::tie(g.part, g.split, g.fitset, g.model, g.optimizer, g.metric, g.runs, g.task_key) !=
+      std::tie(r.part, r.split, r.fitset, r.model, r.optimizer, r.metric, r.runs, r.task_key))
+    throw StoreError(fmt::format("MPI: rank {} sent task group {} with another identity than this plan's", from, r.index));
 }
 
 }  // namespace
@@ -126,6 +176,7 @@ MpiJob::MpiJob() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
   g_job = {true, rank_, size_};
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);  // failures become messages (check), then MPI_Abort
   if (provided < MPI_THREAD_SERIALIZED)
     throw StoreError("MPI: this MPI library does not allow calls from several threads (MPI_THREAD_SERIALIZED)");
 }
@@ -151,12 +202,11 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   const std::string fingerprint = plan_fingerprint(plan);
   std::size_t next = 0;
   int finished_workers = 0;          // workers told there is nothing more
-  std::vector<int> in_flight(static_cast<std::size_t>(job.size()), 0);
-  long long in_flight_total = 0;
-  std::exception_ptr write_error;
+  std::vector<std::set<long long>> assigned(static_cast<std::size_t>(job.size()));
+  long long in_flight = 0;
   long long messages = 0;
   double message_bytes = 0, busy_s = 0;
-  while (finished_workers < job.size() - 1 || in_flight_total > 0) {
+  while (finished_workers < job.size() - 1 || in_flight > 0) {
     int arrived = 0;
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
@@ -176,17 +226,16 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
         if (theirs != fingerprint)
           throw InputError(fmt::format(
               "rank {} (host {}) is not running the same computation as rank 0 (host {}): it has\n  {}\nrank 0 has\n"
-              "  {}\n(identical results need the same binary, sweep file and data on every node)",
+              "  {}\n(identical results need the same binary, CPU type, sweep file and data on every node)",
               from, host, host_name(), theirs, fingerprint));
         break;
       }
       case kRequest: {
-        const bool stop = write_error || (options.stop && options.stop->load());
         long long group = kNoMoreGroups;
-        if (!stop && next < todo.size()) {
+        if (next < todo.size() && !(options.stop && options.stop->load())) {
           group = todo[next++];
-          ++in_flight[static_cast<std::size_t>(from)];
-          ++in_flight_total;
+          assigned[static_cast<std::size_t>(from)].insert(group);
+          ++in_flight;
         } else {
           ++finished_workers;
         }
@@ -196,15 +245,12 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
         break;
       }
       case kResult: {
-        sweep::GroupRecord record = decode_group(bytes);
-        --in_flight[static_cast<std::size_t>(from)];
-        --in_flight_total;
-        if (write_error) break;
-        try {
-          writer.write(record);
-        } catch (...) {
-          write_error = std::current_exception();  // no new group is handed out; those in flight are drained
-        }
+        const sweep::GroupRecord record = decode_group(bytes);
+        check_result(plan, record, from, assigned[static_cast<std::size_t>(from)]);
+        --in_flight;
+        // A store that cannot be written ends the job at once (main prints the error, then MPI_Abort): every
+        // group committed so far stays in the store; the groups in flight run again on resume.
+        writer.write(record);
         break;
       }
       default:
@@ -216,7 +262,6 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   summary.messages = messages;
   summary.message_bytes = message_bytes;
   summary.coordinator_busy_s = busy_s;
-  if (write_error) std::rethrow_exception(write_error);
   return summary;
 }
 
@@ -233,9 +278,10 @@ void work(const MpiJob&, const sweep::Plan& plan) {
                                           {
                                             const std::lock_guard lock(mpi);
                                             check(MPI_Send(nullptr, 0, MPI_BYTE, 0, kRequest, MPI_COMM_WORLD), "MPI_Send");
-                                            check(MPI_Recv(&group, 1, MPI_LONG_LONG, 0, kAssign, MPI_COMM_WORLD,
-                                                           MPI_STATUS_IGNORE),
-                                                  "MPI_Recv");
+                                            MPI_Request reply;
+                                            check(MPI_Irecv(&group, 1, MPI_LONG_LONG, 0, kAssign, MPI_COMM_WORLD, &reply),
+                                                  "MPI_Irecv");
+                                            wait_sleeping(reply, kPollInterval);
                                           }
                                           if (group == kNoMoreGroups) fc.stop();
                                           return group;

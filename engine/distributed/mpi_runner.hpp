@@ -11,9 +11,12 @@
 // its number and the plan, and travels as its exact bytes (group_codec.hpp), so the store is bit-identical to
 // that of one process, for any rank and thread count.
 //
-// Faults: a rank that dies ends the job (mpirun's default); rank 0 has committed every group it received, the
-// store stays valid, and running the same command again resumes it (with or without mpirun). Ranks whose
-// binary, sweep file or data differ from rank 0's are refused when they start.
+// Faults: a rank that dies ends the job (mpirun's default; with srun, give --kill-on-bad-exit=1); rank 0 has
+// committed every group it received, the store stays valid, and running the same command again resumes it (with
+// or without mpirun). A store that cannot be written ends the job at once. Ranks whose executable, CPU features
+// (glibc picks math code by them), sweep file or data differ from rank 0's are refused at their first message;
+// a result that is not the group its rank was given is refused too. Waits sleep between tests instead of
+// spinning (OpenMPI's blocking calls spin a core).
 //
 // Messages per group: one request (0 bytes), one assignment (8 bytes), one result (the record, a few kB; see
 // docs/performance.md), plus one hello per worker.
@@ -28,8 +31,9 @@ namespace dampbench::distributed {
 /// True when this binary was built with MPI (CMake option DAMPBENCH_MPI).
 bool built_with_mpi();
 
-/// True when a launcher (mpirun, srun) started this process as a rank of a job: OpenMPI's, PMI's or PMIx's
-/// variables are set. MPI is never initialized otherwise, so the binary runs without mpirun.
+/// True when a launcher (mpirun, srun) started this process as a rank of a job of several ranks (OpenMPI's, PMI's
+/// or PMIx's variables). MPI is never initialized otherwise, so the binary runs without mpirun, and a job of one
+/// rank (mpirun -np 1, or srun of a job-array shard) is an ordinary process.
 bool launched_by_mpi();
 
 /// MPI_Init_thread … MPI_Finalize for one `dampbench run`. InputError when built without MPI.

@@ -21,8 +21,8 @@ Shard parse_shard(std::string_view text, std::string_view what) {
     return ec == std::errc() && end == s.data() + s.size() && !s.empty();
   };
   if (slash == std::string_view::npos || !number(text.substr(0, slash), i) || !number(text.substr(slash + 1), n) ||
-      n < 1 || i < 1 || i > n)
-    throw InputError(fmt::format("{}: expected i/n with 1 <= i <= n (e.g. 2/8), got '{}'", what, text));
+      n < 1 || i < 1 || i > n || n > kMaxShards)
+    throw InputError(fmt::format("{}: expected i/n with 1 <= i <= n <= {} (e.g. 2/8), got '{}'", what, kMaxShards, text));
   return {i - 1, n};
 }
 

@@ -25,7 +25,9 @@ struct Shard {
   friend bool operator==(const Shard&, const Shard&) = default;
 };
 
-/// "i/n" with 1 ≤ i ≤ n (as Slurm's --array=1-n numbers jobs); InputError naming `what` otherwise.
+inline constexpr int kMaxShards = 1'000'000;
+
+/// "i/n" with 1 ≤ i ≤ n ≤ kMaxShards (as Slurm's --array=1-n numbers jobs); InputError naming `what` otherwise.
 Shard parse_shard(std::string_view text, std::string_view what = "--shard");
 
 /// Relative cost of a group: runs × evaluations per run × samples of its fit datasets × parameters.
