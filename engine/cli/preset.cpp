@@ -117,8 +117,9 @@ int run_command(const RunOptions& options) {
                                     summary.wall_time_s, stored_wall > 0 ? stored_cs / stored_wall : 0.0);
   const std::string ranks =
       job && job->size() > 1
-          ? fmt::format(" on {} MPI ranks (rank 0: {} messages, {:.3g} bytes, {:.3g} s handling them, {:.3g} ms per group)",
-                        job->size(), summary.messages, summary.message_bytes, summary.coordinator_busy_s,
+          ? fmt::format(" on {} MPI ranks ({} worker threads; rank 0: {} messages, {:.3g} bytes, {:.3g} s handling "
+                        "them, {:.3g} ms per group)",
+                        job->size(), summary.worker_threads, summary.messages, summary.message_bytes, summary.coordinator_busy_s,
                         summary.ran > 0 ? 1e3 * summary.coordinator_busy_s / static_cast<double>(summary.ran) : 0.0)
           : "";
   std::cout << fmt::format("{}: {} task groups, {} tasks ({} run now, {} from the store, {} failed); {}{}; tables in {}, "

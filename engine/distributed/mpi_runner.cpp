@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cstdio>
+#include <iostream>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
@@ -204,7 +206,8 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   int finished_workers = 0;          // workers told there is nothing more
   std::vector<std::set<long long>> assigned(static_cast<std::size_t>(job.size()));
   long long in_flight = 0;
-  long long messages = 0;
+  long long messages = 0, worker_threads = 0;
+  int confined = 0;  // workers with fewer threads than their node has cores
   double message_bytes = 0, busy_s = 0;
   while (finished_workers < job.size() - 1 || in_flight > 0) {
     int arrived = 0;
@@ -221,8 +224,17 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
     message_bytes += static_cast<double>(bytes.size());
     switch (status.MPI_TAG) {
       case kHello: {
-        const auto newline = bytes.rfind('\n');
-        const std::string theirs = bytes.substr(0, newline), host = bytes.substr(newline + 1);
+        // "host\nthreads cores\nfingerprint" (work())
+        const auto first = bytes.find('\n'), second = bytes.find('\n', first + 1);
+        const std::string host = bytes.substr(0, first), theirs = bytes.substr(second == std::string::npos ? 0 : second + 1);
+        int threads = 0, cores = 0;
+        std::sscanf(bytes.substr(first + 1, second - first - 1).c_str(), "%d %d", &threads, &cores);
+        worker_threads += threads;
+        if (threads < cores && ++confined == 1)
+          std::cerr << fmt::format("note: rank {} runs {} thread(s) on host {}, which has {} cores: the launcher confines "
+                                   "it (mpirun binds ranks to cores by default); with one rank per node, give mpirun "
+                                   "--bind-to none\n",
+                                   from, threads, host, cores);
         if (theirs != fingerprint)
           throw InputError(fmt::format(
               "rank {} (host {}) is not running the same computation as rank 0 (host {}): it has\n  {}\nrank 0 has\n"
@@ -262,11 +274,14 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   summary.messages = messages;
   summary.message_bytes = message_bytes;
   summary.coordinator_busy_s = busy_s;
+  summary.worker_threads = worker_threads;
   return summary;
 }
 
 void work(const MpiJob&, const sweep::Plan& plan) {
-  send_bytes(plan_fingerprint(plan) + "\n" + host_name(), 0, kHello);
+  send_bytes(fmt::format("{}\n{} {}\n{}", host_name(), tbb::this_task_arena::max_concurrency(),
+                         std::thread::hardware_concurrency(), plan_fingerprint(plan)),
+             0, kHello);
   std::mutex mpi;  // MPI_THREAD_SERIALIZED: one MPI call at a time from this rank's threads
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Bytes = std::shared_ptr<std::string>;

@@ -49,6 +49,7 @@ struct RunnerSummary {
   /// sweep can use (docs/performance.md).
   long long messages = 0;
   double message_bytes = 0, coordinator_busy_s = 0;
+  long long worker_threads = 0;  ///< threads of every worker rank together (their affinity masks decide them)
 };
 
 RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& options = {});
