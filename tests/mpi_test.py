@@ -46,7 +46,7 @@ def check(ok, message):
 
 def run(args, ok=True, mpi=0, timeout=600):
     """dampbench ARGS, under `mpirun -np MPI` if given; a job that hangs is killed whole (its process group)."""
-    cmd = ([MPIRUN, "--oversubscribe", "-np", str(mpi)] if mpi else []) + [DAMPBENCH, *args]
+    cmd = ([MPIRUN, "--oversubscribe", "--bind-to", "none", "-np", str(mpi)] if mpi else []) + [DAMPBENCH, *args]
     proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
     try:

@@ -78,7 +78,11 @@ namespace {
 
 enum Tag : int { kHello = 1, kRequest = 2, kAssign = 3, kResult = 4 };
 constexpr long long kNoMoreGroups = -1;
-constexpr auto kPollInterval = std::chrono::microseconds(200);
+// Polling between messages: rank 0 sleeps from kPollInterval up to kMaxPollInterval, doubling while nothing
+// arrives, so that an idle rank 0 wakes at most ~500 times a second on a core a worker uses, and a burst of
+// results is still taken at once. A worker waiting for its assignment polls every kPollInterval.
+constexpr auto kPollInterval = std::chrono::microseconds(100);
+constexpr auto kMaxPollInterval = std::chrono::microseconds(2000);
 
 /// Hash of this process's executable: two builds of one version differ here.
 std::string executable_hash() {
@@ -208,15 +212,18 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
   long long in_flight = 0;
   long long messages = 0, worker_threads = 0;
   int confined = 0;  // workers with fewer threads than their node has cores
+  auto poll = kPollInterval;
   double message_bytes = 0, busy_s = 0;
   while (finished_workers < job.size() - 1 || in_flight > 0) {
     int arrived = 0;
     MPI_Status status;
     check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
     if (!arrived) {
-      std::this_thread::sleep_for(kPollInterval);
+      std::this_thread::sleep_for(poll);
+      poll = std::min(2 * poll, kMaxPollInterval);
       continue;
     }
+    poll = kPollInterval;
     const auto busy_from = std::chrono::steady_clock::now();
     const int from = status.MPI_SOURCE;
     const std::string bytes = receive_bytes(status);

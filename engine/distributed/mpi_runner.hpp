@@ -6,7 +6,7 @@
 // Rank 0 owns the store: it works out what is left (resume, shard), hands task groups to the workers on request,
 // largest first (sweep/schedule.hpp), and commits each finished group in its own transaction (the same
 // sweep::GroupWriter a single process uses), then writes the tables. Rank 0 does not identify groups itself: it
-// waits for messages sleeping between polls, so it takes little of its core. Each worker runs up to 2 × its
+// waits for messages sleeping between polls (0.1 to 2 ms), so it takes little of its core. Each worker runs up to 2 × its
 // threads groups at once with oneTBB, as `dampbench run` does in one process. A group's result depends only on
 // its number and the plan, and travels as its exact bytes (group_codec.hpp), so the store is bit-identical to
 // that of one process, for any rank and thread count.
