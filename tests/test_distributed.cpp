@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -185,6 +186,11 @@ TEST(GroupCodec, TruncatedOrPaddedMessagesAreRefused) {
   const std::size_t message_length_at = 8 + 5 * 4 + sizeof(Metric) + 4 + 8 + 1;  // after index .. failed
   for (int k = 0; k < 8; ++k) corrupt[message_length_at + static_cast<std::size_t>(k)] = '\x7f';
   EXPECT_THROW((void)decode_group(corrupt), DataError);
+  // A metric number that names no metric.
+  std::string bad_metric = bytes;
+  const int metric_number = 1000;
+  std::memcpy(bad_metric.data() + 8 + 5 * 4, &metric_number, sizeof metric_number);
+  EXPECT_THROW((void)decode_group(bad_metric), DataError);
 }
 
 TEST(Shards, TextIsParsedOrRefusedWithTheExpectedForm) {

@@ -204,6 +204,8 @@ sweep::GroupRecord decode_group(std::string_view bytes) {
   r.get(g.model);
   r.get(g.optimizer);
   r.get(g.metric);
+  if (const auto m = static_cast<int>(g.metric); m < 0 || m >= kMetricCount)
+    throw DataError(fmt::format("task group message: metric number {} is not one of the {} metrics", m, kMetricCount));
   r.get(g.runs);
   r.get(g.task_key);
   r.get(g.failed);
