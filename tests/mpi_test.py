@@ -76,68 +76,12 @@ def wait_unlocked(store, seconds=60):
                 time.sleep(0.1)
 
 
-MIXED = """
-name = "mixed"
-seed = 3
-runs = 3
-
-[[models]]
-model = "mrd.bingham"
-optimizers = ["pso", "de"]
-
-[[models]]
-model = "mrd.bouc_wen"
-optimizers = ["pso"]
-
-[[models]]
-name = "bingham(I)"
-model = "mrd.bingham"
-laws = "f_c=poly(I,1)"
-optimizers = ["pso"]
-
-[[optimizers]]
-name = "pso"
-population = 16
-iterations = 12
-
-[[optimizers]]
-name = "de"
-population = 16
-iterations = 12
-
-[[datasets]]
-name = "rec"
-glob = "rec_I*.csv"
-
-[[splits]]
-name = "each"
-models = ["mrd.bingham", "mrd.bouc_wen"]
-sensitivity = { points = 5, range = 0.5, objective = "rms", where = { I = 1 } }
-
-[[splits]]
-name = "laws"
-models = ["bingham(I)"]
-by = "all"
-fit = { I = [0, 1] }
-predict = { I = 0.5 }
-
-[[regressions]]
-name = "fc"
-model = "mrd.bingham"
-split = "each"
-laws = "f_c=poly(I,1)"
-"""
+MIXED = support.current_sweep(
+    "mixed", 3, each_split_extra='sensitivity = { points = 5, range = 0.5, objective = "rms", where = { I = 1 } }')
 
 
 def make_mixed():
-    for current in ("0", "0.5", "1"):
-        f_c = 200 + 800 * float(current)
-        run(["simulate", "--model", "mrd.bingham", "--params", f"f_c={f_c},c0=2000,f0=10", "--sine",
-             "amp=0.01,freq=1,cycles=2,fs=200", "--noise-rel", "0.02", "--seed", "7", "-o", "tmp.csv"])
-        with open(os.path.join(WORK, "tmp.csv")) as f:
-            body = f.read()
-        with open(os.path.join(WORK, f"rec_I{current}.csv"), "w") as f:
-            f.write(f"# operating: I={current}\n" + body)
+    support.write_current_records(DAMPBENCH, WORK)
     path = os.path.join(WORK, "mixed.toml")
     with open(path, "w") as f:
         f.write(MIXED)

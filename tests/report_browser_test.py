@@ -25,6 +25,9 @@ import struct
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import store_test_support as support  # noqa: E402
+
 DAMPBENCH, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 failures = []
@@ -43,72 +46,13 @@ def run(*args, ok=True):
     return p
 
 
-SWEEP = """
-name = "report-test"
-seed = 3
-runs = 4
-
-[[models]]
-model = "mrd.bingham"
-optimizers = ["pso", "de"]
-
-[[models]]
-model = "mrd.bouc_wen"
-optimizers = ["pso"]
-
-[[models]]
-name = "bingham(I)"
-model = "mrd.bingham"
-laws = "f_c=poly(I,1)"
-optimizers = ["pso"]
-
-[[optimizers]]
-name = "pso"
-population = 16
-iterations = 12
-
-[[optimizers]]
-name = "de"
-population = 16
-iterations = 12
-
-[[datasets]]
-name = "r"
-files = ["rec_I0.csv", "rec_I0.5.csv", "rec_I1.csv"]
-
-[[splits]]
-name = "each"
-models = ["mrd.bingham", "mrd.bouc_wen"]
-
-[[splits]]
-name = "laws"
-models = ["bingham(I)"]
-by = "all"
-fit = { I = [0, 1] }
-predict = { I = 0.5 }
-
-[[regressions]]
-name = "fc"
-model = "mrd.bingham"
-split = "each"
-laws = "f_c=poly(I,1)"
-
-[[tables]]
-kind = "runs"
-"""
+SWEEP = support.current_sweep("report-test", 4, extra='\n[[tables]]\nkind = "runs"\n')
 
 
 def make_sweep():
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
-    for current in ("0", "0.5", "1"):
-        f_c = 200 + 800 * float(current)
-        run("simulate", "--model", "mrd.bingham", "--params", f"f_c={f_c},c0=2000,f0=10", "--sine",
-            "amp=0.01,freq=1,cycles=2,fs=200", "--noise-rel", "0.02", "--seed", "7", "-o", "tmp.csv")
-        with open(os.path.join(WORK, "tmp.csv")) as f:
-            body = f.read()
-        with open(os.path.join(WORK, f"rec_I{current}.csv"), "w") as f:
-            f.write(f"# operating: I={current}\n" + body)
+    support.write_current_records(DAMPBENCH, WORK)
     with open(os.path.join(WORK, "sweep.toml"), "w") as f:
         f.write(SWEEP)
     run("run", os.path.join(WORK, "sweep.toml"), "-o", "out", "--quiet")

@@ -31,13 +31,7 @@ using sweep::Plan;
 using sweep::Shard;
 using sweep::Store;
 
-fs::path temp_dir() {
-  const auto dir = fs::temp_directory_path() /
-                   ("dampbench_distributed_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return dampbench::testing::test_temp_dir("distributed"); }
 
 /// The repository's fvd records; an algebraic and an ODE model; one split per record with a sensitivity study,
 /// one joint fit of the ±20 mm tests predicting the ±17 mm one (per-dataset metrics): every field of a record.

@@ -4,8 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <string>
+
+#include <gtest/gtest.h>
 
 #include "engine/common/random.hpp"
 #include "engine/record/dataset.hpp"
@@ -14,6 +17,15 @@
 #include "engine/record/signals.hpp"
 
 namespace dampbench::testing {
+
+/// An empty folder for the running test: <tmp>/dampbench_<prefix>_<test name> (emptied first).
+inline std::filesystem::path test_temp_dir(const std::string& prefix) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("dampbench_" + prefix + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 /// x = X1 sin(ω1 t) + X2 sin(ω2 t + φ) with exact v and a; no force. Two frequencies make the mass
 /// identifiable: on a single sine m·a = −mω²x is indistinguishable from a negative stiffness.

@@ -38,13 +38,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::run_dampbench;
 
-fs::path temp_dir() {
-  const auto dir = fs::temp_directory_path() /
-                   ("dampbench_sweeprun_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return dampbench::testing::test_temp_dir("sweeprun"); }
 
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());

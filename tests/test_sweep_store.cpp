@@ -20,13 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() {
-  const auto dir = fs::temp_directory_path() /
-                   ("dampbench_store_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path temp_dir() { return dampbench::testing::test_temp_dir("store"); }
 
 StoreHeader header() {
   StoreHeader h;
