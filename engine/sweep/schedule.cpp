@@ -38,41 +38,50 @@ double estimated_cost(const Plan& plan, const GroupRef& g) {
 
 namespace {
 /// Every group's cost, and the group numbers in decreasing cost (ties: lower number first).
-std::vector<long long> by_decreasing_cost(const Plan& plan, std::vector<double>& cost) {
-  cost.resize(static_cast<std::size_t>(plan.groups()));
-  for (long long i = 0; i < plan.groups(); ++i) cost[static_cast<std::size_t>(i)] = estimated_cost(plan, plan.group(i));
-  std::vector<long long> order(cost.size());
-  std::iota(order.begin(), order.end(), 0LL);
-  std::stable_sort(order.begin(), order.end(), [&](long long a, long long b) {
-    return cost[static_cast<std::size_t>(a)] > cost[static_cast<std::size_t>(b)];
+struct CostOrder {
+  std::vector<double> cost;
+  std::vector<long long> order;
+};
+
+CostOrder by_decreasing_cost(const Plan& plan) {
+  CostOrder c;
+  c.cost.resize(static_cast<std::size_t>(plan.groups()));
+  for (long long i = 0; i < plan.groups(); ++i) c.cost[static_cast<std::size_t>(i)] = estimated_cost(plan, plan.group(i));
+  c.order.resize(c.cost.size());
+  std::iota(c.order.begin(), c.order.end(), 0LL);
+  std::stable_sort(c.order.begin(), c.order.end(), [&](long long a, long long b) {
+    return c.cost[static_cast<std::size_t>(a)] > c.cost[static_cast<std::size_t>(b)];
   });
-  return order;
+  return c;
+}
+
+/// The groups of `shard`: each group in decreasing cost to the least loaded shard (lowest number on ties).
+std::vector<char> members(const CostOrder& c, const Shard& shard) {
+  std::vector<char> in(c.cost.size(), shard.whole() ? 1 : 0);
+  if (shard.whole()) return in;
+  using Load = std::pair<double, int>;  // (work so far, shard) in a min-heap
+  std::priority_queue<Load, std::vector<Load>, std::greater<>> load;
+  for (int s = 0; s < shard.count; ++s) load.emplace(0.0, s);
+  for (long long i : c.order) {
+    auto [work, s] = load.top();
+    load.pop();
+    if (s == shard.index) in[static_cast<std::size_t>(i)] = 1;
+    load.emplace(work + c.cost[static_cast<std::size_t>(i)], s);
+  }
+  return in;
 }
 }  // namespace
 
 std::vector<char> shard_groups(const Plan& plan, const Shard& shard) {
-  std::vector<char> in(static_cast<std::size_t>(plan.groups()), shard.whole() ? 1 : 0);
-  if (shard.whole()) return in;
-  std::vector<double> cost;
-  const std::vector<long long> order = by_decreasing_cost(plan, cost);
-  // (work so far, shard) in a min-heap: the least loaded shard, lowest number on ties.
-  using Load = std::pair<double, int>;
-  std::priority_queue<Load, std::vector<Load>, std::greater<>> load;
-  for (int s = 0; s < shard.count; ++s) load.emplace(0.0, s);
-  for (long long i : order) {
-    auto [work, s] = load.top();
-    load.pop();
-    if (s == shard.index) in[static_cast<std::size_t>(i)] = 1;
-    load.emplace(work + cost[static_cast<std::size_t>(i)], s);
-  }
-  return in;
+  if (shard.whole()) return std::vector<char>(static_cast<std::size_t>(plan.groups()), 1);
+  return members(by_decreasing_cost(plan), shard);
 }
 
 std::vector<long long> schedule(const Plan& plan, const std::vector<char>& done, const Shard& shard) {
-  const std::vector<char> in = shard_groups(plan, shard);
-  std::vector<double> cost;
+  const CostOrder c = by_decreasing_cost(plan);  // one decoding and sort serves the shard and the order
+  const std::vector<char> in = members(c, shard);
   std::vector<long long> todo;
-  for (long long i : by_decreasing_cost(plan, cost))
+  for (long long i : c.order)
     if (in[static_cast<std::size_t>(i)] && !done[static_cast<std::size_t>(i)]) todo.push_back(i);
   return todo;
 }
