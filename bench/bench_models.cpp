@@ -5,12 +5,14 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/evaluation/bench_workload.hpp"
 #include "engine/common/vector_math.hpp"
+#include "engine/kernels/isa.hpp"
 #include "models/registry.hpp"
 
 namespace {
@@ -38,18 +40,24 @@ void BM_Evaluate(benchmark::State& state, const std::string& model_id) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(candidates) * samples);
 }
 
-/// Throughput of one vector function over a 4 096-element array (libmvec or SLEEF lanes, 1 thread): the
-/// per-call ceilings of docs/performance.md. Inputs span the range the kernels feed each function.
+/// F over an array in one `omp simd` loop, compiled per vector level (IsaClones).
+template <double (*F)(double)>
+struct ApplyVector {
+  static void run(double* __restrict out, const double* __restrict in, std::size_t n) {
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) out[i] = F(in[i]);
+  }
+};
+
+/// Throughput of one vector function over a 4 096-element array (libmvec or SLEEF lanes at the active vector
+/// level, 1 thread): the per-call ceilings of docs/performance.md. Inputs span the range the kernels feed it.
 template <double (*F)(double)>
 void BM_VectorFunction(benchmark::State& state, double lo, double hi) {
   std::vector<double> in(4096), out(4096);
   for (std::size_t i = 0; i < in.size(); ++i) in[i] = lo + (hi - lo) * static_cast<double>(i) / in.size();
   for (auto _ : state) {
-    double* __restrict o = out.data();
-    const double* __restrict x = in.data();
-#pragma omp simd
-    for (std::size_t i = 0; i < 4096; ++i) o[i] = F(x[i]);
-    benchmark::DoNotOptimize(o);
+    IsaClones<ApplyVector<F>>::call(out.data(), in.data(), in.size());
+    benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * 4096);
@@ -57,15 +65,22 @@ void BM_VectorFunction(benchmark::State& state, double lo, double hi) {
 
 /// A dependent |z|^n chain over 64 lanes, z ← 0.5·|z|^n + 0.2 (one vector log and exp per lane and step,
 /// each step waiting for the previous one, as RK4 stages do): the per-stage ceiling of the ODE kernels.
-void BM_LogExpChain(benchmark::State& state) {
-  constexpr int W = 64;
-  alignas(64) double z[W], n[W];
-  for (int l = 0; l < W; ++l) z[l] = 0.3 + 0.001 * l, n[l] = 1.2 + 0.01 * l;
-  for (auto _ : state) {
+struct AbsPowChain {
+  static constexpr int W = 64;
+  static void run(double* z, const double* n) {
     for (int step = 0; step < 64; ++step) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) z[l] = 0.5 * dampbench::abs_pow(z[l], n[l]) + 0.2;
     }
+  }
+};
+
+void BM_LogExpChain(benchmark::State& state) {
+  constexpr int W = AbsPowChain::W;
+  alignas(64) double z[W], n[W];
+  for (int l = 0; l < W; ++l) z[l] = 0.3 + 0.001 * l, n[l] = 1.2 + 0.01 * l;
+  for (auto _ : state) {
+    IsaClones<AbsPowChain>::call(&z[0], &n[0]);
     benchmark::DoNotOptimize(z);
   }
   state.SetItemsProcessed(state.iterations() * 64 * W);
@@ -99,6 +114,8 @@ void register_all() {
 int main(int argc, char** argv) {
   register_all();
   benchmark::Initialize(&argc, argv);
+  if (const char* isa = std::getenv("DAMPBENCH_ISA"); isa && *isa) dampbench::select_isa(isa, "DAMPBENCH_ISA");
+  benchmark::AddCustomContext("vector_isa", dampbench::isa_summary());
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

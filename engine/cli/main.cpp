@@ -2,6 +2,7 @@
 // SQLite, the file system, dampbench), is printed as "dampbench: error: ..." on stderr and ends with the exit
 // code of its class (engine/common/error.hpp ExitCode; README "Exit codes"); nothing here crashes on user input.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <new>
 #include <string>
@@ -22,6 +23,7 @@
 #include "engine/cli/sweep_commands.hpp"
 #include "engine/common/error.hpp"
 #include "engine/distributed/mpi_runner.hpp"
+#include "engine/kernels/isa.hpp"
 
 namespace {
 
@@ -49,10 +51,15 @@ CLI::App* add_command(CLI::App* parent, std::vector<Command>& commands, const ch
 int main(int argc, char** argv) {
   CLI::App app{"dampbench: identify damper models from test data and compare models and optimizers at scale"};
   app.set_version_flag("--version", std::string("dampbench ") + DAMPBENCH_VERSION + " (" + DAMPBENCH_BUILD_FLAGS + ")" +
-                                        (dampbench::distributed::built_with_mpi() ? ", with MPI" : ", without MPI"));
+                                        (dampbench::distributed::built_with_mpi() ? ", with MPI" : ", without MPI") +
+                                        ", vector kernels " + dampbench::isa_summary());
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  std::string isa;
+  app.add_option("--isa", isa,
+                 "vector instruction set of the kernels: sse2, avx2 or avx512 (default: the CPU's best, or the "
+                 "DAMPBENCH_ISA variable); results are bit-identical within one level");
   std::vector<Command> commands;
 
   add_command<std::string>(&app, commands, "models", "list every model with parameter names, units and default bounds",
@@ -164,7 +171,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string word = argv[i];
       if (word.starts_with("-")) {
-        if (word == "--threads") ++i;
+        if (word == "--threads" || word == "--isa") ++i;
         continue;
       }
       try {
@@ -182,6 +189,8 @@ int main(int argc, char** argv) {
   try {
     std::optional<tbb::global_control> limit;
     if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    if (!isa.empty()) select_isa(isa, "--isa");
+    else if (const char* variable = std::getenv("DAMPBENCH_ISA"); variable && *variable) select_isa(variable, "DAMPBENCH_ISA");
     for (const Command& command : commands)
       if (command.app->parsed()) return command.run();
   } catch (const StoreError& e) {

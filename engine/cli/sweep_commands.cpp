@@ -16,6 +16,7 @@
 #include "engine/cli/preset.hpp"
 #include "engine/common/error.hpp"
 #include "engine/distributed/merge.hpp"
+#include "engine/kernels/isa.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/runner.hpp"
@@ -145,6 +146,21 @@ int verify_command(const VerifyOptions& o) {
   const sweep::Store store = sweep::Store::open(o.store);
   const sweep::StoreHeader header = store.header();
   const std::string spec_path = o.spec.empty() ? header.spec_path : o.spec;
+  // Vector levels differ in the last bits (engine/kernels/isa.hpp): re-run at the store's level if this CPU has it.
+  if (const std::string stored = sweep::isa_of_build_flags(header.build_flags);
+      !stored.empty() && stored != isa_name(active_isa())) {
+    const auto level = parse_isa(stored);
+    if (level && std::ranges::find(supported_isas(), *level) != supported_isas().end()) {
+      std::cout << fmt::format("note: the store was computed with {} kernels; verify re-runs them with {} (this process "
+                               "would use {})\n", stored, stored, isa_name(active_isa()));
+      select_isa(*level);
+    } else {
+      std::cout << fmt::format("note: the store was computed with {} vector kernels, which this CPU or build does not "
+                               "have (it has {}): results of different levels differ in the last bits of vector math, "
+                               "and a fit's path can then differ (docs/performance.md, \"Vector levels\")\n",
+                               stored, isa_summary());
+    }
+  }
   if (header.dampbench_version != sweep::dampbench_version() || header.build_flags != sweep::build_flags())
     std::cout << fmt::format("note: the store was written by dampbench {} ({}), this is {} ({}); differences may come "
                              "from the build\n",

@@ -18,6 +18,7 @@
 
 #include "engine/model/model.hpp"
 #include "engine/common/vector_math.hpp"
+#include "engine/kernels/isa.hpp"
 
 namespace dampbench {
 
@@ -100,28 +101,43 @@ struct LaneSums {
   }
 };
 
+/// A kernel template KernelT<Law, W> run over a whole record for one block of W lanes: the metric sums of the
+/// first `count` lanes into `sums` and/or their forces into `forces` (lane l's force at sample k in
+/// forces[l·n + k], n samples); a lane the kernel flags as failed gets +inf sums and NaN forces. Run through
+/// IsaClones (engine/kernels/isa.hpp), so the whole time loop is compiled for each vector instruction set.
+template <class Law, template <class, int> class KernelT, int W>
+struct LaneBlockRun {
+  static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, MetricSums* sums, double* forces) {
+    KernelT<Law, W> kernel(*lanes, *data);
+    LaneSums<W> lane_sums;
+    alignas(64) double f[W];
+    const std::size_t n = data->size();
+    for (std::size_t k = 0; k < n; ++k) {
+      kernel.forces(k, f);
+      if (sums) lane_sums.add(f, data->F_N[k], data->w_trapz_s[k]);
+      if (forces)
+        for (int l = 0; l < count; ++l) forces[static_cast<std::size_t>(l) * n + k] = f[l];
+    }
+    const bool* failed = kernel.failed();
+    if (sums) lane_sums.store(sums, count, failed);
+    if (forces && failed)
+      for (int l = 0; l < count; ++l)
+        if (failed[l]) std::fill(forces + static_cast<std::size_t>(l) * n, forces + static_cast<std::size_t>(l + 1) * n, std::nan(""));
+  }
+};
+
 /// A Model from a Law and a kernel template KernelT<Law, W>, which has:
 ///   KernelT(const LawLanes<Law, W>&, const Signals&);
 ///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
 ///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
 /// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
+/// evaluate_block, simulate and simulate_block run the same lane block at the active vector level, so they
+/// see the same bits; evaluate_scalar runs one lane (W = 1) of plain scalar code, the reference of `bench`.
 template <class Law, template <class, int> class KernelT>
 class KernelModel final : public Model {
+  using Block = IsaClones<LaneBlockRun<Law, KernelT, kLanes>>;
   using Kernel = KernelT<Law, kLanes>;
-
-  /// Metric sums of a block of W lanes (count ≤ W candidates).
-  template <int W>
-  static void run_block(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) {
-    KernelT<Law, W> kernel(gather_lanes<Law, W>(batch, first, count), data);
-    LaneSums<W> sums;
-    alignas(64) double f[W];
-    for (std::size_t k = 0; k < data.size(); ++k) {
-      kernel.forces(k, f);
-      sums.add(f, data.F_N[k], data.w_trapz_s[k]);
-    }
-    sums.store(out, count, kernel.failed());
-  }
 
  public:
   [[nodiscard]] std::string_view id() const override { return Law::info().id; }
@@ -131,37 +147,28 @@ class KernelModel final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override {
-    run_block<kLanes>(batch, first, count, data, out);
+    const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
+    Block::call(&lanes, &data, count, out, static_cast<double*>(nullptr));
   }
 
   void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                        MetricSums* out) const override {
-    for (int i = 0; i < count; ++i) run_block<1>(batch, first + i, 1, data, out + i);
+    for (int i = 0; i < count; ++i) {
+      const auto lane = gather_lanes<Law, 1>(batch, first + i, 1);
+      LaneBlockRun<Law, KernelT, 1>::run(&lane, &data, 1, out + i, nullptr);
+    }
   }
 
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
-    Kernel kernel(broadcast_lanes<Law, kLanes>(params), data);
+    const auto lanes = broadcast_lanes<Law, kLanes>(params);
     std::vector<double> force(data.size());
-    alignas(64) double f[kLanes];
-    for (std::size_t k = 0; k < data.size(); ++k) {
-      kernel.forces(k, f);
-      force[k] = f[0];
-    }
-    if (kernel.failed() && kernel.failed()[0]) std::fill(force.begin(), force.end(), std::nan(""));
+    Block::call(&lanes, &data, 1, static_cast<MetricSums*>(nullptr), force.data());
     return force;
   }
 
   void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override {
-    Kernel kernel(gather_lanes<Law, kLanes>(batch, first, count), data);
-    const std::size_t n = data.size();
-    alignas(64) double f[kLanes];
-    for (std::size_t k = 0; k < n; ++k) {
-      kernel.forces(k, f);
-      for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[l];
-    }
-    if (const bool* failed = kernel.failed())
-      for (int l = 0; l < count; ++l)
-        if (failed[l]) std::fill(out + static_cast<std::size_t>(l) * n, out + static_cast<std::size_t>(l + 1) * n, std::nan(""));
+    const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
+    Block::call(&lanes, &data, count, static_cast<MetricSums*>(nullptr), out);
   }
 
   [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {

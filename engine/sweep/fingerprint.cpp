@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/common/random.hpp"
+#include "engine/kernels/isa.hpp"
 
 #ifndef DAMPBENCH_VERSION
 #error "dampbench_sweep needs DAMPBENCH_VERSION (engine/sweep/CMakeLists.txt)"
@@ -26,7 +27,17 @@ std::uint64_t mix_doubles(std::uint64_t h, const std::vector<double>& v) {
 }  // namespace
 
 std::string dampbench_version() { return DAMPBENCH_VERSION; }
-std::string build_flags() { return DAMPBENCH_BUILD_FLAGS; }
+std::string build_flags() { return fmt::format("{},isa={}", DAMPBENCH_BUILD_FLAGS, isa_name(active_isa())); }
+
+std::string isa_of_build_flags(std::string_view flags) {
+  const auto at = flags.rfind(",isa=");
+  return at == std::string_view::npos ? std::string() : std::string(flags.substr(at + 5));
+}
+
+bool differ_only_in_isa(std::string_view a, std::string_view b) {
+  const auto strip = [](std::string_view f) { return f.substr(0, f.rfind(",isa=")); };
+  return a != b && strip(a) == strip(b) && !isa_of_build_flags(a).empty() && !isa_of_build_flags(b).empty();
+}
 
 std::string dataset_hash(const Signals& d) {
   std::uint64_t h = hash_name(d.name);

@@ -412,8 +412,12 @@ Store Store::create_or_resume(const std::string& path, const StoreHeader& h) {
   if (version != h.dampbench_version || flags != h.build_flags)
     throw StoreError(fmt::format(
         "store '{}' was written by dampbench {} ({}), this is dampbench {} ({}): its results would not be "
-        "bit-identical; give another --store or --fresh to start over",
-        path, version, flags, h.dampbench_version, h.build_flags));
+        "bit-identical; {}give another --store or --fresh to start over",
+        path, version, flags, h.dampbench_version, h.build_flags,
+        version == h.dampbench_version && differ_only_in_isa(flags, h.build_flags)
+            ? fmt::format("resume it with the vector level it was written with (--isa {}, if this CPU has it), or ",
+                          isa_of_build_flags(flags))
+            : ""));
   if (const std::string hash = store.meta("spec_hash"); hash != h.spec_hash)
     throw StoreError(fmt::format(
         "store '{}' belongs to another sweep spec ('{}' from {}, spec hash {}; this spec '{}' has hash {}): give "

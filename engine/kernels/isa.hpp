@@ -1,0 +1,83 @@
+#pragma once
+// Runtime choice of the vector instruction set the lane kernels run with (issue 16). One default build runs
+// on any x86-64 CPU and uses the best level of the CPU it runs on:
+//   sse2    x86-64 baseline (SSE2): 2 doubles per vector, libmvec's _ZGVb variants
+//   avx2    x86-64-v3 (AVX2, FMA, BMI2): 4 doubles, _ZGVd variants
+//   avx512  x86-64-v4 (AVX-512 F/CD/BW/DQ/VL): 8 doubles, _ZGVe variants
+// A build with -DDAMPBENCH_NATIVE=ON has one level, "native" (whatever -march=native gives); a non-x86 build
+// has one level, "generic".
+//
+// How: IsaClones<Body> compiles Body::run three times, with GCC/Clang function attributes
+// target("arch=x86-64-v3") / target("arch=x86-64-v4") and flatten (everything Body::run calls is inlined
+// into the clone and vectorized for its level; what cannot be inlined stays baseline code, so no
+// instruction of a higher level leaks into code that runs on any CPU). call() picks the clone of the active
+// level. The compiler's own multiversioning (target_clones) would pick at load time with no way to choose a
+// lower level; Google Highway's dynamic dispatch does the same job for kernels written in Highway's vector
+// types, while ours are `omp simd` lane loops (engine/kernels/lane_kernel.hpp) whose vector math is
+// libmvec, which the compiler selects per level by itself (engine/common/vector_math.hpp).
+//
+// Reproducibility: a level gives the same bits on every CPU that has it, for any thread count or batch
+// split. Levels differ from each other in the last bits of vector exp/log/sin/... (libmvec's variants are
+// different code), so the level is part of build_flags() (engine/sweep/fingerprint.hpp): a store resumes,
+// merges and runs across MPI ranks on one level only, and `verify` re-runs at the store's level.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dampbench {
+
+enum class Isa { sse2, avx2, avx512, native, generic };
+
+/// "sse2", "avx2", "avx512", "native", "generic".
+std::string_view isa_name(Isa isa);
+/// The level named `name` (one of isa_name's), or nullopt.
+std::optional<Isa> parse_isa(std::string_view name);
+
+/// Levels this build can run on this CPU, lowest first (one entry for native and non-x86 builds).
+const std::vector<Isa>& supported_isas();
+/// The highest of supported_isas(): the level kernels run with unless select_isa chose another.
+Isa best_isa();
+/// The level the kernels run with now.
+Isa active_isa();
+/// Runs the kernels with `isa` from now on (call it before any evaluation starts, e.g. at start-up).
+/// Throws InputError naming the supported levels if this CPU or build does not have it.
+void select_isa(Isa isa);
+/// select_isa(parse_isa(name)) with `where` (an option or variable name) in the error message.
+void select_isa(std::string_view name, std::string_view where);
+/// "avx512 (of sse2, avx2, avx512)": the active level and the supported ones, for --version and bench.
+std::string isa_summary();
+
+#if defined(__x86_64__) && !defined(DAMPBENCH_NATIVE_BUILD)
+#define DAMPBENCH_ISA_DISPATCH 1
+#else
+#define DAMPBENCH_ISA_DISPATCH 0
+#endif
+
+/// Body::run(args...) compiled once per level; call() runs the active level's copy.
+template <class Body>
+struct IsaClones {
+  template <class... Args>
+  static void call(Args... args) {
+#if DAMPBENCH_ISA_DISPATCH
+    switch (active_isa()) {
+      case Isa::avx512: return avx512(args...);
+      case Isa::avx2: return avx2(args...);
+      default: return sse2(args...);
+    }
+#else
+    Body::run(args...);
+#endif
+  }
+
+#if DAMPBENCH_ISA_DISPATCH
+  template <class... Args>
+  [[gnu::target("arch=x86-64-v4"), gnu::flatten]] static void avx512(Args... args) { Body::run(args...); }
+  template <class... Args>
+  [[gnu::target("arch=x86-64-v3"), gnu::flatten]] static void avx2(Args... args) { Body::run(args...); }
+  template <class... Args>
+  [[gnu::flatten]] static void sse2(Args... args) { Body::run(args...); }
+#endif
+};
+
+}  // namespace dampbench
