@@ -117,6 +117,7 @@ struct NoContext {};
 struct BoucWen {
   static constexpr int kParams = 8, kStates = 1;
   static constexpr double kSubstepsPerStroke = 400;  // 2.4e-5 vs CVODE (tests/test_ode_models.cpp); 1/600: 6.6e-6
+  static constexpr bool kStrokeDriven = true;        // sub-steps by the interval's |v| (engine/kernels/ode_kernel.hpp)
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.bouc_wen", "Bouc-Wen model (Wen 1976), as cited by mfm and fdsp",
@@ -162,6 +163,7 @@ struct Spencer {
   static constexpr int kParams = 10, kStates = 2;  // states: y, z
   static constexpr int kLaneInvariants = 1, kInvC0C1 = 10;  // 1/(c0 + c1), once per lane block
   static constexpr double kSubstepsPerStroke = 400;  // 2.2e-5 vs CVODE; 1/600: 9.0e-6
+  static constexpr bool kStrokeDriven = true;        // z by the motion; y's relaxation is in stiffness()
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.spencer", "mfm eq. 1 (Spencer et al. 1997 phenomenological model)",
@@ -244,7 +246,8 @@ template <class Layout>
 struct FdspLaw {
   static constexpr int kParams = Layout::kParams;
   static constexpr int kStates = 3;  // q, p, u
-  static constexpr double kSubstepsPerStroke = 300;  // 1.6e-6 vs CVODE; 1/600: 8.0e-7
+  static constexpr double kSubstepsPerStroke = 300;  // 1.6e-6 vs CVODE (4.1e-6 with kStrokeDriven); 1/600: 8.0e-7
+  static constexpr bool kStrokeDriven = true;        // p by the motion; q's relaxation and the filter η in stiffness()
   using Context = FdspContext;
   static const ModelInfo& info() { return Layout::info(); }
   static Context context(const Signals& s) { return fdsp_context(s); }

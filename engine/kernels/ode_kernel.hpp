@@ -8,10 +8,14 @@
 // integration error alone. States start at zero at the first sample (MODELS.md).
 //
 // Sub-step rule (from the record only, the same for every lane): on the interval [t_k, t_k+1] the
-// number of RK4 sub-steps is ceil(dt·max|v| / (ΔZ / Law::kSubstepsPerStroke)), at least 1: a sub-step
+// number of RK4 sub-steps is ceil(dt·V / (ΔZ / Law::kSubstepsPerStroke)), at least 1: a sub-step
 // never moves the piston more than 1/kSubstepsPerStroke of the peak-to-peak stroke ΔZ. Hysteretic
 // states change over a fraction of the stroke, whatever the sampling rate, so the rule ties the step
-// to the motion rather than to the clock.
+// to the motion rather than to the clock. V is the record's peak |v|, or, for a law whose states are driven
+// by the motion (`Law::kStrokeDriven`: Bouc–Wen evolutions, dz/dt ∝ relative velocity), the larger |v| at
+// the interval's two ends (v is linear in between): the same bound on the stroke per sub-step, with fewer
+// sub-steps where the piston moves slowly (2/π as many on a sine; issue 16). A law with relaxation on the
+// clock (generalized Maxwell) keeps the peak |v|: its state keeps changing at a reversal.
 //
 // Stiff lanes (issue 13): a law may also give an upper estimate of its Jacobian's spectral radius λ [1/s]
 // from one lane's parameters and the record's scales (`Law::stiffness`, below). Lane l then takes
@@ -22,11 +26,18 @@
 // batch split gives the same bits). A lane that would need more than kMaxSubsteps on some interval is
 // masked as too stiff (the share is what `bench` reports as masked), so no candidate can stall a batch.
 //
+// The estimate uses the record's peak |v| on every interval, also for stroke-driven laws: a sub-step count
+// that depended on a lane's parameters interval by interval (tried: λ interpolated by the interval's |v|, 1.3×
+// faster on the bench record) makes the objective jump by the discretization error (~1e-5) wherever a count
+// changes, and ga-lm no longer reached the noise-free optimum of Narrowing.RecoversSpencerParameters...
+// (9.7e-6 instead of < 1e-10).
+//
 // Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
 // marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
 //
 // A Law provides:
 //   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
+//   optional: static constexpr bool kStrokeDriven (see the sub-step rule; default false)
 //   static const ModelInfo& info();
 //   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
 //   template <class P, class Y, class DY>
@@ -58,11 +69,12 @@ inline constexpr double kStiffStep = 1.0;
 /// Sub-steps per sample interval beyond which a lane is masked as too stiff.
 inline constexpr int kMaxSubsteps = 512;
 
-/// RK4 sub-steps on the sample interval [k−1, k] by the rule above.
-inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke) {
+/// RK4 sub-steps on the sample interval [k−1, k] by the rule above (local: V from the interval's ends).
+inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke, bool local) {
   const double dt = data.t_s[k] - data.t_s[k - 1];
   if (data.displacement_ptp <= 0) return 1;
-  const double n = std::ceil(dt * data.velocity_max_abs * substeps_per_stroke / data.displacement_ptp);
+  const double v_max = local ? std::max(std::fabs(data.v_m_s[k - 1]), std::fabs(data.v_m_s[k])) : data.velocity_max_abs;
+  const double n = std::ceil(dt * v_max * substeps_per_stroke / data.displacement_ptp);
   return std::max(1, static_cast<int>(std::min(n, 1e6)));
 }
 
@@ -79,6 +91,10 @@ class OdeKernel {
  public:
   static constexpr int S = Law::kStates;
   using State = LaneState<W>;
+  static constexpr bool kStrokeDriven = [] {
+    if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
+    else return false;
+  }();
 
   OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
       : p_(p), data_(data), ctx_(Law::context(data)) {
@@ -128,7 +144,7 @@ class OdeKernel {
  private:
   /// Integrates every lane from sample k−1 to sample k.
   void advance(std::size_t k) {
-    const int n = ode_substeps(data_, k, Law::kSubstepsPerStroke);
+    const int n = ode_substeps(data_, k, Law::kSubstepsPerStroke, kStrokeDriven);
     const double dt = data_.t_s[k] - data_.t_s[k - 1];
     const double x0 = data_.x_m[k - 1], dx = data_.x_m[k] - x0;
     const double v0 = data_.v_m_s[k - 1], dv = data_.v_m_s[k] - v0;
