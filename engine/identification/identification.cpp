@@ -126,7 +126,7 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
   const BatchEvaluator evaluator(model, data, settings.grain_blocks);
   CandidateBatch batch(model.dim(), offset[R]);
   std::vector<double> values(offset[R]);
-  std::vector<int> active;
+  std::vector<int> active, first_row;  // unfinished runs and the first row of each one's candidates
   std::vector<int> stalled(R, 0);
   long long evaluations = 0;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -134,6 +134,7 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
   // Lockstep: every unfinished run asks, one batch is evaluated, every run is told its slice.
   for (;;) {
     active.clear();
+    first_row.clear();
     int rows = 0;
     for (int r = 0; r < R; ++r) {
       RunResult& run = result.runs[r];
@@ -142,28 +143,27 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
       else run.stop_reason = budget_stop(settings.budget, run, stalled[r], elapsed());
       if (!run.stop_reason.empty()) continue;
       active.push_back(r);
+      first_row.push_back(rows);
       rows += runs[r]->batch_size();
     }
     if (active.empty()) break;
     if (rows != batch.count()) batch.resize(model.dim(), rows);
-    int row = 0;
-    for (int r : active) {
-      runs[r]->ask(batch, row);
-      row += runs[r]->batch_size();
-    }
+    // Each run's ask and tell touch only that run's state and rows, so the runs go across cores (the
+    // serial share of a generation, issue 16); a run's arithmetic is the same on any thread: same bits.
+    const int A = static_cast<int>(active.size());
+    tbb::parallel_for(0, A, [&](int i) { runs[active[i]]->ask(batch, first_row[i]); });
     evaluator.evaluate(batch, settings.metric, std::span(values.data(), rows));
     evaluations += rows;
-    row = 0;
-    for (int r : active) {
+    tbb::parallel_for(0, A, [&](int i) {
+      const int r = active[i];
       RunResult& run = result.runs[r];
       const int n = runs[r]->batch_size();
-      runs[r]->tell(std::span<const double>(values.data() + row, n));
+      runs[r]->tell(std::span<const double>(values.data() + first_row[i], n));
       run.evaluations += n;
       stalled[r] = (!run.trace.empty() && !(runs[r]->best_value() < run.trace.back())) ? stalled[r] + 1 : 0;
       run.trace.push_back(runs[r]->best_value());
       run.trace_evaluations.push_back(run.evaluations);
-      row += n;
-    }
+    });
   }
 
   // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
