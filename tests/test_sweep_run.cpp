@@ -27,6 +27,7 @@
 
 #include "engine/record/csv_loader.hpp"
 #include "engine/record/excitation.hpp"
+#include "engine/kernels/isa.hpp"
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/store.hpp"
 #include "models/registry.hpp"
@@ -418,6 +419,51 @@ TEST_F(ExeSweep, InterruptedAndKilledSweepResumesBitIdentical) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("candidate-samples/s"), std::string::npos);
   expect_same_results(store.string(), fresh.string());
+}
+
+TEST_F(ExeSweep, AStoreKeepsItsVectorLevel) {
+  // The vector level is part of the build flags (engine/kernels/isa.hpp): a store written with one level is
+  // resumed with that level only, and verify re-runs it with the store's level, bit for bit.
+  if (supported_isas().size() < 2) GTEST_SKIP() << "one vector level on this machine and build (" << isa_summary() << ")";
+  const std::string low(isa_name(supported_isas().front())), best(isa_name(best_isa()));
+  write(spec_, fmt::format(R"toml(name = "levels"
+runs = 2
+models = ["fvd.generalized_viscous"]
+[optimizer]
+population = 10
+iterations = 8
+[[datasets]]
+name = "tests"
+files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
+)toml",
+                           dir_.string()));
+  const fs::path store = dir_ / "low.sqlite";
+  auto r = run_dampbench("--isa " + low + " " + args(store));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(Store::open(store.string()).header().build_flags.find(",isa=" + low), std::string::npos);
+
+  r = run_dampbench(args(store));  // the CPU's best level
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("isa=" + best), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--isa " + low), std::string::npos) << r.output;
+  r = run_dampbench("--isa " + low + " " + args(store));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+
+  r = run_dampbench("verify " + store.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("verify re-runs them with " + low), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("every stored number identical bit for bit"), std::string::npos) << r.output;
+
+  r = run_dampbench("--isa avx1024 " + args(store));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--isa: expected one of"), std::string::npos) << r.output;
+  setenv("DAMPBENCH_ISA", "avx1024", 1);
+  r = run_dampbench("models");
+  unsetenv("DAMPBENCH_ISA");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("DAMPBENCH_ISA: expected one of"), std::string::npos) << r.output;
+  r = run_dampbench("--version");
+  EXPECT_NE(r.output.find("vector kernels " + best), std::string::npos) << r.output;
 }
 
 TEST_F(ExeSweep, ChangedSpecIsRefusedAndVerifyDetectsAlteredNumbers) {

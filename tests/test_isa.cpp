@@ -1,0 +1,148 @@
+// Vector levels (engine/kernels/isa.hpp): names, refusal of a level this CPU lacks, the same bits within a
+// level for any thread count and batch split, simulate and evaluate seeing the same kernel, and how far the
+// levels differ from each other (printed per model; docs/performance.md "Vector levels" quotes it).
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "engine/common/error.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/evaluation/bench_workload.hpp"
+#include "engine/kernels/isa.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench {
+namespace {
+
+/// Restores the level a test started with.
+struct KeepIsa {
+  Isa saved = active_isa();
+  ~KeepIsa() { select_isa(saved); }
+};
+
+std::vector<double> metrics(const Model& model, const Signals& data, const CandidateBatch& batch, int grain, int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  const BatchEvaluator evaluator(model, {&data}, grain);
+  std::vector<double> out(static_cast<std::size_t>(batch.count()));
+  evaluator.evaluate(batch, Metric::nrmse, out);
+  return out;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+TEST(Isa, NamesRoundTripAndUnknownNamesAreRefused) {
+  for (Isa i : {Isa::sse2, Isa::avx2, Isa::avx512, Isa::native, Isa::generic}) EXPECT_EQ(parse_isa(isa_name(i)), i);
+  EXPECT_FALSE(parse_isa("avx1024"));
+  KeepIsa keep;
+  try {
+    select_isa("avx1024", "--isa");
+    FAIL() << "an unknown level was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--isa: expected one of"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("got 'avx1024'"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(active_isa(), keep.saved);
+}
+
+TEST(Isa, ALevelTheCpuLacksIsRefused) {
+  KeepIsa keep;
+  const auto& have = supported_isas();
+  ASSERT_FALSE(have.empty());
+  EXPECT_EQ(best_isa(), have.back());
+  EXPECT_EQ(active_isa(), best_isa()) << "kernels must start at the CPU's best level";
+  for (Isa i : {Isa::sse2, Isa::avx2, Isa::avx512, Isa::native, Isa::generic}) {
+    if (std::find(have.begin(), have.end(), i) != have.end()) {
+      select_isa(i);
+      EXPECT_EQ(active_isa(), i);
+    } else {
+      EXPECT_THROW(select_isa(i), InputError) << isa_name(i);
+    }
+  }
+  std::printf("vector levels: %s\n", isa_summary().c_str());
+}
+
+TEST(Isa, EveryLevelGivesTheSameBitsForAnyThreadCountAndBatchSplit) {
+  KeepIsa keep;
+  for (const char* id : {"fvd.gv_linear_elastic", "mrd.magic_formula", "mrd.bouc_wen", "mrd.spencer"}) {
+    const Model& model = find_model(id);
+    const Signals data = bench_record(model, 513, 1.0, 256.0);
+    const CandidateBatch batch = bench_candidates(model, 100, 7);  // 100: a partial last lane block
+    for (Isa level : supported_isas()) {
+      select_isa(level);
+      const auto reference = metrics(model, data, batch, 1, 1);
+      EXPECT_TRUE(same_bits(reference, metrics(model, data, batch, 1, 2))) << id << " " << isa_name(level);
+      EXPECT_TRUE(same_bits(reference, metrics(model, data, batch, 3, 2))) << id << " " << isa_name(level);
+      // One candidate alone in a block gives the bits it gets among 99 others.
+      CandidateBatch one(model.dim(), 1);
+      one.set_candidate(0, batch.candidate(37));
+      EXPECT_EQ(metrics(model, data, one, 1, 1)[0], reference[37]) << id << " " << isa_name(level);
+    }
+  }
+}
+
+TEST(Isa, SimulateAndEvaluateRunTheSameKernelAtEveryLevel) {
+  KeepIsa keep;
+  for (const char* id : {"fvd.gv_linear_elastic", "mrd.spencer"}) {
+    const Model& model = find_model(id);
+    const Signals data = bench_record(model, 257, 1.0, 128.0);
+    const CandidateBatch batch = bench_candidates(model, 3, 11);
+    for (Isa level : supported_isas()) {
+      select_isa(level);
+      MetricSums sums[3];
+      model.evaluate_block(batch, 0, 3, data, sums);
+      for (int i = 0; i < 3; ++i) {
+        const auto force = model.simulate(batch.candidate(i), data);
+        double abs_e = 0;  // the kernel's own accumulation order: sample by sample
+        for (std::size_t k = 0; k < data.size(); ++k) abs_e += std::fabs(data.F_N[k] - force[k]);
+        EXPECT_EQ(abs_e, sums[i].abs) << id << " " << isa_name(level) << " candidate " << i;
+      }
+    }
+  }
+}
+
+TEST(Isa, LevelsAgreeToRoundingOnEveryModel) {
+  // The levels run the same arithmetic (-ffp-contract=off: no fused multiply-add is introduced) except the
+  // vector math functions, whose libmvec variants differ by a few ulp. Every model's bench metrics at every
+  // level must agree with the lowest level to 1e-11 relative: about a thousand times the largest difference
+  // measured (1.7e-14, mrd.bouc_wen over 2 049 samples, AMD EPYC 2026-11-23; most algebraic models are
+  // identical), far below any difference a fit could resolve.
+  KeepIsa keep;
+  const auto& levels = supported_isas();
+  if (levels.size() < 2) GTEST_SKIP() << "one vector level on this machine and build (" << isa_summary() << ")";
+  for (const Model* model : all_models()) {
+    const Signals data = bench_record(*model, 2049, 1.0, 1024.0);
+    const CandidateBatch batch = bench_candidates(*model, 64, 3);
+    select_isa(levels.front());
+    const auto low = metrics(*model, data, batch, 1, 2);
+    for (std::size_t li = 1; li < levels.size(); ++li) {
+      select_isa(levels[li]);
+      const auto high = metrics(*model, data, batch, 1, 2);
+      double worst = 0;
+      int identical = 0;
+      for (std::size_t i = 0; i < low.size(); ++i) {
+        if (!std::isfinite(low[i]) || !std::isfinite(high[i])) {
+          EXPECT_EQ(std::isfinite(low[i]), std::isfinite(high[i])) << model->id() << " candidate " << i;
+          continue;
+        }
+        identical += low[i] == high[i];
+        worst = std::max(worst, std::fabs(high[i] - low[i]) / std::max(std::fabs(low[i]), 1e-300));
+      }
+      std::printf("%-28s %s vs %s: worst relative metric difference %.2g, %d of %zu identical\n",
+                  std::string(model->id()).c_str(), std::string(isa_name(levels[li])).c_str(),
+                  std::string(isa_name(levels.front())).c_str(), worst, identical, low.size());
+      EXPECT_LT(worst, 1e-11) << model->id() << " " << isa_name(levels[li]);
+    }
+  }
+}
+
+}  // namespace dampbench
