@@ -16,10 +16,12 @@
 // types, while ours are `omp simd` lane loops (engine/kernels/lane_kernel.hpp) whose vector math is
 // libmvec, which the compiler selects per level by itself (engine/common/vector_math.hpp).
 //
-// Reproducibility: a level gives the same bits on every CPU that has it, for any thread count or batch
-// split. Levels differ from each other in the last bits of vector exp/log/sin/... (libmvec's variants are
-// different code), so the level is part of build_flags() (engine/sweep/fingerprint.hpp): a store resumes,
-// merges and runs across MPI ranks on one level only, and `verify` re-runs at the store's level.
+// Reproducibility: at one level the kernels run the same instructions on every CPU that has it, so they give
+// the same bits for any thread count or batch split. Levels differ from each other in the last bits of
+// vector exp/log/sin/... (libmvec's variants are different code; tests/test_isa.cpp measures by how much), so
+// the level is part of build_flags() (engine/sweep/fingerprint.hpp): a store resumes, merges and runs across
+// MPI ranks on one level only, and `verify` re-runs at the store's level. (glibc's scalar libm, used outside
+// the kernels, picks its code by CPU features too; the MPI fingerprint compares those.)
 #include <optional>
 #include <string>
 #include <string_view>
