@@ -57,11 +57,13 @@ def make_fvd_objective(s):
 
 
 def ode_substeps(s, k, per_stroke):
-    """engine/kernels/ode_kernel.hpp ode_substeps: ceil(dt*max|v|*per_stroke/ptp), at least 1."""
+    """engine/kernels/ode_kernel.hpp ode_substeps for a stroke-driven law (Bouc-Wen):
+    ceil(dt*V*per_stroke/ptp), at least 1, V the larger |v| at the interval's two ends."""
     dt = s["t"][k] - s["t"][k - 1]
     if s["ptp"] <= 0:
         return 1
-    n = math.ceil(dt * s["vmax"] * per_stroke / s["ptp"])
+    vk = max(abs(s["v"][k - 1]), abs(s["v"][k]))
+    n = math.ceil(dt * vk * per_stroke / s["ptp"])
     return max(1, int(min(n, 1e6)))
 
 

@@ -49,6 +49,12 @@ CLI::App* add_command(CLI::App* parent, std::vector<Command>& commands, const ch
 }  // namespace
 
 int main(int argc, char** argv) {
+  // DAMPBENCH_ISA first, so that --version shows the level it chose (a bad value is reported below).
+  const char* isa_variable = std::getenv("DAMPBENCH_ISA");
+  if (isa_variable && *isa_variable) try {
+      dampbench::select_isa(isa_variable, "DAMPBENCH_ISA");
+    } catch (const dampbench::InputError&) {
+    }
   CLI::App app{"dampbench: identify damper models from test data and compare models and optimizers at scale"};
   app.set_version_flag("--version", std::string("dampbench ") + DAMPBENCH_VERSION + " (" + DAMPBENCH_BUILD_FLAGS + ")" +
                                         (dampbench::distributed::built_with_mpi() ? ", with MPI" : ", without MPI") +
@@ -144,13 +150,15 @@ int main(int argc, char** argv) {
   datasets->require_subcommand(1);
   add_command<DatasetsOptions>(datasets, commands, "generate",
       "write the grids ahead of first use (run does it when needed)", add_datasets_options, datasets_command);
-  add_command<BenchOptions>(&app, commands, "bench",
+  auto* bench_cmd = add_command<BenchOptions>(&app, commands, "bench",
       "throughput of every model with 1 and 2 threads (docs/performance.md)", add_bench_options, bench_command);
   auto* lssvm_cmd = add_command<LssvmOptions>(&app, commands, "lssvm",
       "LS-SVM damper model (lssvm paper): GA-tuned, one-step and free-run test metrics", add_lssvm_options,
       lssvm_command);
   for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, verify_cmd, compare_cmd, lssvm_cmd})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, compare_cmd, lssvm_cmd, bench_cmd})
+    cmd->add_option("--isa", isa, "vector instruction set of the kernels: sse2, avx2 or avx512 (default: the CPU's best)");
 
   using namespace dampbench;
   auto fail = [](int code, const std::string& message) {
@@ -190,7 +198,7 @@ int main(int argc, char** argv) {
     std::optional<tbb::global_control> limit;
     if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     if (!isa.empty()) select_isa(isa, "--isa");
-    else if (const char* variable = std::getenv("DAMPBENCH_ISA"); variable && *variable) select_isa(variable, "DAMPBENCH_ISA");
+    else if (isa_variable && *isa_variable) select_isa(isa_variable, "DAMPBENCH_ISA");
     for (const Command& command : commands)
       if (command.app->parsed()) return command.run();
   } catch (const StoreError& e) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/store.hpp"
 
 namespace dampbench::distributed {
@@ -15,8 +16,12 @@ std::string header_difference(const sweep::StoreHeader& a, const sweep::StoreHea
   if (a.spec_hash != b.spec_hash)
     return fmt::format("another sweep spec ('{}', spec hash {}, vs '{}', {})", b.name, b.spec_hash, a.name, a.spec_hash);
   if (a.dampbench_version != b.dampbench_version || a.build_flags != b.build_flags)
-    return fmt::format("another build (dampbench {} ({}) vs {} ({}))", b.dampbench_version, b.build_flags,
-                       a.dampbench_version, a.build_flags);
+    return fmt::format("another build (dampbench {} ({}) vs {} ({})){}", b.dampbench_version, b.build_flags,
+                       a.dampbench_version, a.build_flags,
+                       a.dampbench_version == b.dampbench_version && sweep::differ_only_in_isa(a.build_flags, b.build_flags)
+                           ? "; the shards ran at different vector levels: run every shard with the same --isa "
+                             "(or DAMPBENCH_ISA) on machines that have it"
+                           : "");
   if (a.groups != b.groups || a.datasets.size() != b.datasets.size())
     return fmt::format("another plan ({} task groups and {} datasets vs {} and {})", b.groups, b.datasets.size(),
                        a.groups, a.datasets.size());

@@ -97,10 +97,15 @@ std::string executable_hash() {
 }
 
 /// The vector ISA levels glibc's math functions choose between at run time (their results may differ).
+/// The CPU features glibc's scalar libm picks its code by (FMA, AVX2). The vector level of the kernels is in
+/// build_flags(), so AVX-512 and AVX2 nodes pinned to one level (DAMPBENCH_ISA) can work together; a native
+/// build compiles everything for its CPU and also compares AVX-512.
 std::string cpu_features() {
   std::string f;
   __builtin_cpu_init();
+#ifdef DAMPBENCH_NATIVE_BUILD
   if (__builtin_cpu_supports("avx512f")) f += "avx512f ";
+#endif
   if (__builtin_cpu_supports("avx2")) f += "avx2 ";
   if (__builtin_cpu_supports("fma")) f += "fma ";
   return f.empty() ? "sse2" : f.substr(0, f.size() - 1);

@@ -33,6 +33,9 @@ class LocalProblem {
   [[nodiscard]] virtual const Bounds& bounds() const = 0;
 };
 
+/// One run of an optimizer. identify() calls the ask and tell of different runs at the same time on different
+/// cores: a run keeps its state to itself (no statics, nothing mutable shared with other runs), and ask writes
+/// only its own rows.
 class Optimizer {
  public:
   virtual ~Optimizer() = default;

@@ -14,14 +14,21 @@ constexpr std::array<std::string_view, 5> kNames{"sse2", "avx2", "avx512", "nati
 
 std::vector<Isa> detect_levels() {
 #if DAMPBENCH_ISA_DISPATCH
-  // __builtin_cpu_supports also checks that the OS saves the vector registers (XCR0).
+  // __builtin_cpu_supports also checks that the OS saves the vector registers (XCR0). GCC knows the levels
+  // by name (every feature of x86-64-v3/v4, LZCNT, MOVBE and F16C included); Clang 14 (the fuzz build) does
+  // not, nor those three features, so it checks the rest.
   __builtin_cpu_init();
   std::vector<Isa> levels{Isa::sse2};
+#if defined(__clang__)
   const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
-                  __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("avx");
+                  __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt") && __builtin_cpu_supports("sse4.2");
   const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
                   __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
                   __builtin_cpu_supports("avx512vl");
+#else
+  const bool v3 = __builtin_cpu_supports("x86-64-v3");
+  const bool v4 = v3 && __builtin_cpu_supports("x86-64-v4");
+#endif
   if (v3) levels.push_back(Isa::avx2);
   if (v4) levels.push_back(Isa::avx512);
   return levels;

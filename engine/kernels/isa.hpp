@@ -10,14 +10,16 @@
 // How: IsaClones<Body> compiles Body::run three times, with GCC/Clang function attributes
 // target("arch=x86-64-v3") / target("arch=x86-64-v4") and flatten (everything Body::run calls is inlined
 // into the clone and vectorized for its level; what cannot be inlined stays baseline code, so no
-// instruction of a higher level leaks into code that runs on any CPU). call() picks the clone of the active
+// instruction of a higher level leaks into code that runs on any CPU; Clang's flatten inlines one level
+// only, so a Clang build's clones may call baseline code: slower, still correct). call() picks the clone of the active
 // level. The compiler's own multiversioning (target_clones) would pick at load time with no way to choose a
 // lower level; Google Highway's dynamic dispatch does the same job for kernels written in Highway's vector
 // types, while ours are `omp simd` lane loops (engine/kernels/lane_kernel.hpp) whose vector math is
 // libmvec, which the compiler selects per level by itself (engine/common/vector_math.hpp).
 //
-// Reproducibility: at one level the kernels run the same instructions on every CPU that has it, so they give
-// the same bits for any thread count or batch split. Levels differ from each other in the last bits of
+// Reproducibility: at one level the kernels run the same instructions on every CPU that has it (one
+// exception: libmvec's SSE2-level functions use SSE4.1 code where the CPU has it, as every x86-64 CPU since
+// 2008 does), and the same bits for any thread count or batch split. Levels differ from each other in the last bits of
 // vector exp/log/sin/... (libmvec's variants are different code; tests/test_isa.cpp measures by how much), so
 // the level is part of build_flags() (engine/sweep/fingerprint.hpp): a store resumes, merges and runs across
 // MPI ranks on one level only, and `verify` re-runs at the store's level. (glibc's scalar libm, used outside
@@ -56,6 +58,16 @@ std::string isa_summary();
 #define DAMPBENCH_ISA_DISPATCH 0
 #endif
 
+// GCC 12's partial redundancy elimination, run over a whole flattened time loop, leaves control flow in some
+// lane loops that then stay scalar (crfd.maxwell: its force loop and first RK4 stage called scalar exp and
+// log, 0.62× the native build's speed); -fopt-info-vec shows them vectorized again without it. Clang has no
+// optimize attribute.
+#if defined(__clang__)
+#define DAMPBENCH_CLONE_OPTIMIZE
+#else
+#define DAMPBENCH_CLONE_OPTIMIZE , gnu::optimize("no-tree-pre")
+#endif
+
 /// Body::run(args...) compiled once per level; call() runs the active level's copy.
 template <class Body>
 struct IsaClones {
@@ -74,11 +86,11 @@ struct IsaClones {
 
 #if DAMPBENCH_ISA_DISPATCH
   template <class... Args>
-  [[gnu::target("arch=x86-64-v4"), gnu::flatten]] static void avx512(Args... args) { Body::run(args...); }
+  [[gnu::target("arch=x86-64-v4"), gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void avx512(Args... args) { Body::run(args...); }
   template <class... Args>
-  [[gnu::target("arch=x86-64-v3"), gnu::flatten]] static void avx2(Args... args) { Body::run(args...); }
+  [[gnu::target("arch=x86-64-v3"), gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void avx2(Args... args) { Body::run(args...); }
   template <class... Args>
-  [[gnu::flatten]] static void sse2(Args... args) { Body::run(args...); }
+  [[gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void sse2(Args... args) { Body::run(args...); }
 #endif
 };
 

@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "engine/model/model.hpp"
@@ -101,28 +102,32 @@ struct LaneSums {
   }
 };
 
-/// A kernel template KernelT<Law, W> run over a whole record for one block of W lanes: the metric sums of the
-/// first `count` lanes into `sums` and/or their forces into `forces` (lane l's force at sample k in
-/// forces[l·n + k], n samples); a lane the kernel flags as failed gets +inf sums and NaN forces. Run through
-/// IsaClones (engine/kernels/isa.hpp), so the whole time loop is compiled for each vector instruction set.
-template <class Law, template <class, int> class KernelT, int W>
+/// A kernel template KernelT<Law, W> run over a whole record for one block of W lanes: with kSums, the metric
+/// sums of the first `count` lanes into `out`; otherwise their forces (lane l's force at sample k in
+/// out[l·n + k], n samples). A lane the kernel flags as failed gets +inf sums or NaN forces. Run through
+/// IsaClones (engine/kernels/isa.hpp), so the whole time loop is compiled for each vector instruction set;
+/// both variants run the same kernel, so simulate sees the bits evaluate sees.
+template <class Law, template <class, int> class KernelT, int W, bool kSums>
 struct LaneBlockRun {
-  static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, MetricSums* sums, double* forces) {
+  using Out = std::conditional_t<kSums, MetricSums, double>;
+  static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, Out* out) {
     KernelT<Law, W> kernel(*lanes, *data);
-    LaneSums<W> lane_sums;
+    LaneSums<W> sums;
     alignas(64) double f[W];
     const std::size_t n = data->size();
     for (std::size_t k = 0; k < n; ++k) {
       kernel.forces(k, f);
-      if (sums) lane_sums.add(f, data->F_N[k], data->w_trapz_s[k]);
-      if (forces)
-        for (int l = 0; l < count; ++l) forces[static_cast<std::size_t>(l) * n + k] = f[l];
+      if constexpr (kSums) sums.add(f, data->F_N[k], data->w_trapz_s[k]);
+      else
+        for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[l];
     }
     const bool* failed = kernel.failed();
-    if (sums) lane_sums.store(sums, count, failed);
-    if (forces && failed)
+    if constexpr (kSums) {
+      sums.store(out, count, failed);
+    } else if (failed) {
       for (int l = 0; l < count; ++l)
-        if (failed[l]) std::fill(forces + static_cast<std::size_t>(l) * n, forces + static_cast<std::size_t>(l + 1) * n, std::nan(""));
+        if (failed[l]) std::fill(out + static_cast<std::size_t>(l) * n, out + static_cast<std::size_t>(l + 1) * n, std::nan(""));
+    }
   }
 };
 
@@ -136,7 +141,8 @@ struct LaneBlockRun {
 /// see the same bits; evaluate_scalar runs one lane (W = 1) of plain scalar code, the reference of `bench`.
 template <class Law, template <class, int> class KernelT>
 class KernelModel final : public Model {
-  using Block = IsaClones<LaneBlockRun<Law, KernelT, kLanes>>;
+  using SumsBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, true>>;
+  using ForcesBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, false>>;
   using Kernel = KernelT<Law, kLanes>;
 
  public:
@@ -148,27 +154,27 @@ class KernelModel final : public Model {
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override {
     const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
-    Block::call(&lanes, &data, count, out, static_cast<double*>(nullptr));
+    SumsBlock::call(&lanes, &data, count, out);
   }
 
   void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                        MetricSums* out) const override {
     for (int i = 0; i < count; ++i) {
       const auto lane = gather_lanes<Law, 1>(batch, first + i, 1);
-      LaneBlockRun<Law, KernelT, 1>::run(&lane, &data, 1, out + i, nullptr);
+      LaneBlockRun<Law, KernelT, 1, true>::run(&lane, &data, 1, out + i);
     }
   }
 
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
     const auto lanes = broadcast_lanes<Law, kLanes>(params);
     std::vector<double> force(data.size());
-    Block::call(&lanes, &data, 1, static_cast<MetricSums*>(nullptr), force.data());
+    ForcesBlock::call(&lanes, &data, 1, force.data());
     return force;
   }
 
   void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override {
     const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
-    Block::call(&lanes, &data, count, static_cast<MetricSums*>(nullptr), out);
+    ForcesBlock::call(&lanes, &data, count, out);
   }
 
   [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {

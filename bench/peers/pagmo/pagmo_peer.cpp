@@ -105,7 +105,9 @@ Record* load_record(const std::string& path, double substeps_per_stroke) {
       r->substeps[k] = 1;
       continue;
     }
-    const double s = std::ceil(dt * r->vmax * substeps_per_stroke / r->ptp);
+    // engine/kernels/ode_kernel.hpp, stroke-driven law: the larger |v| at the interval's ends
+    const double v_k = std::max(std::fabs(r->v[k - 1]), std::fabs(r->v[k]));
+    const double s = std::ceil(dt * v_k * substeps_per_stroke / r->ptp);
     r->substeps[k] = std::max(1, static_cast<int>(std::min(s, 1e6)));
   }
   return r;
