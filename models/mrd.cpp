@@ -25,9 +25,9 @@ struct XV {
 };
 XV prepare_xv(const Signals& s, std::size_t k) { return {s.x_m[k], s.v_m_s[k], s.sgn_v[k]}; }
 
-/// Bouc–Wen evolution shared by Bouc–Wen, Spencer and fdsp: dz/dt for relative velocity u.
-inline double bouc_wen_rate(double z, double u, double A, double beta, double gamma, double n) {
-  const double zn = abs_pow(z, n);
+/// Bouc–Wen evolution shared by Bouc–Wen, Spencer and fdsp: dz/dt for relative velocity u, with zn = |z|^n (the
+/// ODE kernel's power of the state z: kPowerState, kPowerExponentRow).
+inline double bouc_wen_rate(double z, double zn, double u, double A, double beta, double gamma) {
   return -gamma * std::fabs(u) * sign(z) * zn - beta * u * zn + A * u;
 }
 
@@ -118,6 +118,7 @@ struct BoucWen {
   static constexpr int kParams = 8, kStates = 1;
   static constexpr double kSubstepsPerStroke = 400;  // 2.4e-5 vs CVODE (tests/test_ode_models.cpp); 1/600: 6.6e-6
   static constexpr bool kStrokeDriven = true;        // sub-steps by the interval's |v| (engine/kernels/ode_kernel.hpp)
+  static constexpr int kPowerState = 0, kPowerExponentRow = 7;  // |z|^n
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.bouc_wen", "Bouc-Wen model (Wen 1976), as cited by mfm and fdsp",
@@ -142,8 +143,8 @@ struct BoucWen {
     return rules;
   }
   template <class P, class Y, class DY>
-  static void rhs(const P& p, int l, const Context&, double, double v, const Y& y, DY&& dy) {
-    dy[0] = bouc_wen_rate(y[0], v, p.p[6][l], p.p[4][l], p.p[5][l], p.p[7][l]);
+  static void rhs(const P& p, int l, const Context&, double, double v, const Y& y, double zn, DY&& dy) {
+    dy[0] = bouc_wen_rate(y[0], zn, v, p.p[6][l], p.p[4][l], p.p[5][l]);
   }
   template <class P, class Y>
   static double force(const P& p, int l, const Context&, double x, double v, const Y& y) {
@@ -164,6 +165,7 @@ struct Spencer {
   static constexpr int kLaneInvariants = 1, kInvC0C1 = 10;  // 1/(c0 + c1), once per lane block
   static constexpr double kSubstepsPerStroke = 400;  // 2.2e-5 vs CVODE; 1/600: 9.0e-6
   static constexpr bool kStrokeDriven = true;        // z by the motion; y's relaxation is in stiffness()
+  static constexpr int kPowerState = 1, kPowerExponentRow = 9;  // |z|^n
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.spencer", "mfm eq. 1 (Spencer et al. 1997 phenomenological model)",
@@ -204,9 +206,9 @@ struct Spencer {
     return (p.p[5][l] * s[1] + p.p[0][l] * v + p.p[2][l] * (x - s[0])) * p.p[kInvC0C1][l];
   }
   template <class P, class Y, class DY>
-  static void rhs(const P& p, int l, const Context&, double x, double v, const Y& s, DY&& ds) {
+  static void rhs(const P& p, int l, const Context&, double x, double v, const Y& s, double zn, DY&& ds) {
     ds[0] = ydot(p, l, x, v, s);
-    ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l], p.p[9][l]);
+    ds[1] = bouc_wen_rate(s[1], zn, v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l]);
   }
   template <class P, class Y>
   static double force(const P& p, int l, const Context&, double x, double v, const Y& s) {
@@ -248,6 +250,7 @@ struct FdspLaw {
   static constexpr int kStates = 3;  // q, p, u
   static constexpr double kSubstepsPerStroke = 300;  // 1.6e-6 vs CVODE (4.1e-6 with kStrokeDriven); 1/600: 8.0e-7
   static constexpr bool kStrokeDriven = true;        // p by the motion; q's relaxation and the filter η in stiffness()
+  static constexpr int kPowerState = 1, kPowerExponentRow = Layout::n;  // |p|^n
   using Context = FdspContext;
   static const ModelInfo& info() { return Layout::info(); }
   static Context context(const Signals& s) { return fdsp_context(s); }
@@ -262,11 +265,11 @@ struct FdspLaw {
     return (alpha * s[1] + C0 * v + p.p[L::K0][l] * (x - s[0])) / (C0 + C1);
   }
   template <class P, class Y, class DY>
-  static void rhs(const P& p, int l, const Context& c, double x, double v, const Y& s, DY&& ds) {
+  static void rhs(const P& p, int l, const Context& c, double x, double v, const Y& s, double pn, DY&& ds) {
     using L = Layout;
     double C1;
     ds[0] = qdot(p, l, c, x, v, s, C1);
-    ds[1] = bouc_wen_rate(s[1], v - ds[0], p.p[L::A][l], p.p[L::beta][l], p.p[L::gamma][l], p.p[L::n][l]);
+    ds[1] = bouc_wen_rate(s[1], pn, v - ds[0], p.p[L::A][l], p.p[L::beta][l], p.p[L::gamma][l]);
     ds[2] = -p.p[L::eta][l] * (s[2] - c.V);
   }
   template <class P, class Y>

@@ -110,16 +110,27 @@ struct LaneSums {
 template <class Law, template <class, int> class KernelT, int W, bool kSums>
 struct LaneBlockRun {
   using Out = std::conditional_t<kSums, MetricSums, double>;
+  /// Samples whose forces are computed before they are added to the sums. The vector calls (exp, log, ...) of
+  /// the forces clobber every vector register, so a loop that did both at each sample saved and restored the
+  /// 2·5 sum registers around every call; in chunks the force loop has nothing live across the calls and the
+  /// sums loop keeps its accumulators in registers (fvd.gv_linear_elastic: see docs/performance.md). The
+  /// order of every operation on a lane is unchanged, so are the bits.
+  static constexpr std::size_t kChunk = 16;
+
   static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, Out* out) {
     KernelT<Law, W> kernel(*lanes, *data);
     LaneSums<W> sums;
-    alignas(64) double f[W];
+    alignas(64) double f[kChunk][W];
     const std::size_t n = data->size();
-    for (std::size_t k = 0; k < n; ++k) {
-      kernel.forces(k, f);
-      if constexpr (kSums) sums.add(f, data->F_N[k], data->w_trapz_s[k]);
-      else
-        for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[l];
+    for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
+      const std::size_t m = std::min(kChunk, n - k0);
+      for (std::size_t i = 0; i < m; ++i) kernel.forces(k0 + i, f[i]);
+      for (std::size_t i = 0; i < m; ++i) {
+        const std::size_t k = k0 + i;
+        if constexpr (kSums) sums.add(f[i], data->F_N[k], data->w_trapz_s[k]);
+        else
+          for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[i][l];
+      }
     }
     const bool* failed = kernel.failed();
     if constexpr (kSums) {

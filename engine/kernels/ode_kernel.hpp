@@ -32,6 +32,15 @@
 // changes, and ga-lm no longer reached the noise-free optimum of Narrowing.RecoversSpencerParameters...
 // (9.7e-6 instead of < 1e-10).
 //
+// Powers of a state (issue 16): the Bouc–Wen evolution needs |z|^n, one vector log and exp per lane, and RK4
+// evaluates it at four stage points per sub-step. A law that names the state (`kPowerState`) and the lane-block
+// row of its exponent e (`kPowerExponentRow`) gets |s|^e as an argument of rhs: exact (abs_pow: log and exp)
+// at a sub-step's first stage, and at the three later stages, where s = s0·(1 + ε) moved little from that
+// stage's s0, |s0|^e·(1 + ε)^e with the binomial series of (1 + ε)^e to ε^kSeriesTerms, for |ε| ≤
+// kSeriesRadius: truncation error below |C(e, 11)|·16^−11 < 6e-16 relative for 0 ≤ e ≤ 7, the rounding of the
+// exact path's own log and exp. Which of the two a lane takes depends on its own ε only, so a lane's bits do not
+// depend on its neighbours; the vector log and exp run only when some lane of the block needs them.
+//
 // Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
 // marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
 //
@@ -45,10 +54,14 @@
 //   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
 //   optional: kLaneInvariants and lane_invariants(p), per-candidate constants (engine/kernels/lane_kernel.hpp)
 //   optional: template <class P> static double stiffness(const P&, int lane, const Context&, const RecordScales&)
+//   optional: static constexpr int kPowerState, kPowerExponentRow (see "Powers of a state" above); rhs then
+//             takes the power as an argument: rhs(p, lane, context, x, v, y, double y_power, dydt)
 // where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "engine/kernels/lane_kernel.hpp"
@@ -95,6 +108,10 @@ class OdeKernel {
     if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
     else return false;
   }();
+  static constexpr bool kPower = requires { Law::kPowerState; };
+  /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
+  static constexpr int kSeriesTerms = 10;
+  static constexpr double kSeriesRadius = 1.0 / 16.0;
 
   OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
       : p_(p), data_(data), ctx_(Law::context(data)) {
@@ -103,6 +120,13 @@ class OdeKernel {
       for (int l = 0; l < W; ++l) {
         const double lambda = Law::stiffness(p_, l, ctx_, scales);
         lambda_[l] = std::isfinite(lambda) ? std::max(lambda, 0.0) : std::numeric_limits<double>::infinity();
+      }
+    }
+    if constexpr (kPower) {
+      for (int l = 0; l < W; ++l) {  // C(e, i) = C(e, i − 1)·(e − i + 1)/i
+        const double e = p_.p[Law::kPowerExponentRow][l];
+        double c = 1.0;
+        for (int i = 1; i <= kSeriesTerms; ++i) series_[i - 1][l] = c *= (e - (i - 1)) / i;
       }
     }
   }
@@ -132,7 +156,10 @@ class OdeKernel {
         [&](double t, std::span<const double> y, std::span<double> dydt) {
           double x, v;
           input(t, x, v);
-          Law::rhs(P, 0, ctx, x, v, y.data(), dydt.data());
+          if constexpr (kPower)
+            Law::rhs(P, 0, ctx, x, v, y.data(), abs_pow(y[Law::kPowerState], P.p[Law::kPowerExponentRow][0]), dydt.data());
+          else
+            Law::rhs(P, 0, ctx, x, v, y.data(), dydt.data());
         },
         std::vector<double>(S, 0.0), data.t_s, {1e-10, 1e-12, 1000000});
     std::vector<double> force(data.size());
@@ -222,8 +249,18 @@ class OdeKernel {
   /// lane groups (log, exp of |z|^n) overlap in the CPU instead of waiting on the previous stage's result.
   template <class Inputs>
   void step(const Inputs& in) {
+    if constexpr (kPower) {
 #pragma omp simd
-    for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, State{&k_[0][0][l]});
+      for (int l = 0; l < W; ++l) {
+        const double s0 = y_[Law::kPowerState][l];
+        power0_[l] = abs_pow(s0, p_.p[Law::kPowerExponentRow][l]);
+        inv0_[l] = 1.0 / s0;  // ±inf at s0 = 0: ε is then not finite and the stage takes the exact power
+        Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, power0_[l], State{&k_[0][0][l]});
+      }
+    } else {
+#pragma omp simd
+      for (int l = 0; l < W; ++l) Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, State{&k_[0][0][l]});
+    }
     stage<false>(in, 0.5, 0, 1);
     stage<false>(in, 0.5, 1, 2);
     stage<true>(in, 1.0, 2, 3);
@@ -241,13 +278,55 @@ class OdeKernel {
   /// RK4 stage: slopes k[to] at y + fraction·h·k[from], inputs at the step's middle (or end: kEnd).
   template <bool kEnd, class Inputs>
   void stage(const Inputs& in, double fraction, int from, int to) {
+    if constexpr (kPower) {
+      power_stage<kEnd>(in, fraction, from, to);
+    } else {
+#pragma omp simd
+      for (int l = 0; l < W; ++l) {
+        const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
+        const double a = fraction * in.h(l);
+        for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
+        Law::rhs(p_, l, ctx_, kEnd ? in.xb(l) : in.xm(l), kEnd ? in.vb(l) : in.vm(l), t, State{&k_[to][0][l]});
+      }
+    }
+  }
+
+  /// 1 + C(e, 1)·ε + … + C(e, kSeriesTerms)·ε^kSeriesTerms of lane l by Horner's rule, written out (a loop
+  /// left the lane loop unvectorized).
+  template <int... I>
+  double horner(double eps, int l, std::integer_sequence<int, I...>) const {
+    double sum = 0.0;
+    ((sum = (sum + series_[kSeriesTerms - 1 - I][l]) * eps), ...);
+    return 1.0 + sum;
+  }
+
+  /// stage() of a law with a power state: |t|^e from the series where |ε| ≤ kSeriesRadius, else exact; the loop
+  /// with the vector log and exp runs only if some lane needs them ("Powers of a state").
+  template <bool kEnd, class Inputs>
+  void power_stage(const Inputs& in, double fraction, int from, int to) {
+    constexpr int ps = Law::kPowerState;
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
       const double a = fraction * in.h(l);
-      for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
-      Law::rhs(p_, l, ctx_, kEnd ? in.xb(l) : in.xm(l), kEnd ? in.vb(l) : in.vm(l), t, State{&k_[to][0][l]});
+      for (int j = 0; j < S; ++j) t_[j][l] = y_[j][l] + a * k_[from][j][l];
+      const double eps = a * k_[from][ps][l] * inv0_[l];  // t[ps] = s0·(1 + ε)
+      const double series = horner(eps, l, std::make_integer_sequence<int, kSeriesTerms>{});
+      power_[l] = power0_[l] * series;  // replaced below where the lane is not near (no select here: GCC sinks the
+      near_[l] = static_cast<double>(std::fabs(eps) <= kSeriesRadius);  // product into its branch and stops)
     }
+    std::int64_t near_lanes = 0;  // an integer count: vectorized (as an omp simd reduction in the loop above, it
+    for (int l = 0; l < W; ++l) near_lanes += near_[l] > 0.0;  // left that loop scalar in some clones)
+    if (near_lanes < W) {
+      // Two loops: in one, GCC sinks the call into the select's branch and leaves the loop scalar.
+#pragma omp simd
+      for (int l = 0; l < W; ++l) exact_[l] = abs_pow(t_[ps][l], p_.p[Law::kPowerExponentRow][l]);
+#pragma omp simd
+      for (int l = 0; l < W; ++l) power_[l] = near_[l] > 0.0 ? power_[l] : exact_[l];
+    }
+#pragma omp simd
+    for (int l = 0; l < W; ++l)
+      Law::rhs(p_, l, ctx_, kEnd ? in.xb(l) : in.xm(l), kEnd ? in.vb(l) : in.vm(l), State{&t_[0][l]}, power_[l],
+               State{&k_[to][0][l]});
   }
 
   LawLanes<Law, W> p_;
@@ -259,6 +338,13 @@ class OdeKernel {
   alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up or was too stiff
   alignas(64) double lambda_[W] = {};    // Law::stiffness of each lane [1/s] (0: the record's rule alone)
   alignas(64) int n_[W] = {};            // sub-steps of each lane on the current interval
+  // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
+  alignas(64) double power0_[W] = {};
+  alignas(64) double inv0_[W] = {};
+  alignas(64) double power_[W] = {};
+  alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
+  alignas(64) double exact_[W] = {};  // the stage's exact power
+  alignas(64) double series_[kSeriesTerms][W] = {};
   bool failed_flags_[W] = {};
 };
 

@@ -175,10 +175,16 @@ void GeneticAlgorithm::tell(std::span<const double> values) {
     const auto better = [](const std::vector<double>& v) {
       return [&v](int i, int j) { return v[i] < v[j] || (v[i] == v[j] && i < j); };
     };
-    std::ranges::sort(parents, better(values_));
-    std::ranges::sort(offspring, better(told));
-    for (int e = 0; e < settings_.elite_count(); ++e) {
-      const int p = parents[e], o = offspring[n - 1 - e];
+    // Only the e best parents and the e worst offspring are needed: partial sorts (the order is total, so they
+    // give what full sorts give).
+    const int elites = settings_.elite_count();
+    const auto worse = [](const std::vector<double>& v) {
+      return [&v](int i, int j) { return v[j] < v[i] || (v[i] == v[j] && j < i); };
+    };
+    std::ranges::partial_sort(parents, parents.begin() + elites, better(values_));
+    std::ranges::partial_sort(offspring, offspring.begin() + elites, worse(told));
+    for (int e = 0; e < elites; ++e) {
+      const int p = parents[e], o = offspring[e];
       if (values_[p] < told[o]) {
         std::ranges::copy(member(population_, p), member(offspring_, o).begin());
         told[o] = values_[p];
