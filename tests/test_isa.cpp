@@ -95,21 +95,26 @@ TEST(Isa, EveryLevelGivesTheSameBitsForAnyThreadCountAndBatchSplit) {
   }
 }
 
+// simulate (one candidate broadcast to a lane block) and evaluate_block (candidates side by side) run the same kernel:
+// a lane's force has the same bits in both, at every level, wherever the lane sits in its block.
 TEST(Isa, SimulateAndEvaluateRunTheSameKernelAtEveryLevel) {
   KeepIsa keep;
-  for (const char* id : {"fvd.gv_linear_elastic", "mrd.spencer"}) {
+  for (const char* id : {"fvd.gv_linear_elastic", "mrd.spencer", "mrd.bouc_wen", "mrd.spencer_voltage",
+                         "mrd.spencer_freq", "crfd.maxwell"}) {
     const Model& model = find_model(id);
     const Signals data = bench_record(model, 257, 1.0, 128.0);
-    const CandidateBatch batch = bench_candidates(model, 3, 11);
+    const int count = kLanes + 7;  // a full block and a partial one
+    const CandidateBatch batch = bench_candidates(model, count, 11);
     for (Isa level : supported_isas()) {
       select_isa(level);
-      MetricSums sums[3];
-      model.evaluate_block(batch, 0, 3, data, sums);
-      for (int i = 0; i < 3; ++i) {
+      std::vector<MetricSums> sums(static_cast<std::size_t>(count));
+      for (int first = 0; first < count; first += kLanes)
+        model.evaluate_block(batch, first, std::min(kLanes, count - first), data, sums.data() + first);
+      for (int i = 0; i < count; ++i) {
         const auto force = model.simulate(batch.candidate(i), data);
         double abs_e = 0;  // the kernel's own accumulation order: sample by sample
         for (std::size_t k = 0; k < data.size(); ++k) abs_e += std::fabs(data.F_N[k] - force[k]);
-        EXPECT_EQ(abs_e, sums[i].abs) << id << " " << isa_name(level) << " candidate " << i;
+        EXPECT_EQ(abs_e, sums[static_cast<std::size_t>(i)].abs) << id << " " << isa_name(level) << " candidate " << i;
       }
     }
   }
