@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -182,6 +183,51 @@ TEST(BatchEvaluator, SimulateBlockEqualsSimulateOfEachCandidate) {
   for (int i = 0; i < batch.count(); ++i)
     for (int j = 0; j < law.dim(); ++j) batch.at(i, j) = rng.uniform(b.lower[j], b.upper[j]);
   check(law, law_input, batch);
+}
+
+// BatchEvaluator puts an ODE model's candidates into lane blocks by their stiffness (Model::lane_costs), so the
+// lanes of a block take similar numbers of sub-steps: each candidate must still get, in its own place, the bits it
+// gets alone, on both datasets (the order comes from the first one), for a law model too, and with the whole
+// default box (stiff, soft and masked candidates mixed).
+TEST(BatchEvaluator, CandidatesSortedByCostKeepTheirBitsAndPlaces) {
+  auto with_force = [](Dataset d, double scale_N) {
+    d.F_N.resize(d.x_m.size());
+    for (std::size_t k = 0; k < d.F_N.size(); ++k) d.F_N[k] = scale_N * (d.v_m_s[k] + 40.0 * d.x_m[k]);
+    return d;
+  };
+  auto check = [&](const Model& m, const Signals& first, const Signals& second, std::uint64_t seed) {
+    const Bounds b = default_bounds(m);
+    CandidateBatch batch(m.dim(), 3 * kLanes + 5);
+    RandomStream rng(hash_key({seed, hash_name(m.id())}));
+    for (int i = 0; i < batch.count(); ++i)
+      for (int j = 0; j < m.dim(); ++j) batch.at(i, j) = rng.uniform(b.lower[j], b.upper[j]);
+    std::vector<double> cost(static_cast<std::size_t>(batch.count()));
+    ASSERT_TRUE(m.lane_costs(batch, first, cost)) << m.id();
+    ASSERT_FALSE(std::ranges::is_sorted(cost)) << m.id() << ": the batch would not be reordered";
+    const BatchEvaluator evaluator(m, {&first, &second});
+    std::vector<double> all(static_cast<std::size_t>(batch.count()));
+    evaluator.evaluate(batch, Metric::nrmse, all);
+    for (int i = 0; i < batch.count(); ++i) {
+      CandidateBatch one(m.dim(), 1);
+      one.set_candidate(0, batch.candidate(i));
+      double alone = 0;
+      evaluator.evaluate(one, Metric::nrmse, std::span<double>(&alone, 1));
+      EXPECT_TRUE(std::memcmp(&alone, &all[static_cast<std::size_t>(i)], sizeof(double)) == 0)
+          << m.id() << " candidate " << i << ": " << alone << " alone, " << all[static_cast<std::size_t>(i)];
+    }
+  };
+  const Signals first = prepare_signals(with_force(testing::two_sine_record(300), 2000.0));
+  const Signals second = prepare_signals(with_force(testing::two_sine_record(250, 400.0), 3000.0));
+  for (const char* id : {"mrd.bouc_wen", "mrd.spencer", "mrd.spencer_voltage"}) check(find_model(id), first, second, 31);
+  Dataset a = with_force(testing::two_sine_record(300), 2000.0), c = with_force(testing::two_sine_record(250, 400.0), 3000.0);
+  a.operating["I"] = 0.2;
+  c.operating["I"] = 0.9;
+  const LawModel law(find_model("mrd.spencer"), parse_laws("c0=poly(I,1);alpha=poly(I,1)", "laws"));
+  check(law, prepare_signals(a), prepare_signals(c), 37);
+  // Models whose candidates all cost the same are not reordered.
+  std::vector<double> cost(4, -1.0);
+  EXPECT_FALSE(find_model("fvd.gv_linear_elastic").lane_costs(CandidateBatch(5, 4), first, cost));
+  EXPECT_EQ(cost[0], -1.0);
 }
 
 }  // namespace dampbench

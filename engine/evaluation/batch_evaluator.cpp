@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <numeric>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -26,6 +27,22 @@ double BatchEvaluator::samples() const {
 std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch) const {
   assert(batch.dim() == model_.dim());
   const int count = batch.count();
+  // Candidates of similar cost side by side (Model::lane_costs, on the first dataset): a block whose lanes disagree
+  // on their RK4 sub-steps runs the largest count on every lane. A lane's bits do not depend on its block-mates.
+  std::vector<int> order;
+  CandidateBatch sorted;
+  if (count > kLanes) {
+    std::vector<double> cost(static_cast<std::size_t>(count));
+    if (model_.lane_costs(batch, *datasets_.front(), cost)) {
+      order.resize(static_cast<std::size_t>(count));
+      std::iota(order.begin(), order.end(), 0);
+      std::ranges::stable_sort(order, [&](int a, int b) { return cost[a] < cost[b]; });  // costs are never NaN
+      sorted.resize(batch.dim(), count);
+      for (int i = 0; i < count; ++i)
+        for (int j = 0; j < batch.dim(); ++j) sorted.at(i, j) = batch.at(order[i], j);
+    }
+  }
+  const CandidateBatch& run = order.empty() ? batch : sorted;
   const int blocks = (count + kLanes - 1) / kLanes;
   const int tasks = blocks * static_cast<int>(datasets_.size());
   std::vector<MetricSums> out(datasets_.size() * static_cast<std::size_t>(count));
@@ -34,12 +51,16 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch) const 
       [&](const tbb::blocked_range<int>& range) {
         for (int task = range.begin(); task < range.end(); ++task) {
           const int d = task / blocks, first = (task % blocks) * kLanes;
-          model_.evaluate_block(batch, first, std::min(kLanes, count - first), *datasets_[d],
+          model_.evaluate_block(run, first, std::min(kLanes, count - first), *datasets_[d],
                                 out.data() + static_cast<std::size_t>(d) * count + first);
         }
       },
       tbb::simple_partitioner());
-  return out;
+  if (order.empty()) return out;
+  std::vector<MetricSums> unsorted(out.size());
+  for (std::size_t d = 0; d < datasets_.size(); ++d)
+    for (std::size_t i = 0; i < order.size(); ++i) unsorted[d * order.size() + static_cast<std::size_t>(order[i])] = out[d * order.size() + i];
+  return unsorted;
 }
 
 void BatchEvaluator::evaluate(const CandidateBatch& batch, Metric metric, std::span<double> out) const {

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "engine/model/model.hpp"
@@ -166,6 +167,18 @@ class KernelModel final : public Model {
                       MetricSums* out) const override {
     const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
     SumsBlock::call(&lanes, &data, count, out);
+  }
+
+  bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override {
+    if constexpr (requires { Kernel::lane_costs(std::declval<const LawLanes<Law, kLanes>&>(), data, 0, out.data()); }) {
+      for (int first = 0; first < batch.count(); first += kLanes) {
+        const int n = std::min(kLanes, batch.count() - first);
+        Kernel::lane_costs(gather_lanes<Law, kLanes>(batch, first, n), data, n, out.data() + first);
+      }
+      return true;
+    } else {
+      return false;
+    }
   }
 
   void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,

@@ -114,15 +114,13 @@ class OdeKernel {
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
 
+  static constexpr bool kStiff = requires(const LawLanes<Law, W>& p, const typename Law::Context& c) {
+    Law::stiffness(p, 0, c, RecordScales{});
+  };
+
   OdeKernel(const LawLanes<Law, W>& p, const Signals& data)
       : p_(p), data_(data), ctx_(Law::context(data)) {
-    if constexpr (requires { Law::stiffness(p_, 0, ctx_, RecordScales{}); }) {
-      const RecordScales scales{data.velocity_max_abs, data.displacement_ptp};
-      for (int l = 0; l < W; ++l) {
-        const double lambda = Law::stiffness(p_, l, ctx_, scales);
-        lambda_[l] = std::isfinite(lambda) ? std::max(lambda, 0.0) : std::numeric_limits<double>::infinity();
-      }
-    }
+    if constexpr (kStiff) stiffness_of_lanes(p_, ctx_, data, W, lambda_);
     if constexpr (kPower) {
       for (int l = 0; l < W; ++l) {  // C(e, i) = C(e, i − 1)·(e − i + 1)/i
         const double e = p_.p[Law::kPowerExponentRow][l];
@@ -130,6 +128,25 @@ class OdeKernel {
         for (int i = 1; i <= kSeriesTerms; ++i) series_[i - 1][l] = c *= (e - (i - 1)) / i;
       }
     }
+  }
+
+  /// Each of the first `count` lanes' stiffness estimate λ [1/s] (≥ 0; +inf where it is not finite).
+  static void stiffness_of_lanes(const LawLanes<Law, W>& p, const typename Law::Context& ctx, const Signals& data,
+                                 int count, double* lambda)
+    requires kStiff
+  {
+    const RecordScales scales{data.velocity_max_abs, data.displacement_ptp};
+    for (int l = 0; l < count; ++l) {
+      const double estimate = Law::stiffness(p, l, ctx, scales);
+      lambda[l] = std::isfinite(estimate) ? std::max(estimate, 0.0) : std::numeric_limits<double>::infinity();
+    }
+  }
+
+  /// Model::lane_costs of the first `count` lanes: their stiffness, which sets their sub-steps.
+  static void lane_costs(const LawLanes<Law, W>& p, const Signals& data, int count, double* out)
+    requires kStiff
+  {
+    stiffness_of_lanes(p, Law::context(data), data, count, out);
   }
 
   void forces(std::size_t k, double* f) {

@@ -127,6 +127,10 @@ void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count,
   base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, out);
 }
 
+bool LawModel::lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const {
+  return base_.lane_costs(base_block(batch, 0, batch.count(), data), data, out);
+}
+
 void LawModel::evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                                MetricSums* out) const {
   base_.evaluate_scalar(base_block(batch, first, count, data), 0, count, data, out);

@@ -33,6 +33,7 @@ class LawModel final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       MetricSums* out) const override;
+  bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override;
   void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                        MetricSums* out) const override;
   [[nodiscard]] std::vector<double> simulate(std::span<const double> coefficients, const Signals& data) const override;

@@ -49,6 +49,15 @@ class Model {
   virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                               MetricSums* out) const = 0;
 
+  /// An estimate of each candidate's cost on `data`, into out[i] for candidates [0, batch.count()) (the ODE
+  /// kernels: the stiffness λ [1/s] that sets a lane's RK4 sub-steps, +inf for a lane that will be masked);
+  /// false, and `out` untouched, where every candidate costs the same. BatchEvaluator puts candidates of
+  /// similar cost into the same lane blocks: a lane's bits do not depend on its neighbours, so the order
+  /// changes the time only.
+  virtual bool lane_costs(const CandidateBatch& /*batch*/, const Signals& /*data*/, std::span<double> /*out*/) const {
+    return false;
+  }
+
   /// The same sums computed by a plain scalar loop, one candidate at a time (the reference `dampbench
   /// bench` measures the lane kernels against). Default: evaluate_block.
   virtual void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
