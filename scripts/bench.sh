@@ -8,7 +8,7 @@
 #                           (SLEEF build: the probes only)
 #   growth_<variant>.*      fvd.gv_linear_elastic and mrd.bouc_wen over candidates × samples × threads:
 #                           JSON, Markdown tables (.md) and cost_growth_<variant>.svg (portable, native)
-# Takes about 10 minutes on 2 cores; run it on an idle machine.
+# Takes about 20 minutes on 2 cores (2026-11-24, Zen 5: 19 min); run it on an idle machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh libsleef-dev
