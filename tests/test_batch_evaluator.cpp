@@ -129,8 +129,8 @@ TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
     std::vector<MetricSums> lanes(21), scalar(21);
     for (int first = 0; first < 21; first += kLanes) {
       const int count = std::min(kLanes, 21 - first);
-      m->evaluate_block(batch, first, count, data, lanes.data() + first);
-      m->evaluate_scalar(batch, first, count, data, scalar.data() + first);
+      m->evaluate_block(batch, first, count, data, SumSet::every, lanes.data() + first);
+      m->evaluate_scalar(batch, first, count, data, SumSet::every, scalar.data() + first);
     }
     for (int i = 0; i < 21; ++i) {
       const double a = lanes[i].abs_weighted, s = scalar[i].abs_weighted;
@@ -139,6 +139,62 @@ TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
         continue;
       }
       EXPECT_NEAR(a, s, 1e-9 * std::fabs(s) + 1e-300) << m->id() << " candidate " << i;
+    }
+  }
+}
+
+// An evaluation of one metric computes only the sum it is finished from (SumSet): for every model and every
+// metric, that sum has the bits it has when all five are computed, the others are NaN (so a metric finished from
+// one of them is +inf, never a wrong number), and BatchEvaluator::evaluate equals the metric of evaluate_all.
+TEST(BatchEvaluator, OneMetricsSumHasTheBitsOfAllSums) {
+  const Dataset d = testing::two_sine_record(300);
+  const auto sum_of = [](const MetricSums& s, SumSet set) {
+    switch (set) {
+      case SumSet::abs_weighted: return s.abs_weighted;
+      case SumSet::sq_weighted: return s.sq_weighted;
+      case SumSet::abs: return s.abs;
+      case SumSet::sq: return s.sq;
+      case SumSet::abs_magnitude: return s.abs_magnitude;
+      case SumSet::every: break;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  const SumSet singles[] = {SumSet::abs_weighted, SumSet::sq_weighted, SumSet::abs, SumSet::sq, SumSet::abs_magnitude};
+  for (const Model* m : all_models()) {
+    const Signals input = prepare_signals(d);
+    Dataset with_force = d;
+    const Bounds b = default_bounds(*m);
+    CandidateBatch batch(m->dim(), 21);
+    RandomStream rng(hash_key({5, hash_name(m->id())}));
+    for (int i = 0; i < batch.count(); ++i)  // the whole box: masked candidates included
+      for (int j = 0; j < m->dim(); ++j) batch.at(i, j) = b.lower[j] + rng.uniform() * (b.upper[j] - b.lower[j]);
+    with_force.F_N = m->simulate(batch.candidate(0), input);
+    for (double& f : with_force.F_N) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
+    const Signals data = prepare_signals(with_force);
+    std::vector<MetricSums> every(21), one(21);
+    for (int first = 0; first < 21; first += kLanes)
+      m->evaluate_block(batch, first, std::min(kLanes, 21 - first), data, SumSet::every, every.data() + first);
+    for (SumSet set : singles) {
+      for (int first = 0; first < 21; first += kLanes)
+        m->evaluate_block(batch, first, std::min(kLanes, 21 - first), data, set, one.data() + first);
+      for (int i = 0; i < 21; ++i) {
+        const bool masked = std::isinf(every[i].abs_weighted);
+        for (SumSet other : singles) {
+          const double got = sum_of(one[i], other);
+          if (masked) EXPECT_TRUE(std::isinf(got)) << m->id() << " candidate " << i;
+          else if (other == set) EXPECT_TRUE(same_bits({got}, {sum_of(every[i], set)})) << m->id() << " candidate " << i;
+          else EXPECT_TRUE(std::isnan(got)) << m->id() << " candidate " << i;
+        }
+      }
+    }
+    const BatchEvaluator evaluator(*m, data);
+    std::vector<MetricRow> rows(21);
+    evaluator.evaluate_all(batch, rows);
+    std::vector<double> values(21);
+    for (int k = 0; k < kMetricCount; ++k) {
+      evaluator.evaluate(batch, kAllMetrics[k], values);
+      for (int i = 0; i < 21; ++i)
+        EXPECT_TRUE(same_bits({values[i]}, {rows[i][k]})) << m->id() << " " << metric_name(kAllMetrics[k]) << " " << i;
     }
   }
 }

@@ -109,7 +109,7 @@ TEST(Isa, SimulateAndEvaluateRunTheSameKernelAtEveryLevel) {
       select_isa(level);
       std::vector<MetricSums> sums(static_cast<std::size_t>(count));
       for (int first = 0; first < count; first += kLanes)
-        model.evaluate_block(batch, first, std::min(kLanes, count - first), data, sums.data() + first);
+        model.evaluate_block(batch, first, std::min(kLanes, count - first), data, SumSet::every, sums.data() + first);
       for (int i = 0; i < count; ++i) {
         const auto force = model.simulate(batch.candidate(i), data);
         double abs_e = 0;  // the kernel's own accumulation order: sample by sample

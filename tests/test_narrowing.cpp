@@ -27,7 +27,7 @@ class LinearTestModel final : public Model {
   [[nodiscard]] std::string_view citation() const override { return "test"; }
   [[nodiscard]] std::string_view law() const override { return "F = a x + b v"; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return params_; }
-  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet /*wanted*/,
                       MetricSums* out) const override {
     for (int i = 0; i < count; ++i) {
       MetricSums s;

@@ -103,7 +103,7 @@ ModelRates measure(const Model& model, double min_time_s, int trials) {
     r.one = std::max(r.one, lanes_rate(one_thread));
     r.two = std::max(r.two, lanes_rate(two_threads));
     r.scalar = std::max(r.scalar, rate(kScalarCandidates * n, min_time_s, [&] {
-      model.evaluate_scalar(few, 0, kScalarCandidates, data, sums.data());
+      model.evaluate_scalar(few, 0, kScalarCandidates, data, sum_set_of(Metric::of_abs), sums.data());
     }));
   }
   r.masked_share = static_cast<double>(std::count_if(out.begin(), out.end(), [](double m) { return !std::isfinite(m); })) /

@@ -24,7 +24,7 @@ double BatchEvaluator::samples() const {
   return n;
 }
 
-std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch) const {
+std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet wanted) const {
   assert(batch.dim() == model_.dim());
   const int count = batch.count();
   // Candidates of similar cost side by side (Model::lane_costs, on the first dataset): a block whose lanes disagree
@@ -51,7 +51,7 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch) const 
       [&](const tbb::blocked_range<int>& range) {
         for (int task = range.begin(); task < range.end(); ++task) {
           const int d = task / blocks, first = (task % blocks) * kLanes;
-          model_.evaluate_block(run, first, std::min(kLanes, count - first), *datasets_[d],
+          model_.evaluate_block(run, first, std::min(kLanes, count - first), *datasets_[d], wanted,
                                 out.data() + static_cast<std::size_t>(d) * count + first);
         }
       },
@@ -64,7 +64,7 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch) const 
 }
 
 void BatchEvaluator::evaluate(const CandidateBatch& batch, Metric metric, std::span<double> out) const {
-  const auto s = sums(batch);
+  const auto s = sums(batch, sum_set_of(metric));
   const int count = batch.count();
   const double D = static_cast<double>(datasets_.size());
   for (int i = 0; i < count; ++i) {
@@ -75,7 +75,7 @@ void BatchEvaluator::evaluate(const CandidateBatch& batch, Metric metric, std::s
 }
 
 void BatchEvaluator::evaluate_all(const CandidateBatch& batch, std::span<MetricRow> out) const {
-  const auto s = sums(batch);
+  const auto s = sums(batch, SumSet::every);
   const int count = batch.count();
   const double D = static_cast<double>(datasets_.size());
   for (int i = 0; i < count; ++i) {

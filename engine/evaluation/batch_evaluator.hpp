@@ -39,8 +39,8 @@ class BatchEvaluator {
   [[nodiscard]] double samples() const;
 
  private:
-  /// Metric sums of every candidate on every dataset: sums[d * count + i].
-  std::vector<MetricSums> sums(const CandidateBatch& batch) const;
+  /// Metric sums of every candidate on every dataset (those of `wanted`, the others NaN): sums[d * count + i].
+  std::vector<MetricSums> sums(const CandidateBatch& batch, SumSet wanted) const;
 
   const Model& model_;
   std::vector<const Signals*> datasets_;

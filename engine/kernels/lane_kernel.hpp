@@ -77,29 +77,52 @@ LawLanes<Law, W> broadcast_lanes(std::span<const double> params) {
   return lanes;
 }
 
-/// The four metric sums of a block of W lanes, accumulated sample by sample.
+/// The metric sums of a block of W lanes (those of a SumSet), accumulated sample by sample.
 template <int W = kLanes>
 struct LaneSums {
   alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {}, abs_mag[W] = {};
 
-  void add(const double* force, double measured, double w) {
-#pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      const double e = measured - force[l];
-      const double ae = std::fabs(e);
-      abs_w[l] += w * ae;
-      sq_w[l] += w * (e * e);
-      abs_e[l] += ae;
-      sq_e[l] += e * e;
-      abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(force[l]));
+  /// Adds m samples: lane l's force at sample i in force[i][l], measured force F[i], weight w[i]; only the sums
+  /// of `wanted`, each with the same arithmetic whichever others are computed (so the same bits).
+  void add(const double (*force)[W], std::size_t m, const double* F, const double* w, SumSet wanted) {
+    switch (wanted) {
+      case SumSet::every: return add<true, true, true, true, true>(force, m, F, w);
+      case SumSet::abs_weighted: return add<true, false, false, false, false>(force, m, F, w);
+      case SumSet::sq_weighted: return add<false, true, false, false, false>(force, m, F, w);
+      case SumSet::abs: return add<false, false, true, false, false>(force, m, F, w);
+      case SumSet::sq: return add<false, false, false, true, false>(force, m, F, w);
+      case SumSet::abs_magnitude: return add<false, false, false, false, true>(force, m, F, w);
     }
   }
-  /// Writes the first `count` lanes; lanes flagged in `failed` get +inf sums (masked candidates).
-  void store(MetricSums* out, int count, const bool* failed = nullptr) const {
-    const double inf = std::numeric_limits<double>::infinity();
+  /// Writes the first `count` lanes: the sums of `wanted`, NaN for the others; lanes flagged in `failed` get
+  /// +inf sums (masked candidates).
+  void store(MetricSums* out, int count, SumSet wanted, const bool* failed = nullptr) const {
+    const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+    const auto keep = [&](SumSet s, double v) { return wanted == SumSet::every || wanted == s ? v : nan; };
     for (int l = 0; l < count; ++l)
-      out[l] = (failed && failed[l]) ? MetricSums{inf, inf, inf, inf, inf}
-                                     : MetricSums{abs_w[l], sq_w[l], abs_e[l], sq_e[l], abs_mag[l]};
+      out[l] = (failed && failed[l])
+                   ? MetricSums{inf, inf, inf, inf, inf}
+                   : MetricSums{keep(SumSet::abs_weighted, abs_w[l]), keep(SumSet::sq_weighted, sq_w[l]),
+                                keep(SumSet::abs, abs_e[l]), keep(SumSet::sq, sq_e[l]),
+                                keep(SumSet::abs_magnitude, abs_mag[l])};
+  }
+
+ private:
+  template <bool kAbsW, bool kSqW, bool kAbs, bool kSq, bool kMag>
+  void add(const double (*force)[W], std::size_t m, const double* F, const double* w) {
+    for (std::size_t i = 0; i < m; ++i) {
+      const double measured = F[i], wi = w[i];
+#pragma omp simd
+      for (int l = 0; l < W; ++l) {
+        const double e = measured - force[i][l];
+        const double ae = std::fabs(e);
+        if constexpr (kAbsW) abs_w[l] += wi * ae;
+        if constexpr (kSqW) sq_w[l] += wi * (e * e);
+        if constexpr (kAbs) abs_e[l] += ae;
+        if constexpr (kSq) sq_e[l] += e * e;
+        if constexpr (kMag) abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(force[i][l]));
+      }
+    }
   }
 };
 
@@ -118,7 +141,8 @@ struct LaneBlockRun {
   /// order of every operation on a lane is unchanged, so are the bits.
   static constexpr std::size_t kChunk = 16;
 
-  static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, Out* out) {
+  static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, Out* out,
+                  SumSet wanted = SumSet::every) {
     KernelT<Law, W> kernel(*lanes, *data);
     LaneSums<W> sums;
     alignas(64) double f[kChunk][W];
@@ -126,16 +150,16 @@ struct LaneBlockRun {
     for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - k0);
       for (std::size_t i = 0; i < m; ++i) kernel.forces(k0 + i, f[i]);
-      for (std::size_t i = 0; i < m; ++i) {
-        const std::size_t k = k0 + i;
-        if constexpr (kSums) sums.add(f[i], data->F_N[k], data->w_trapz_s[k]);
-        else
-          for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = f[i][l];
+      if constexpr (kSums) {
+        sums.add(f, m, data->F_N.data() + k0, data->w_trapz_s.data() + k0, wanted);
+      } else {
+        for (std::size_t i = 0; i < m; ++i)
+          for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k0 + i] = f[i][l];
       }
     }
     const bool* failed = kernel.failed();
     if constexpr (kSums) {
-      sums.store(out, count, failed);
+      sums.store(out, count, wanted, failed);
     } else if (failed) {
       for (int l = 0; l < count; ++l)
         if (failed[l]) std::fill(out + static_cast<std::size_t>(l) * n, out + static_cast<std::size_t>(l + 1) * n, std::nan(""));
@@ -163,10 +187,10 @@ class KernelModel final : public Model {
   [[nodiscard]] std::string_view law() const override { return Law::info().law; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
 
-  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
     const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
-    SumsBlock::call(&lanes, &data, count, out);
+    SumsBlock::call(&lanes, &data, count, out, wanted);
   }
 
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override {
@@ -181,11 +205,11 @@ class KernelModel final : public Model {
     }
   }
 
-  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                        MetricSums* out) const override {
     for (int i = 0; i < count; ++i) {
       const auto lane = gather_lanes<Law, 1>(batch, first + i, 1);
-      LaneBlockRun<Law, KernelT, 1, true>::run(&lane, &data, 1, out + i);
+      LaneBlockRun<Law, KernelT, 1, true>::run(&lane, &data, 1, out + i, wanted);
     }
   }
 

@@ -155,7 +155,10 @@ class OdeKernel {
 #pragma omp simd
     for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, ctx_, x, v, State{&y_[0][l]});
   }
-  [[nodiscard]] const bool* failed() const { return failed_flags_; }
+  [[nodiscard]] const bool* failed() const {
+    for (int l = 0; l < W; ++l) failed_flags_[l] = failed_[l] > 0.0;
+    return failed_flags_;
+  }
 
   /// Force of one candidate by CVODE on the same piecewise-linear inputs (the reference).
   static std::vector<double> reference(std::span<const double> params, const Signals& data) {
@@ -193,31 +196,51 @@ class OdeKernel {
     const double dt = data_.t_s[k] - data_.t_s[k - 1];
     const double x0 = data_.x_m[k - 1], dx = data_.x_m[k] - x0;
     const double v0 = data_.v_m_s[k - 1], dv = data_.v_m_s[k] - v0;
-    int n_max = n;
-    for (int l = 0; l < W; ++l) {
-      const double stiff = std::ceil(dt * lambda_[l] / kStiffStep);  // +inf for an unbounded estimate
-      if (!(stiff <= kMaxSubsteps)) failed_[l] += 1.0;              // too stiff: masked, integrated cheaply
-      n_[l] = failed_[l] > 0.0 ? n : std::max(n, static_cast<int>(stiff));
-      n_max = std::max(n_max, n_[l]);
+    if constexpr (kStiff) {
+      if (!(dt <= stiff_dt_ && dt >= stiff_dt_ * (1.0 - 2 * kStiffDtSlack))) stiff_substeps(dt * (1.0 + kStiffDtSlack));
     }
-    if (n_max == n) {  // every lane takes the record's sub-steps: one set of inputs for all
+    if (stiff_max_ <= n) {  // every lane takes the record's sub-steps: one set of inputs for all
       const double h = dt / n;
       for (int i = 0; i < n; ++i) {
         const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
         step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv});
       }
     } else {
-      for (int i = 0; i < n_max; ++i) step(LaneInputs(i, n_, dt, x0, dx, v0, dv));
+      const double record = n;
+      double n_max = record;
+#pragma omp simd reduction(max : n_max)
+      for (int l = 0; l < W; ++l) {
+        n_[l] = std::max(record, stiff_[l]);
+        n_max = std::max(n_max, n_[l]);
+      }
+      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, dt, x0, dx, v0, dv));
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      double bad = 0.0;  // counts non-finite or huge states; doubles (not bools) keep the loop vectorized
-      for (int j = 0; j < S; ++j) bad += static_cast<double>(!(std::fabs(y_[j][l]) < kBlowUp));
+      double bad = 0.0;  // 1 if some state is not finite or huge; selects of doubles keep the loop vectorized
+      for (int j = 0; j < S; ++j) bad = std::fabs(y_[j][l]) < kBlowUp ? bad : 1.0;
       failed_[l] += bad;
       for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
     }
-    for (int l = 0; l < W; ++l) failed_flags_[l] = failed_[l] > 0.0;
+  }
+
+  /// Each lane's stiff sub-step count on intervals up to dt long, ceil(dt·λ_l / kStiffStep), and their maximum;
+  /// a lane that would need more than kMaxSubsteps is masked and takes the record's count (stiff 0). A record's
+  /// intervals are mostly of one length up to rounding of its time stamps (relative 1e-12 or so): the counts
+  /// are kept for every interval of [dt·(1 − 2·kStiffDtSlack), dt] (dt with the slack added) and recomputed
+  /// only for one outside, about once per record instead of once per sample. Which counts a lane takes
+  /// depends on its own λ and the record only.
+  static constexpr double kStiffDtSlack = 1e-6;
+  void stiff_substeps(double dt) {
+    stiff_dt_ = dt;
+    stiff_max_ = 0.0;
+    for (int l = 0; l < W; ++l) {
+      const double stiff = std::ceil(dt * lambda_[l] / kStiffStep);  // +inf for an unbounded estimate
+      if (!(stiff <= kMaxSubsteps)) failed_[l] += 1.0;              // too stiff: masked, integrated cheaply
+      stiff_[l] = failed_[l] > 0.0 ? 0.0 : stiff;
+      stiff_max_ = std::max(stiff_max_, stiff_[l]);
+    }
   }
 
   /// Inputs of one sub-step, the same for every lane: step size h and (x, v) at the step's start (a),
@@ -237,10 +260,10 @@ class OdeKernel {
   /// Inputs of sub-step i of a block whose lanes take n[l] sub-steps each, computed lane by lane with the
   /// arithmetic of SharedInputs; a lane past its own n[l] sub-steps is inactive and keeps its state.
   struct LaneInputs {
-    LaneInputs(int i, const int* n, double dt, double x0, double dx, double v0, double dv) : i_(i), n_(n) {
+    LaneInputs(int i, const double* n, double dt, double x0, double dx, double v0, double dv) : i_(i), n_(n) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        const int nl = n[l];
+        const double nl = n[l];
         const double a = static_cast<double>(i) / nl, m = (i + 0.5) / nl, b = static_cast<double>(i + 1) / nl;
         h_[l] = dt / nl;
         xa_[l] = x0 + a * dx, va_[l] = v0 + a * dv;
@@ -258,7 +281,7 @@ class OdeKernel {
     [[nodiscard]] bool active(int l) const { return i_ < n_[l]; }
 
     int i_;
-    const int* n_;
+    const double* n_;
     alignas(64) double h_[W], xa_[W], va_[W], xm_[W], vm_[W], xb_[W], vb_[W];
   };
 
@@ -309,13 +332,16 @@ class OdeKernel {
     }
   }
 
-  /// 1 + C(e, 1)·ε + … + C(e, kSeriesTerms)·ε^kSeriesTerms of lane l by Horner's rule, written out (a loop
-  /// left the lane loop unvectorized).
-  template <int... I>
-  double horner(double eps, int l, std::integer_sequence<int, I...>) const {
-    double sum = 0.0;
-    ((sum = (sum + series_[kSeriesTerms - 1 - I][l]) * eps), ...);
-    return 1.0 + sum;
+  /// 1 + C(e, 1)·ε + … + C(e, 8)·ε^8 of lane l by Estrin's scheme: pairs, then pairs of pairs, four dependent
+  /// multiply-adds deep instead of Horner's eight (the stage loop's critical path; issue 16).
+  [[nodiscard]] double series(double eps, int l) const {
+    static_assert(kSeriesTerms == 8, "series() is written out for 8 terms");
+    const auto c = [&](int i) { return series_[i][l]; };  // C(e, i + 1)
+    const double e2 = eps * eps, e4 = e2 * e2;
+    const double q01 = c(0) + c(1) * eps, q23 = c(2) + c(3) * eps;
+    const double q45 = c(4) + c(5) * eps, q67 = c(6) + c(7) * eps;
+    const double q03 = q01 + q23 * e2, q47 = q45 + q67 * e2;
+    return 1.0 + eps * (q03 + q47 * e4);
   }
 
   /// stage() of a law with a power state: |t|^e from the series where |ε| ≤ kSeriesRadius, else exact; the loop
@@ -328,13 +354,13 @@ class OdeKernel {
       const double a = fraction * in.h(l);
       for (int j = 0; j < S; ++j) t_[j][l] = y_[j][l] + a * k_[from][j][l];
       const double eps = a * k_[from][ps][l] * inv0_[l];  // t[ps] = s0·(1 + ε)
-      const double series = horner(eps, l, std::make_integer_sequence<int, kSeriesTerms>{});
-      power_[l] = power0_[l] * series;  // replaced below where the lane is not near (no select here: GCC sinks the
+      power_[l] = power0_[l] * series(eps, l);  // replaced below where the lane is not near (no select here: GCC sinks the
       near_[l] = static_cast<double>(std::fabs(eps) <= kSeriesRadius);  // product into its branch and stops)
     }
-    std::int64_t near_lanes = 0;  // an integer count: vectorized (as an omp simd reduction in the loop above, it
-    for (int l = 0; l < W; ++l) near_lanes += near_[l] > 0.0;  // left that loop scalar in some clones)
-    if (near_lanes < W) {
+    double all_near = 1.0;  // 0 if some lane is not near (a reduction of its own: in the loop above, it left
+#pragma omp simd reduction(min : all_near)  // that loop scalar in some clones; an integer count was scalar)
+    for (int l = 0; l < W; ++l) all_near = std::min(all_near, near_[l]);
+    if (all_near == 0.0) {
       // Two loops: in one, GCC sinks the call into the select's branch and leaves the loop scalar.
 #pragma omp simd
       for (int l = 0; l < W; ++l) exact_[l] = abs_pow(t_[ps][l], p_.p[Law::kPowerExponentRow][l]);
@@ -355,7 +381,10 @@ class OdeKernel {
   alignas(64) double k_[4][S][W] = {};   // RK4 stage slopes
   alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up or was too stiff
   alignas(64) double lambda_[W] = {};    // Law::stiffness of each lane [1/s] (0: the record's rule alone)
-  alignas(64) int n_[W] = {};            // sub-steps of each lane on the current interval
+  alignas(64) double stiff_[W] = {};     // stiff sub-steps of each lane on an interval of length stiff_dt_
+  double stiff_dt_ = -1.0;
+  double stiff_max_ = 0.0;               // max of stiff_
+  alignas(64) double n_[W] = {};         // sub-steps of each lane on the current interval (a whole number)
   // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
   alignas(64) double power0_[W] = {};
   alignas(64) double inv0_[W] = {};
@@ -363,7 +392,7 @@ class OdeKernel {
   alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
   alignas(64) double exact_[W] = {};  // the stage's exact power
   alignas(64) double series_[kSeriesTerms][W] = {};
-  bool failed_flags_[W] = {};
+  mutable bool failed_flags_[W] = {};  // failed_ > 0, filled by failed()
 };
 
 template <class Law>

@@ -123,8 +123,8 @@ const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int firs
 }
 
 void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
-                              MetricSums* out) const {
-  base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, out);
+                              SumSet wanted, MetricSums* out) const {
+  base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
 bool LawModel::lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const {
@@ -132,8 +132,8 @@ bool LawModel::lane_costs(const CandidateBatch& batch, const Signals& data, std:
 }
 
 void LawModel::evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
-                               MetricSums* out) const {
-  base_.evaluate_scalar(base_block(batch, first, count, data), 0, count, data, out);
+                               SumSet wanted, MetricSums* out) const {
+  base_.evaluate_scalar(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
 std::vector<double> LawModel::simulate(std::span<const double> coefficients, const Signals& data) const {

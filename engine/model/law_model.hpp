@@ -31,10 +31,10 @@ class LawModel final : public Model {
     return base().record_bounds_rules();
   }
 
-  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+  void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override;
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override;
-  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                        MetricSums* out) const override;
   [[nodiscard]] std::vector<double> simulate(std::span<const double> coefficients, const Signals& data) const override;
   void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override;

@@ -28,6 +28,21 @@ Metric parse_metric(std::string_view name) {
       "unknown metric '{}' (known: of_abs, of_sq, rmse, nrmse, mae, crfd_eps, mfm_E, fdsp_pct, fdsp_signed_pct)", name));
 }
 
+SumSet sum_set_of(Metric m) {
+  switch (m) {
+    case Metric::of_abs: return SumSet::abs_weighted;
+    case Metric::of_sq: return SumSet::sq_weighted;
+    case Metric::rmse:
+    case Metric::nrmse:
+    case Metric::crfd_eps:
+    case Metric::mfm_E: return SumSet::sq;
+    case Metric::mae:
+    case Metric::fdsp_signed_pct: return SumSet::abs;
+    case Metric::fdsp_pct: return SumSet::abs_magnitude;
+  }
+  return SumSet::every;
+}
+
 double finish_metric(Metric m, const MetricSums& s, const Signals& data) {
   const double n = static_cast<double>(data.size());
   double value = 0;

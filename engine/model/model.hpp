@@ -44,10 +44,11 @@ class Model {
   [[nodiscard]] virtual std::string_view law() const = 0;
   [[nodiscard]] virtual std::span<const ParameterInfo> parameters() const = 0;
 
-  /// Metric sums of candidates [first, first + count) of `batch` (count ≤ kLanes) against data.F_N.
-  /// Never throws; a candidate whose force is NaN or Inf ends with non-finite sums (→ +inf metric).
+  /// Metric sums of candidates [first, first + count) of `batch` (count ≤ kLanes) against data.F_N: those of
+  /// `wanted`, the others NaN. Never throws; a candidate whose force is NaN or Inf ends with non-finite sums
+  /// (→ +inf metric).
   virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
-                              MetricSums* out) const = 0;
+                              SumSet wanted, MetricSums* out) const = 0;
 
   /// An estimate of each candidate's cost on `data`, into out[i] for candidates [0, batch.count()) (the ODE
   /// kernels: the stiffness λ [1/s] that sets a lane's RK4 sub-steps, +inf for a lane that will be masked);
@@ -61,8 +62,8 @@ class Model {
   /// The same sums computed by a plain scalar loop, one candidate at a time (the reference `dampbench
   /// bench` measures the lane kernels against). Default: evaluate_block.
   virtual void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
-                               MetricSums* out) const {
-    evaluate_block(batch, first, count, data, out);
+                               SumSet wanted, MetricSums* out) const {
+    evaluate_block(batch, first, count, data, wanted, out);
   }
 
   /// Force of one candidate at every sample, computed by the same kernel as evaluate_block, so the
