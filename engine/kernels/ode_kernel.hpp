@@ -19,7 +19,8 @@
 //
 // Stiff lanes (issue 13): a law may also give an upper estimate of its Jacobian's spectral radius λ [1/s]
 // from one lane's parameters and the record's scales (`Law::stiffness`, below). Lane l then takes
-// n_l = max(n, ceil(dt·λ_l / kStiffStep)) sub-steps on the interval, so h·λ ≤ kStiffStep, inside RK4's
+// n_l = max(n, ceil(dt'·λ_l / kStiffStep)) sub-steps on the interval (dt' ≥ dt within a relative 2e-6: the
+// count is kept while the interval length stays, see stiff_substeps), so h·λ ≤ kStiffStep, inside RK4's
 // stability interval (|h·λ| < 2.78 on the negative real axis) with room for accuracy. The block runs
 // max_l n_l sub-steps; lane l is updated only in its first n_l of them, with the same arithmetic as if the
 // whole block took n_l steps, so a lane's result depends on its own parameters and the record only (any
@@ -200,9 +201,9 @@ class OdeKernel {
       if (!(dt <= stiff_dt_ && dt >= stiff_dt_ * (1.0 - 2 * kStiffDtSlack))) stiff_substeps(dt * (1.0 + kStiffDtSlack));
     }
     if (stiff_max_ <= n) {  // every lane takes the record's sub-steps: one set of inputs for all
-      const double h = dt / n;
+      const double inv = 1.0 / n, h = dt * inv;  // LaneInputs: the same arithmetic lane by lane
       for (int i = 0; i < n; ++i) {
-        const double a = static_cast<double>(i) / n, m = (i + 0.5) / n, b = static_cast<double>(i + 1) / n;
+        const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
         step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv});
       }
     } else {
@@ -211,9 +212,10 @@ class OdeKernel {
 #pragma omp simd reduction(max : n_max)
       for (int l = 0; l < W; ++l) {
         n_[l] = std::max(record, stiff_[l]);
+        inv_n_[l] = 1.0 / n_[l];
         n_max = std::max(n_max, n_[l]);
       }
-      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, dt, x0, dx, v0, dv));
+      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv));
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
@@ -260,12 +262,13 @@ class OdeKernel {
   /// Inputs of sub-step i of a block whose lanes take n[l] sub-steps each, computed lane by lane with the
   /// arithmetic of SharedInputs; a lane past its own n[l] sub-steps is inactive and keeps its state.
   struct LaneInputs {
-    LaneInputs(int i, const double* n, double dt, double x0, double dx, double v0, double dv) : i_(i), n_(n) {
+    LaneInputs(int i, const double* n, const double* inv_n, double dt, double x0, double dx, double v0, double dv)
+        : i_(i), n_(n) {
 #pragma omp simd
-      for (int l = 0; l < W; ++l) {
-        const double nl = n[l];
-        const double a = static_cast<double>(i) / nl, m = (i + 0.5) / nl, b = static_cast<double>(i + 1) / nl;
-        h_[l] = dt / nl;
+      for (int l = 0; l < W; ++l) {  // multiplications by 1/n: a vector division per input and sub-step was
+        const double inv = inv_n[l];  // a third of a stiff sub-step (issue 16)
+        const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
+        h_[l] = dt * inv;
         xa_[l] = x0 + a * dx, va_[l] = v0 + a * dv;
         xm_[l] = x0 + m * dx, vm_[l] = v0 + m * dv;
         xb_[l] = x0 + b * dx, vb_[l] = v0 + b * dv;
@@ -385,6 +388,7 @@ class OdeKernel {
   double stiff_dt_ = -1.0;
   double stiff_max_ = 0.0;               // max of stiff_
   alignas(64) double n_[W] = {};         // sub-steps of each lane on the current interval (a whole number)
+  alignas(64) double inv_n_[W] = {};     // 1 / n_
   // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
   alignas(64) double power0_[W] = {};
   alignas(64) double inv0_[W] = {};
