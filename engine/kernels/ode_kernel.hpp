@@ -77,9 +77,11 @@ struct RecordScales {
   double displacement_ptp = 0;  ///< max x − min x [m]
 };
 
-/// h·λ a stiff lane's sub-step may reach (see above). Measured by tests/test_ode_stiff_lanes.cpp over 100
-/// random candidates of each MR default box: worst relative L2 to CVODE 3.2e-5 with 1.0, 8.2e-4 with 2.0,
-/// 1.6e-4 with 1.5, 1.9e-6 with 0.5 at twice the cost of stiff lanes.
+/// h·λ a stiff lane's sub-step may reach (see above), unless the law sets its own `kStiffStep`. Measured by
+/// tests/test_ode_stiff_lanes.cpp over 100 random candidates of each MR default box, worst relative L2 to
+/// CVODE: Bouc–Wen 3.2e-5 with 1.0 (5.4e-5 over 1000 candidates), 7.0e-5 with 1.25, 1.6e-4 with 1.5, 8.2e-4
+/// with 2.0, 1.9e-6 with 0.5 at twice the cost of stiff lanes. Spencer and the fdsp laws set their own (issue 16:
+/// the stiff lanes are most of a real-data fit's time), chosen to stay within Bouc–Wen's worst over 1000.
 inline constexpr double kStiffStep = 1.0;
 /// Sub-steps per sample interval beyond which a lane is masked as too stiff.
 inline constexpr int kMaxSubsteps = 512;
@@ -111,6 +113,10 @@ class OdeKernel {
     else return false;
   }();
   static constexpr bool kPower = requires { Law::kPowerState; };
+  static constexpr double kLawStiffStep = [] {
+    if constexpr (requires { Law::kStiffStep; }) return Law::kStiffStep;
+    else return kStiffStep;
+  }();
   /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
@@ -227,7 +233,7 @@ class OdeKernel {
     }
   }
 
-  /// Each lane's stiff sub-step count on intervals up to dt long, ceil(dt·λ_l / kStiffStep), and their maximum;
+  /// Each lane's stiff sub-step count on intervals up to dt long, ceil(dt·λ_l / kLawStiffStep), and their maximum;
   /// a lane that would need more than kMaxSubsteps is masked and takes the record's count (stiff 0). A record's
   /// intervals are mostly of one length up to rounding of its time stamps (relative 1e-12 or so): the counts
   /// are kept for every interval of [dt·(1 − 2·kStiffDtSlack), dt] (dt with the slack added) and recomputed
@@ -238,7 +244,7 @@ class OdeKernel {
     stiff_dt_ = dt;
     stiff_max_ = 0.0;
     for (int l = 0; l < W; ++l) {
-      const double stiff = std::ceil(dt * lambda_[l] / kStiffStep);  // +inf for an unbounded estimate
+      const double stiff = std::ceil(dt * lambda_[l] / kLawStiffStep);  // +inf for an unbounded estimate
       if (!(stiff <= kMaxSubsteps)) failed_[l] += 1.0;              // too stiff: masked, integrated cheaply
       stiff_[l] = failed_[l] > 0.0 ? 0.0 : stiff;
       stiff_max_ = std::max(stiff_max_, stiff_[l]);
