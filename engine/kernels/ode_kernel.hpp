@@ -49,6 +49,7 @@
 // A Law provides:
 //   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
 //   optional: static constexpr bool kStrokeDriven (see the sub-step rule; default false)
+//   optional: static constexpr double kStiffStep (h·λ of a stiff lane's sub-step; default ::kStiffStep below)
 //   static const ModelInfo& info();
 //   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
 //   template <class P, class Y, class DY>
@@ -61,7 +62,6 @@
 // where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
