@@ -120,6 +120,35 @@ TEST(Isa, SimulateAndEvaluateRunTheSameKernelAtEveryLevel) {
   }
 }
 
+// Models with internal states also run wide blocks (kWideLanes lanes; BatchEvaluator chooses the widths by the
+// lanes' costs, engine/evaluation/lane_blocks.hpp): a lane must get the same bits in a wide block as in a kLanes
+// block, at every level, full or partial, wherever it sits.
+TEST(Isa, WideBlocksGiveEachLaneTheBitsOfANarrowBlockAtEveryLevel) {
+  KeepIsa keep;
+  int wide_models = 0;
+  for (const Model* model : all_models()) {
+    if (model->max_block_lanes() == kLanes) continue;
+    ASSERT_EQ(model->max_block_lanes(), kWideLanes) << model->id();
+    ++wide_models;
+    const Signals data = bench_record(*model, 257, 1.0, 128.0);
+    const int count = kWideLanes + kLanes + 3;  // a full wide block and a partial one
+    const CandidateBatch batch = bench_candidates(*model, count, 13);
+    for (Isa level : supported_isas()) {
+      select_isa(level);
+      std::vector<MetricSums> wide(static_cast<std::size_t>(count)), narrow(wide.size());
+      for (int first = 0; first < count; first += kWideLanes)
+        model->evaluate_block(batch, first, std::min(kWideLanes, count - first), data, SumSet::every, wide.data() + first);
+      for (int first = 0; first < count; first += kLanes)
+        model->evaluate_block(batch, first, std::min(kLanes, count - first), data, SumSet::every, narrow.data() + first);
+      for (int i = 0; i < count; ++i)
+        EXPECT_TRUE(std::memcmp(&wide[static_cast<std::size_t>(i)], &narrow[static_cast<std::size_t>(i)], sizeof(MetricSums)) == 0)
+            << model->id() << " " << isa_name(level) << " candidate " << i << ": |e| sum "
+            << wide[static_cast<std::size_t>(i)].abs << " wide, " << narrow[static_cast<std::size_t>(i)].abs << " narrow";
+    }
+  }
+  EXPECT_EQ(wide_models, 5) << "Bouc-Wen, Spencer, spencer_voltage, spencer_freq and crfd.maxwell run wide blocks";
+}
+
 TEST(Isa, LevelsAgreeToRoundingOnEveryModel) {
   // The levels run the same arithmetic (-ffp-contract=off: no fused multiply-add is introduced) except the
   // vector math functions, whose libmvec variants differ by a few ulp. Every model's bench metrics at every

@@ -25,6 +25,7 @@
 
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/evaluation/bench_workload.hpp"
+#include "engine/evaluation/lane_blocks.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/common/table.hpp"
@@ -148,6 +149,8 @@ int bench_command(const BenchOptions& o) {
                   {"vector_isa", std::string(isa_name(active_isa()))},
                   {"vector_isas_supported", supported_isa_names()},
                   {"lanes_per_block", kLanes},
+                  {"wide_lanes_per_block", kWideLanes},
+                  {"wide_block_time", wide_block_time()},
                   {"exp_per_s_1t", exp_per_s},
                   {"build", DAMPBENCH_BUILD_FLAGS},
                   {"version", DAMPBENCH_VERSION}};

@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "engine/evaluation/lane_blocks.hpp"
+
 namespace dampbench {
 
 BatchEvaluator::BatchEvaluator(const Model& model, const Signals& data, int grain_blocks)
@@ -27,32 +29,34 @@ double BatchEvaluator::samples() const {
 std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet wanted) const {
   assert(batch.dim() == model_.dim());
   const int count = batch.count();
-  // Candidates of similar cost side by side (Model::lane_costs, on the first dataset): a block whose lanes disagree
-  // on their RK4 sub-steps runs the largest count on every lane. A lane's bits do not depend on its block-mates.
+  // Candidates of similar cost side by side (Model::lane_costs, on the first dataset), in blocks whose widths
+  // suit their costs (engine/evaluation/lane_blocks.hpp). A lane's bits do not depend on its block-mates.
+  const int max_lanes = model_.max_block_lanes();
+  std::vector<double> cost(static_cast<std::size_t>(count), 1.0);
   std::vector<int> order;
   CandidateBatch sorted;
-  if (count > kLanes) {
-    std::vector<double> cost(static_cast<std::size_t>(count));
-    if (model_.lane_costs(batch, *datasets_.front(), cost)) {
-      order.resize(static_cast<std::size_t>(count));
-      std::iota(order.begin(), order.end(), 0);
-      std::ranges::stable_sort(order, [&](int a, int b) { return cost[a] < cost[b]; });  // costs are never NaN
-      sorted.resize(batch.dim(), count);
-      for (int i = 0; i < count; ++i)
-        for (int j = 0; j < batch.dim(); ++j) sorted.at(i, j) = batch.at(order[i], j);
-    }
+  if (count > kLanes && model_.lane_costs(batch, *datasets_.front(), cost)) {
+    order.resize(static_cast<std::size_t>(count));
+    std::iota(order.begin(), order.end(), 0);
+    std::ranges::stable_sort(order, [&](int a, int b) { return cost[a] < cost[b]; });  // costs are never NaN
+    sorted.resize(batch.dim(), count);
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < batch.dim(); ++j) sorted.at(i, j) = batch.at(order[i], j);
+    std::ranges::sort(cost);
   }
   const CandidateBatch& run = order.empty() ? batch : sorted;
-  const int blocks = (count + kLanes - 1) / kLanes;
-  const int tasks = blocks * static_cast<int>(datasets_.size());
+  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, max_lanes > kLanes ? wide_block_time() : 2.0);
+  const int B = static_cast<int>(blocks.size());
+  const int tasks = B * static_cast<int>(datasets_.size());
   std::vector<MetricSums> out(datasets_.size() * static_cast<std::size_t>(count));
   tbb::parallel_for(
       tbb::blocked_range<int>(0, tasks, grain_blocks_),
       [&](const tbb::blocked_range<int>& range) {
         for (int task = range.begin(); task < range.end(); ++task) {
-          const int d = task / blocks, first = (task % blocks) * kLanes;
-          model_.evaluate_block(run, first, std::min(kLanes, count - first), *datasets_[d], wanted,
-                                out.data() + static_cast<std::size_t>(d) * count + first);
+          const int d = task / B;
+          const LaneBlock& b = blocks[static_cast<std::size_t>(task % B)];
+          model_.evaluate_block(run, b.first, b.count, *datasets_[d], wanted,
+                                out.data() + static_cast<std::size_t>(d) * count + b.first);
         }
       },
       tbb::simple_partitioner());

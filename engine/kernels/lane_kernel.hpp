@@ -180,6 +180,8 @@ class KernelModel final : public Model {
   using SumsBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, true>>;
   using ForcesBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, false>>;
   using Kernel = KernelT<Law, kLanes>;
+  /// Kernels that also run blocks of kWideLanes (Kernel::kWideBlocks).
+  static constexpr bool kWide = requires { requires Kernel::kWideBlocks; };
 
  public:
   [[nodiscard]] std::string_view id() const override { return Law::info().id; }
@@ -187,17 +189,27 @@ class KernelModel final : public Model {
   [[nodiscard]] std::string_view law() const override { return Law::info().law; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
 
+  [[nodiscard]] int max_block_lanes() const override { return kWide ? kWideLanes : kLanes; }
+
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
+    if constexpr (kWide) {
+      if (count > kLanes) {
+        const auto lanes = gather_lanes<Law, kWideLanes>(batch, first, count);
+        IsaClones<LaneBlockRun<Law, KernelT, kWideLanes, true>>::call(&lanes, &data, count, out, wanted);
+        return;
+      }
+    }
     const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
     SumsBlock::call(&lanes, &data, count, out, wanted);
   }
 
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override {
-    if constexpr (requires { Kernel::lane_costs(std::declval<const LawLanes<Law, kLanes>&>(), data, 0, out.data()); }) {
+    if constexpr (requires { Kernel::substep_profile(data); }) {
+      const auto profile = Kernel::substep_profile(data);
       for (int first = 0; first < batch.count(); first += kLanes) {
         const int n = std::min(kLanes, batch.count() - first);
-        Kernel::lane_costs(gather_lanes<Law, kLanes>(batch, first, n), data, n, out.data() + first);
+        Kernel::lane_costs(gather_lanes<Law, kLanes>(batch, first, n), data, profile, n, out.data() + first);
       }
       return true;
     } else {

@@ -108,6 +108,9 @@ class OdeKernel {
  public:
   static constexpr int S = Law::kStates;
   using State = LaneState<W>;
+  /// Also run as blocks of kWideLanes lanes (engine/model/batch.hpp): four dependent RK4 stages per sub-step
+  /// leave the CPU waiting on latencies at kLanes lanes (issue 16: Zen 5, `bench`, 1.2× with wide blocks).
+  static constexpr bool kWideBlocks = true;
   static constexpr bool kStrokeDriven = [] {
     if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
     else return false;
@@ -149,11 +152,43 @@ class OdeKernel {
     }
   }
 
-  /// Model::lane_costs of the first `count` lanes: their stiffness, which sets their sub-steps.
-  static void lane_costs(const LawLanes<Law, W>& p, const Signals& data, int count, double* out)
+  /// What the lane costs of a record need: the record's sub-step counts n_k, sorted, with suffix sums, and the
+  /// longest interval.
+  struct SubstepProfile {
+    std::vector<double> counts;  // n_k of every interval, ascending
+    std::vector<double> above;   // above[i] = counts[i] + counts[i + 1] + ...
+    double dt_max = 0;
+  };
+  static SubstepProfile substep_profile(const Signals& data)
     requires kStiff
   {
-    stiffness_of_lanes(p, Law::context(data), data, count, out);
+    SubstepProfile r;
+    for (std::size_t k = 1; k < data.size(); ++k) {
+      r.counts.push_back(ode_substeps(data, k, Law::kSubstepsPerStroke, kStrokeDriven));
+      r.dt_max = std::max(r.dt_max, data.t_s[k] - data.t_s[k - 1]);
+    }
+    std::ranges::sort(r.counts);
+    r.above.assign(r.counts.size() + 1, 0.0);
+    for (std::size_t i = r.counts.size(); i-- > 0;) r.above[i] = r.above[i + 1] + r.counts[i];
+    return r;
+  }
+
+  /// Model::lane_costs of the first `count` lanes: the mean sub-steps per interval each takes, the mean of
+  /// max(n_k, its stiff count) (stiff_substeps; a lane that will be masked takes the record's n_k).
+  static void lane_costs(const LawLanes<Law, W>& p, const Signals& data, const SubstepProfile& profile, int count,
+                         double* out)
+    requires kStiff
+  {
+    double lambda[W];
+    stiffness_of_lanes(p, Law::context(data), data, count, lambda);
+    const double intervals = static_cast<double>(profile.counts.size());
+    for (int l = 0; l < count; ++l) {
+      double stiff = std::ceil(profile.dt_max * lambda[l] / kLawStiffStep);
+      if (!(stiff <= kMaxSubsteps)) stiff = 0.0;
+      const auto below = std::ranges::lower_bound(profile.counts, stiff) - profile.counts.begin();
+      out[l] = intervals > 0 ? (stiff * static_cast<double>(below) + profile.above[static_cast<std::size_t>(below)]) / intervals
+                             : 1.0;
+    }
   }
 
   void forces(std::size_t k, double* f) {

@@ -44,17 +44,20 @@ class Model {
   [[nodiscard]] virtual std::string_view law() const = 0;
   [[nodiscard]] virtual std::span<const ParameterInfo> parameters() const = 0;
 
-  /// Metric sums of candidates [first, first + count) of `batch` (count ≤ kLanes) against data.F_N: those of
+  /// Metric sums of candidates [first, first + count) of `batch` (count ≤ max_block_lanes()) against data.F_N: those of
   /// `wanted`, the others NaN. Never throws; a candidate whose force is NaN or Inf ends with non-finite sums
   /// (→ +inf metric).
   virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                               SumSet wanted, MetricSums* out) const = 0;
 
-  /// An estimate of each candidate's cost on `data`, into out[i] for candidates [0, batch.count()) (the ODE
-  /// kernels: the stiffness λ [1/s] that sets a lane's RK4 sub-steps, +inf for a lane that will be masked);
-  /// false, and `out` untouched, where every candidate costs the same. BatchEvaluator puts candidates of
-  /// similar cost into the same lane blocks: a lane's bits do not depend on its neighbours, so the order
-  /// changes the time only.
+  /// Most candidates one evaluate_block takes: kLanes, or kWideLanes for a model that also runs wide blocks
+  /// (count > kLanes runs a block of kWideLanes lanes); a lane gets the same bits in either.
+  [[nodiscard]] virtual int max_block_lanes() const { return kLanes; }
+  /// An estimate of each candidate's cost on `data`, proportional to the time its lane takes, into out[i] for
+  /// candidates [0, batch.count()) (the ODE kernels: the lane's mean RK4 sub-steps per sample interval);
+  /// false, and `out` untouched, where every candidate costs the same. A block costs what its dearest lane
+  /// costs, so BatchEvaluator puts candidates of similar cost into the same lane blocks and chooses the blocks'
+  /// widths by these costs: a lane's bits do not depend on its neighbours, so both change the time only.
   virtual bool lane_costs(const CandidateBatch& /*batch*/, const Signals& /*data*/, std::span<double> /*out*/) const {
     return false;
   }
