@@ -120,24 +120,24 @@ TEST(Isa, SimulateAndEvaluateRunTheSameKernelAtEveryLevel) {
   }
 }
 
-// Models with internal states also run wide blocks (kWideLanes lanes; BatchEvaluator chooses the widths by the
-// lanes' costs, engine/evaluation/lane_blocks.hpp): a lane must get the same bits in a wide block as in a kLanes
-// block, at every level, full or partial, wherever it sits.
+// Models with internal states also run wider blocks (kWideLanes and kWidestLanes lanes; BatchEvaluator chooses the
+// widths by the lanes' costs, engine/evaluation/lane_blocks.hpp): a lane must get the same bits in a wider block as
+// in a kLanes block, at every level, full or partial, wherever it sits.
 TEST(Isa, WideBlocksGiveEachLaneTheBitsOfANarrowBlockAtEveryLevel) {
   KeepIsa keep;
   int wide_models = 0;
   for (const Model* model : all_models()) {
     if (model->max_block_lanes() == kLanes) continue;
-    ASSERT_EQ(model->max_block_lanes(), kWideLanes) << model->id();
+    ASSERT_EQ(model->max_block_lanes(), kWidestLanes) << model->id();
     ++wide_models;
     const Signals data = bench_record(*model, 257, 1.0, 128.0);
-    const int count = kWideLanes + kLanes + 3;  // a full wide block and a partial one
+    const int count = kWidestLanes + kLanes + 3;  // a full block of kWidestLanes, then 19 in one of kWideLanes
     const CandidateBatch batch = bench_candidates(*model, count, 13);
     for (Isa level : supported_isas()) {
       select_isa(level);
       std::vector<MetricSums> wide(static_cast<std::size_t>(count)), narrow(wide.size());
-      for (int first = 0; first < count; first += kWideLanes)
-        model->evaluate_block(batch, first, std::min(kWideLanes, count - first), data, SumSet::every, wide.data() + first);
+      for (int first = 0; first < count; first += kWidestLanes)
+        model->evaluate_block(batch, first, std::min(kWidestLanes, count - first), data, SumSet::every, wide.data() + first);
       for (int first = 0; first < count; first += kLanes)
         model->evaluate_block(batch, first, std::min(kLanes, count - first), data, SumSet::every, narrow.data() + first);
       for (int i = 0; i < count; ++i)
@@ -146,7 +146,7 @@ TEST(Isa, WideBlocksGiveEachLaneTheBitsOfANarrowBlockAtEveryLevel) {
             << wide[static_cast<std::size_t>(i)].abs << " wide, " << narrow[static_cast<std::size_t>(i)].abs << " narrow";
     }
   }
-  EXPECT_EQ(wide_models, 5) << "Bouc-Wen, Spencer, spencer_voltage, spencer_freq and crfd.maxwell run wide blocks";
+  EXPECT_EQ(wide_models, 5) << "Bouc-Wen, Spencer, spencer_voltage, spencer_freq and crfd.maxwell run wider blocks";
 }
 
 TEST(Isa, LevelsAgreeToRoundingOnEveryModel) {

@@ -149,8 +149,8 @@ int bench_command(const BenchOptions& o) {
                   {"vector_isa", std::string(isa_name(active_isa()))},
                   {"vector_isas_supported", supported_isa_names()},
                   {"lanes_per_block", kLanes},
-                  {"wide_lanes_per_block", kWideLanes},
-                  {"wide_block_time", wide_block_time()},
+                  {"wider_blocks_lanes", {kWideLanes, kWidestLanes}},
+                  {"block_times", block_times()},
                   {"exp_per_s_1t", exp_per_s},
                   {"build", DAMPBENCH_BUILD_FLAGS},
                   {"version", DAMPBENCH_VERSION}};

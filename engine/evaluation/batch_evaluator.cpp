@@ -45,7 +45,7 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
     std::ranges::sort(cost);
   }
   const CandidateBatch& run = order.empty() ? batch : sorted;
-  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, max_lanes > kLanes ? wide_block_time() : 2.0);
+  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, block_times());
   const int B = static_cast<int>(blocks.size());
   const int tasks = B * static_cast<int>(datasets_.size());
   std::vector<MetricSums> out(datasets_.size() * static_cast<std::size_t>(count));

@@ -7,41 +7,47 @@
 
 namespace dampbench {
 
-std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, double wide_time) {
+std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times) {
+  constexpr std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
   const int n = static_cast<int>(costs.size());
   // time[i]: least time of candidates [0, i); start[i]: where the last block of that cut starts. time only
-  // grows with i, so a block ending at i best starts as far left as its width allows.
+  // grows with i, so a block of a given width ending at i best starts as far left as the width allows, and a
+  // width pays only for a block the next narrower one cannot hold.
   std::vector<double> time(static_cast<std::size_t>(n) + 1, 0.0);
   std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
   for (int i = 1; i <= n; ++i) {
     const double dearest = costs[static_cast<std::size_t>(i) - 1];
-    const int narrow = std::max(0, i - kLanes), wide = std::max(0, i - max_lanes);
-    time[i] = time[narrow] + dearest;
-    start[i] = narrow;
-    if (i - wide > kLanes && time[wide] + wide_time * dearest < time[i]) {
-      time[i] = time[wide] + wide_time * dearest;
-      start[i] = wide;
+    for (std::size_t w = 0; w < widths.size() && widths[w] <= max_lanes; ++w) {
+      const int from = std::max(0, i - widths[w]);
+      if (w > 0 && i - from <= widths[w - 1]) break;
+      const double t = time[static_cast<std::size_t>(from)] + times[w] * dearest;
+      if (w == 0 || t < time[static_cast<std::size_t>(i)]) {
+        time[static_cast<std::size_t>(i)] = t;
+        start[static_cast<std::size_t>(i)] = from;
+      }
     }
   }
   std::vector<LaneBlock> blocks;
-  for (int end = n; end > 0; end = start[end]) blocks.push_back({start[end], end - start[end]});
+  for (int end = n; end > 0; end = start[static_cast<std::size_t>(end)])
+    blocks.push_back({start[static_cast<std::size_t>(end)], end - start[static_cast<std::size_t>(end)]});
   std::ranges::reverse(blocks);
   return blocks;
 }
 
-double wide_block_time() {
-  // Measured with kLanes = 16 and kWideLanes = 32 on the Bouc–Wen and Spencer `bench` workload, one thread (a
-  // block of equal lanes): Zen 5 at avx512 1.67 (both models). At a level where wide blocks gain nothing, 2
-  // keeps every block at kLanes (a wide block is never strictly cheaper than two narrow ones).
+BlockTimes block_times() {
+  // 1-thread `bench` rates of Bouc–Wen and Spencer (a batch of equal-cost lanes) with all blocks of one width,
+  // Zen 5 at avx512, 2026-11-25: 32 lanes 1.62× and 1.67× a 16-lane block's time, 64 lanes 3.17× and 2.94×. At
+  // the other levels wider blocks are not used: a block of twice the lanes takes twice the time.
+  constexpr BlockTimes kAvx512{1.0, 1.67, 3.05}, kNoGain{1.0, 2.0, 4.0};
   switch (active_isa()) {
-    case Isa::avx512: return 1.67;
+    case Isa::avx512: return kAvx512;
     case Isa::native:
 #if defined(__AVX512F__)
-      return 1.67;
+      return kAvx512;
 #else
-      return 2.0;
+      return kNoGain;
 #endif
-    default: return 2.0;
+    default: return kNoGain;
   }
 }
 

@@ -177,10 +177,9 @@ struct LaneBlockRun {
 /// see the same bits; evaluate_scalar runs one lane (W = 1) of plain scalar code, the reference of `bench`.
 template <class Law, template <class, int> class KernelT>
 class KernelModel final : public Model {
-  using SumsBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, true>>;
   using ForcesBlock = IsaClones<LaneBlockRun<Law, KernelT, kLanes, false>>;
   using Kernel = KernelT<Law, kLanes>;
-  /// Kernels that also run blocks of kWideLanes (Kernel::kWideBlocks).
+  /// Kernels that also run blocks of kWideLanes and kWidestLanes (Kernel::kWideBlocks).
   static constexpr bool kWide = requires { requires Kernel::kWideBlocks; };
 
  public:
@@ -189,19 +188,23 @@ class KernelModel final : public Model {
   [[nodiscard]] std::string_view law() const override { return Law::info().law; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
 
-  [[nodiscard]] int max_block_lanes() const override { return kWide ? kWideLanes : kLanes; }
+  [[nodiscard]] int max_block_lanes() const override { return kWide ? kWidestLanes : kLanes; }
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
     if constexpr (kWide) {
-      if (count > kLanes) {
-        const auto lanes = gather_lanes<Law, kWideLanes>(batch, first, count);
-        IsaClones<LaneBlockRun<Law, KernelT, kWideLanes, true>>::call(&lanes, &data, count, out, wanted);
-        return;
-      }
+      if (count > kWideLanes) return evaluate_lanes<kWidestLanes>(batch, first, count, data, wanted, out);
+      if (count > kLanes) return evaluate_lanes<kWideLanes>(batch, first, count, data, wanted, out);
     }
-    const auto lanes = gather_lanes<Law, kLanes>(batch, first, count);
-    SumsBlock::call(&lanes, &data, count, out, wanted);
+    evaluate_lanes<kLanes>(batch, first, count, data, wanted, out);
+  }
+
+  /// evaluate_block with a block of W lanes.
+  template <int W>
+  static void evaluate_lanes(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
+                             MetricSums* out) {
+    const auto lanes = gather_lanes<Law, W>(batch, first, count);
+    IsaClones<LaneBlockRun<Law, KernelT, W, true>>::call(&lanes, &data, count, out, wanted);
   }
 
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override {

@@ -11,10 +11,10 @@ namespace dampbench {
 /// their first candidate), so every candidate goes through the same vector instructions wherever it
 /// sits in a batch. That is what makes results independent of batch composition and thread count.
 inline constexpr int kLanes = 16;
-/// Lanes of a wide block, which models with internal states also run (Model::max_block_lanes): their RK4 stages
-/// are chains of dependent operations, and a wide block gives the CPU twice the independent chains. A lane gets
-/// the same bits in a block of either width (tests/test_batch_evaluator.cpp).
-inline constexpr int kWideLanes = 32;
+/// Lanes of the wider blocks models with internal states also run (Model::max_block_lanes): their RK4 stages are
+/// chains of dependent operations, and a wider block gives the CPU more independent chains. A lane gets the same
+/// bits in a block of any width (tests/test_isa.cpp).
+inline constexpr int kWideLanes = 32, kWidestLanes = 64;
 
 class CandidateBatch {
  public:

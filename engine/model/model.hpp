@@ -50,8 +50,9 @@ class Model {
   virtual void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                               SumSet wanted, MetricSums* out) const = 0;
 
-  /// Most candidates one evaluate_block takes: kLanes, or kWideLanes for a model that also runs wide blocks
-  /// (count > kLanes runs a block of kWideLanes lanes); a lane gets the same bits in either.
+  /// Most candidates one evaluate_block takes: kLanes, or kWidestLanes for a model that also runs wider blocks
+  /// (count ≤ kLanes runs a block of kLanes lanes, ≤ kWideLanes one of kWideLanes, else one of kWidestLanes); a
+  /// lane gets the same bits in any.
   [[nodiscard]] virtual int max_block_lanes() const { return kLanes; }
   /// An estimate of each candidate's cost on `data`, proportional to the time its lane takes, into out[i] for
   /// candidates [0, batch.count()) (the ODE kernels: the lane's mean RK4 sub-steps per sample interval);
