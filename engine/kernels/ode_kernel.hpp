@@ -108,8 +108,9 @@ class OdeKernel {
  public:
   static constexpr int S = Law::kStates;
   using State = LaneState<W>;
-  /// Also run as blocks of kWideLanes lanes (engine/model/batch.hpp): four dependent RK4 stages per sub-step
-  /// leave the CPU waiting on latencies at kLanes lanes (issue 16: Zen 5, `bench`, 1.2× with wide blocks).
+  /// Also run as blocks of kWideLanes and kWidestLanes lanes (engine/model/batch.hpp, chosen per batch by
+  /// engine/evaluation/lane_blocks.hpp): four dependent RK4 stages per sub-step leave the CPU waiting at kLanes
+  /// lanes (issue 16, Zen 5, `bench`: Bouc–Wen and Spencer 1.25–1.35× in blocks of 64).
   static constexpr bool kWideBlocks = true;
   static constexpr bool kStrokeDriven = [] {
     if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
