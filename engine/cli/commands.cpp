@@ -1,4 +1,5 @@
 #include "engine/cli/commands.hpp"
+#include "engine/cli/fit_defaults.hpp"
 #include "engine/cli/report_command.hpp"
 
 #include <cmath>
@@ -166,7 +167,8 @@ int fit_command(const FitOptions& o) {
   const ResolvedModel resolved = resolve_model(o.model, o.laws);
   const Model& model = *resolved.model;
   const Metric metric = parse_metric(o.metric);
-  OptimizerSpec spec{o.optimizer, o.population, o.iterations};
+  const FitPlan plan = fit_plan(model, o.optimizer, o.population, o.iterations, o.runs);
+  OptimizerSpec spec{plan.optimizer, plan.population, plan.iterations};
   for (const auto& [key, value] : parse_key_values(o.optimizer_settings, "--optimizer-settings")) spec.settings[key] = value;
   const OptimizerFactory factory = make_optimizer_factory(spec);
   if (o.paths.empty()) throw InputError("fit: give at least one --data FILE");
@@ -187,10 +189,10 @@ int fit_command(const FitOptions& o) {
   for (const auto& s : signals) samples += static_cast<double>(s.size());
 
   IdentificationSettings settings;
-  settings.runs = o.runs;
+  settings.runs = plan.runs;
   settings.seed = o.seed;
   settings.metric = metric;
-  settings.task_key = task_key(model.id(), names, o.optimizer);
+  settings.task_key = task_key(model.id(), names, plan.optimizer);
   const Identification id = identify(model, data, bounds, factory, settings);
 
   const RunResult& best = id.runs[id.best_run()];
@@ -208,7 +210,7 @@ int fit_command(const FitOptions& o) {
   const Identifiability identifiability = assess_identifiability(model, data, bounds, best.best_params);
 
   const auto paper = model.to_paper_units(best.best_params);
-  Table params_table{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, o.runs),
+  Table params_table{"best_params", fmt::format("{} on {} — best of {} runs", model.id(), names, plan.runs),
           {"parameter", "value (SI)", "unit", "value (paper units)", "paper unit", "std. error (SI)", "rel. error",
            "identifiable"},
           {}};
@@ -225,7 +227,7 @@ int fit_command(const FitOptions& o) {
   Table runs_table{"runs", fmt::format("{} over {} runs", o.metric, s.count), {"best", "worst", "mean", "std"},
           {{format_number(s.min), format_number(s.max), format_number(s.mean), format_number(s.std)}}};
   if (!o.report.empty()) {
-    FitReport report{&model, o.optimizer, std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", metric, data, &id,
+    FitReport report{&model, plan.optimizer, std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", metric, data, &id,
                      {params_table, metrics_table, runs_table}};
     write_fit_report(o.report, report);
   }
@@ -235,7 +237,7 @@ int fit_command(const FitOptions& o) {
     j["data"] = o.paths;
     j["samples"] = samples;
     j["metric"] = o.metric;
-    j["optimizer"] = {{"name", o.optimizer}, {"population", o.population}, {"iterations", o.iterations},
+    j["optimizer"] = {{"name", plan.optimizer}, {"population", plan.population}, {"iterations", plan.iterations},
                       {"settings", spec.settings}};
     j["seed"] = o.seed;
     nlohmann::ordered_json bp = nlohmann::ordered_json::object();
@@ -282,6 +284,7 @@ int fit_command(const FitOptions& o) {
     std::cout << j.dump(2) << "\n";
     return 0;
   }
+  if (!plan.why.empty()) std::cout << plan.why << "\n\n";
   std::cout << params_table.to_markdown() << "\n" << metrics_table.to_markdown() << "\n" << runs_table.to_markdown() << "\n";
   std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
                            "improved {:.3g} % over its last {:.0f} % of evaluations{}\n",

@@ -39,11 +39,10 @@ struct FitOptions {
   std::vector<std::string> paths;   ///< one or more records (the metric is averaged over them)
   RecordOptions data;                 ///< loader options shared by every record (path unused)
   std::string metric = "of_abs";
-  std::string optimizer = "pso";
+  /// Not given: by the model's class (engine/cli/fit_defaults.hpp).
+  std::optional<std::string> optimizer;
   std::string optimizer_settings;  ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
-  int population = 50;
-  int iterations = 100;
-  int runs = 50;
+  std::optional<int> population, iterations, runs;
   std::uint64_t seed = 1;
   std::string bounds;
   std::string format = "md";

@@ -97,11 +97,12 @@ int main(int argc, char** argv) {
         c->add_option("--laws", fit.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
         add_data_options(c, fit.data);
         c->add_option("--metric", fit.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
-        c->add_option("--optimizer", fit.optimizer, "pso (default), ga, aga, de, ...");
+        c->add_option("--optimizer", fit.optimizer,
+                      "pso, ga, aga, de, ga-lm, ... (default: ga-lm for models with internal states, else pso)");
         c->add_option("--optimizer-settings", fit.optimizer_settings, "algorithm settings, e.g. pc=0.6,pm=0.03 or variant=constriction");
-        c->add_option("--pop", fit.population, "population size (default 50)");
-        c->add_option("--iters", fit.iterations, "iterations (default 100)");
-        c->add_option("--runs", fit.runs, "independent runs (default 50)");
+        c->add_option("--pop", fit.population, "population size (default 24 for ga-lm on internal states, else 50)");
+        c->add_option("--iters", fit.iterations, "iterations (default 30 for ga-lm on internal states, else 100)");
+        c->add_option("--runs", fit.runs, "independent runs (default 4 for internal states, else 50)");
         c->add_option("--seed", fit.seed, "seed (default 1)");
         c->add_option("--bounds", fit.bounds, "bounds in SI, name=lo:hi,...");
         c->add_option("--format", fit.format, "md (default) or json");

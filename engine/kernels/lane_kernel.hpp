@@ -181,6 +181,8 @@ class KernelModel final : public Model {
   using Kernel = KernelT<Law, kLanes>;
   /// Kernels that also run blocks of kWideLanes and kWidestLanes (Kernel::kWideBlocks).
   static constexpr bool kWide = requires { requires Kernel::kWideBlocks; };
+  /// Kernels with a reference integrator (CVODE) integrate internal states.
+  static constexpr bool kStates = requires(std::span<const double> p, const Signals& d) { Kernel::reference(p, d); };
 
  public:
   [[nodiscard]] std::string_view id() const override { return Law::info().id; }
@@ -189,6 +191,7 @@ class KernelModel final : public Model {
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
 
   [[nodiscard]] int max_block_lanes() const override { return kWide ? kWidestLanes : kLanes; }
+  [[nodiscard]] bool has_internal_states() const override { return kStates; }
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
@@ -252,7 +255,7 @@ class KernelModel final : public Model {
 
   [[nodiscard]] std::optional<std::vector<double>> simulate_reference(std::span<const double> params,
                                                                       const Signals& data) const override {
-    if constexpr (requires { Kernel::reference(params, data); }) return Kernel::reference(params, data);
+    if constexpr (kStates) return Kernel::reference(params, data);
     else return std::nullopt;
   }
 };

@@ -81,6 +81,10 @@ class Model {
   /// Default: simulate per candidate.
   virtual void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const;
 
+  /// True for models with internal states integrated between samples (Bouc–Wen, Spencer, Maxwell, ...), false
+  /// for algebraic ones. `fit` chooses its default optimizer and budget by it (engine/identification/fit_defaults.hpp).
+  [[nodiscard]] virtual bool has_internal_states() const { return false; }
+
   /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
   /// with internal states; nullopt for algebraic models, whose force is exact.
   [[nodiscard]] virtual std::optional<std::vector<double>> simulate_reference(std::span<const double> /*params*/,
