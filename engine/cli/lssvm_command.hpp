@@ -23,8 +23,8 @@ struct LssvmOptions {
                                    ///< cap, lssvm_command.cpp; 0: all)
   std::uint64_t seed = 1;
   std::string fitness;             ///< hyperparameter fitness (validation by default; the paper's is selectable)
-  int population = 50;             ///< GA population (lssvm paper)
-  int generations = 500;           ///< GA generations (lssvm paper)
+  std::optional<int> population;   ///< GA population (unset: the paper's 50; 16 for the free-run fitness)
+  std::optional<int> generations;  ///< GA generations (unset: the paper's 500; 16 for the free-run fitness)
   double validation = 0.2;         ///< held-out tail of each training record (fitness validation)
   double c = std::numeric_limits<double>::quiet_NaN();      ///< fixed c (with sigma): no GA; NaN: tune
   double sigma = std::numeric_limits<double>::quiet_NaN();  ///< fixed σ (with c): no GA; NaN: tune

@@ -86,6 +86,7 @@ TrainingRows build_rows(std::span<const Dataset> records, const Lags& lags, int 
   rows.X.resize(lags.dim(), static_cast<Eigen::Index>(keep));
   rows.y.resize(static_cast<Eigen::Index>(keep));
   rows.record.resize(keep);
+  rows.sample.resize(keep);
   std::size_t offset = 0, next = 0;
   for (std::size_t r = 0; r < records.size(); ++r) {
     const Dataset& rec = records[r];
@@ -97,6 +98,7 @@ TrainingRows build_rows(std::span<const Dataset> records, const Lags& lags, int 
       fill_regressor(rec, lags, rec.F_N, i, rows.X.col(col).data());
       rows.y[col] = rec.F_N[i];
       rows.record[next] = static_cast<int>(r);
+      rows.sample[next] = i;
     }
     offset += count;
   }
@@ -180,17 +182,28 @@ std::vector<double> Model::predict_one_step(const Dataset& record) const {
   return out;
 }
 
+std::size_t free_run(const Eigen::MatrixXd& X, const Coefficients& coef, double sigma, const Normalizer& norm,
+                     const Lags& lags, const Dataset& record, std::size_t from, std::size_t to,
+                     std::span<double> forces, double bound) {
+  std::vector<double> x(static_cast<std::size_t>(lags.dim())), scratch(static_cast<std::size_t>(X.cols()));
+  for (std::size_t i = from; i < to; ++i) {
+    fill_regressor(record, lags, forces, i, x.data());
+    norm.apply_in_place(x.data());
+    const double f = evaluate(X, coef, sigma, x.data(), scratch.data());
+    if (!(std::abs(f) <= bound)) return i;
+    forces[i] = f;
+  }
+  return to;
+}
+
 std::vector<double> Model::simulate(const Dataset& record) const {
   check_length(record, lags_, "test");
   std::vector<double> out(record.size(), 0.0);
   const std::size_t first = static_cast<std::size_t>(lags_.first());
   if (record.has_force()) std::copy_n(record.F_N.begin(), first, out.begin());
-  std::vector<double> x(static_cast<std::size_t>(lags_.dim())), scratch(static_cast<std::size_t>(X_.cols()));
-  for (std::size_t i = first; i < record.size(); ++i) {
-    fill_regressor(record, lags_, out, i, x.data());
-    norm_.apply_in_place(x.data());
-    out[i] = evaluate(X_, coef_, sigma_, x.data(), scratch.data());
-  }
+  // Stops only at a NaN force, after which every force would be NaN: the metrics show it as it is.
+  const std::size_t end = free_run(X_, coef_, sigma_, norm_, lags_, record, first, record.size(), out);
+  std::fill(out.begin() + static_cast<std::ptrdiff_t>(end), out.end(), std::nan(""));
   return out;
 }
 
@@ -227,9 +240,17 @@ ErrorMetrics MetricAccumulator::finish() const {
 Fitness parse_fitness(std::string_view text) {
   if (text == "validation" || text.empty()) return Fitness::validation;
   if (text == "paper") return Fitness::paper;
-  throw InputError(fmt::format("--fitness: expected validation or paper, got '{}'", text));
+  if (text == "free-run") return Fitness::free_run;
+  throw InputError(fmt::format("--fitness: expected validation, paper or free-run, got '{}'", text));
 }
 
-std::string_view fitness_name(Fitness f) { return f == Fitness::paper ? "paper" : "validation"; }
+std::string_view fitness_name(Fitness f) {
+  switch (f) {
+    case Fitness::paper: return "paper";
+    case Fitness::free_run: return "free-run";
+    case Fitness::validation: break;
+  }
+  return "validation";
+}
 
 }  // namespace dampbench::lssvm

@@ -23,9 +23,10 @@
 //   one-step-ahead: y_{i−k} in x_i are the measured forces;
 //   free run (simulation): y_{i−k} are the model's own earlier outputs (what a controller uses).
 //
-// Hyperparameters (c, σ) by the project's GA (tune()); see TuneSettings for the fitness, the validation split,
+// Hyperparameters (c, σ) by the project's GA, or PSO for the free-run fitness (tune()); see TuneSettings for the fitness, the validation split,
 // the bounds and the σ grid.
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -68,6 +69,7 @@ struct TrainingRows {
   Eigen::MatrixXd X;
   Eigen::VectorXd y;
   std::vector<int> record;  ///< index of the record each column comes from (columns in time order per record)
+  std::vector<std::size_t> sample;  ///< the sample of its record each column is the regressor of
   int available = 0;        ///< rows the records give before the max_rows cap
   [[nodiscard]] int size() const { return static_cast<int>(y.size()); }
 };
@@ -105,6 +107,8 @@ struct Coefficients {
 /// The bordered system by one Cholesky factorization of K + I/c and two solves (see the file comment).
 /// InputError: c ≤ 0 or not finite ("lssvm: c must be positive, got -1"), size mismatch, an empty system.
 Coefficients solve_bordered(const Eigen::MatrixXd& K, const Eigen::VectorXd& y, double c);
+/// The same, factorizing K's storage in place (for a kernel matrix made just for this solve).
+Coefficients solve_bordered(Eigen::MatrixXd&& K, const Eigen::VectorXd& y, double c);
 
 /// One eigendecomposition K = QΛQᵀ for a fixed σ, reused for any c (see the file comment).
 /// The symmetric QR algorithm (Golub & Van Loan, Alg. 8.3.3: Householder tridiagonalization, implicit QR
@@ -177,6 +181,14 @@ class Model {
   Coefficients coef_;
 };
 
+/// Free run with the model (X normalized training points, coef, sigma, norm): forces[i] for from ≤ i < to from the
+/// model's own earlier outputs, forces[i < from] the initial conditions (Lags::first() ≤ from). The one loop behind
+/// Model::simulate and the free-run fitness. Stops at the first force that is NaN or exceeds `bound` in magnitude
+/// (a free run that diverges), without storing it, and returns its sample; `to` when every force was stored.
+std::size_t free_run(const Eigen::MatrixXd& X, const Coefficients& coef, double sigma, const Normalizer& norm,
+                     const Lags& lags, const Dataset& record, std::size_t from, std::size_t to,
+                     std::span<double> forces, double bound = std::numeric_limits<double>::infinity());
+
 // ---- metrics -------------------------------------------------------------------------------------------------
 
 /// Errors e = F_measured − F_model over the predicted samples of one or several records (pooled).
@@ -214,8 +226,15 @@ enum class Fitness {
   /// the scale of the distance between neighbouring samples (test_lssvm.cpp shows it), where the model
   /// reproduces its training forces and generalizes poorly. Kept for comparison with the paper.
   paper,
+  /// Free-run MSE on the held-out tails (what a controller uses, issue 13): the model is fitted on the same rows
+  /// as `validation`, then simulates each training record at its full rate (the lags are in record samples)
+  /// from its first held-out sample to its end, starting from the measured forces before it. A free run that
+  /// diverges (|F| > 10 × the largest training force) scores +inf. Each candidate costs a kernel matrix and a
+  /// Cholesky solve of the fitted rows (~0.25 s at 1 600 rows), far more than the validation fitness's shared
+  /// eigendecompositions: it is searched by PSO with a smaller budget (tune(), lssvm_command.cpp).
+  free_run,
 };
-Fitness parse_fitness(std::string_view text);  ///< "validation" | "paper"; InputError otherwise
+Fitness parse_fitness(std::string_view text);  ///< "validation" | "paper" | "free-run"; InputError otherwise
 std::string_view fitness_name(Fitness f);
 
 struct TuneSettings {
@@ -235,10 +254,17 @@ struct TuneSettings {
   std::uint64_t seed = 1;
 };
 
+/// The training records and lags the rows were built from: Fitness::free_run simulates the records themselves.
+struct TrainingRecords {
+  std::span<const Dataset> records;
+  Lags lags;
+};
+
 struct TuneResult {
   double c = 0, sigma = 0;
   double objective = 0;      ///< minimized value: validation MSE [N²] or training SSE [N²] (paper)
   int fit_rows = 0, validation_rows = 0;
+  long long free_run_samples = 0;  ///< samples one free-run fitness simulates (Fitness::free_run)
   int factorizations = 0;    ///< eigendecompositions computed (distinct grid σ, recomputations included)
   long long evaluations = 0;
   std::vector<double> best_history;  ///< best objective after each generation
@@ -251,9 +277,12 @@ double snap_sigma(double sigma, int per_decade);
 /// training rows. Each generation is one batch: the distinct grid σ not yet cached are decomposed in
 /// parallel, then every candidate is evaluated in parallel (oneTBB); a candidate's value depends only on
 /// (c, grid σ), so results are bit-identical for any thread count. InputError for bad settings or too few rows.
-TuneResult tune(const TrainingRows& rows, const TuneSettings& settings);
+/// Fitness::free_run runs PSO (optimizers/registry `pso`, population × generations iterations) over log10 c and
+/// log10 σ instead, one model per candidate, and needs `records` (InputError without them).
+TuneResult tune(const TrainingRows& rows, const TuneSettings& settings, const TrainingRecords& records = {});
 
 /// The objective the GA minimizes, for one (c, σ) (the same code path as tune(); for tests and scans).
-double objective(const TrainingRows& rows, const TuneSettings& settings, double c, double sigma);
+double objective(const TrainingRows& rows, const TuneSettings& settings, double c, double sigma,
+                 const TrainingRecords& records = {});
 
 }  // namespace dampbench::lssvm

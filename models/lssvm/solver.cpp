@@ -137,18 +137,25 @@ Eigen::MatrixXd rbf_kernel(const Eigen::MatrixXd& X, double sigma) {
 }
 
 Coefficients solve_bordered(const Eigen::MatrixXd& K, const Eigen::VectorXd& y, double c) {
+  return solve_bordered(Eigen::MatrixXd(K), y, c);
+}
+
+Coefficients solve_bordered(Eigen::MatrixXd&& K, const Eigen::VectorXd& y, double c) {
   check_c(c);
   check_system(K, y);
-  Eigen::MatrixXd H = K;
+  Eigen::MatrixXd H = std::move(K);  // H = K + I/c in K's storage: no second N × N matrix
   H.diagonal().array() += 1.0 / c;
+  const Eigen::VectorXd diagonal = H.diagonal();
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(y.size());
   Eigen::VectorXd eta, nu;
-  Eigen::LLT<Eigen::MatrixXd> llt(H);
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(H);  // in place: overwrites the lower triangle only
   if (llt.info() == Eigen::Success) {
     eta = llt.solve(ones);
     nu = llt.solve(y);
   } else {  // K + I/c is SPD in exact arithmetic; rounding with a huge c may defeat Cholesky
-    Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+    Eigen::MatrixXd restored = H.selfadjointView<Eigen::Upper>();  // from the untouched upper triangle
+    restored.diagonal() = diagonal;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt(restored);
     eta = ldlt.solve(ones);
     nu = ldlt.solve(y);
   }
