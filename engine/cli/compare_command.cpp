@@ -39,7 +39,7 @@ void add_compare_options(CLI::App* cmd, CompareOptions& o) {
                   "NAME[:population=N,iterations=N,key=value,...]; repeat, e.g. --optimizer pso --optimizer "
                   "ga:population=80 --optimizer ga-sqp:population=240,constraint=0.04")
       ->required();
-  cmd->add_option("--metric", o.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
+  cmd->add_option("--metric", o.metric, metric_names() + " (default of_abs)");
   cmd->add_option("--runs", o.runs, "independent runs per optimizer (default 10)");
   cmd->add_option("--seed", o.seed, "seed (default 1)");
   cmd->add_option("--bounds", o.bounds, "bounds in SI, name=lo:hi,...");

@@ -24,6 +24,7 @@
 #include "engine/common/error.hpp"
 #include "engine/distributed/mpi_runner.hpp"
 #include "engine/kernels/isa.hpp"
+#include "engine/model/metrics.hpp"
 
 namespace {
 
@@ -96,7 +97,7 @@ int main(int argc, char** argv) {
         c->add_option("--data", fit.paths, "test record (CSV); repeat for several conditions fitted at once")->required();
         c->add_option("--laws", fit.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
         add_data_options(c, fit.data);
-        c->add_option("--metric", fit.metric, "of_abs (default), of_sq, rmse, nrmse, mae");
+        c->add_option("--metric", fit.metric, dampbench::metric_names() + " (default of_abs)");
         c->add_option("--optimizer", fit.optimizer,
                       "pso, ga, aga, de, ga-lm, ... (default: ga-lm for models with internal states, else pso)");
         c->add_option("--optimizer-settings", fit.optimizer_settings, "algorithm settings, e.g. pc=0.6,pm=0.03 or variant=constriction");

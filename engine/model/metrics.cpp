@@ -21,11 +21,16 @@ std::string_view metric_name(Metric m) {
   return "?";
 }
 
+std::string metric_names() {
+  std::string names;
+  for (Metric m : kAllMetrics) names += (names.empty() ? "" : ", ") + std::string(metric_name(m));
+  return names;
+}
+
 Metric parse_metric(std::string_view name) {
   for (Metric m : kAllMetrics)
     if (metric_name(m) == name) return m;
-  throw InputError(fmt::format(
-      "unknown metric '{}' (known: of_abs, of_sq, rmse, nrmse, mae, crfd_eps, mfm_E, fdsp_pct, fdsp_signed_pct)", name));
+  throw InputError(fmt::format("unknown metric '{}' (known: {})", name, metric_names()));
 }
 
 SumSet sum_set_of(Metric m) {

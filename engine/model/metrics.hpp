@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <string_view>
 
 #include "engine/record/signals.hpp"
@@ -30,6 +31,8 @@ inline constexpr int kMetricCount = static_cast<int>(kAllMetrics.size());
 std::string_view metric_name(Metric m);
 /// Throws InputError "unknown metric 'x' (known: of_abs, of_sq, rmse, nrmse, mae)".
 Metric parse_metric(std::string_view name);
+/// "of_abs, of_sq, rmse, nrmse, mae, crfd_eps, ...": every metric's name, in the order of kAllMetrics.
+std::string metric_names();
 
 /// Per-candidate sums over the samples, e = F_measured − F_model.
 struct MetricSums {
