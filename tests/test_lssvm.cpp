@@ -493,6 +493,23 @@ TEST(LssvmCli, JsonReportsChosenHyperparametersAndBothPredictions) {
     for (const char* key : {"mse", "mae", "max_abs", "nrmse"}) EXPECT_GE(j.at(kind).at(key).get<double>(), 0) << kind << key;
   // Force amplitude ~230 N at 2 Hz, 0.4 A; noise 1 N: a working model is within a few newtons one step ahead.
   EXPECT_LT(j.at("one_step").at("mae").get<double>(), 5.0);
+  EXPECT_TRUE(j.at("records_without_current").empty());  // every record has its '# operating: I=…' line
+
+  // A record without a current is taken as 0 A, and the output says which.
+  const auto no_current = std::filesystem::temp_directory_path() / "dampbench_lssvm_no_current.csv";
+  {
+    std::ifstream in(dir / "test_2Hz_0p4A.csv");
+    std::ofstream out(no_current);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("# operating:", 0) != 0) out << line << "\n";
+  }
+  const auto nc = testing::run_dampbench("lssvm --train " + (dir / "train_2Hz_0p4A.csv").string() + " --test " +
+                                         no_current.string() + " --c 1 --sigma 1");
+  ASSERT_EQ(nc.exit_code, 0) << nc.output;
+  EXPECT_NE(nc.output.find("- current: 1 of 2 records have no operating variable I and are taken as 0 A"),
+            std::string::npos) << nc.output;
+  EXPECT_NE(nc.output.find(no_current.string()), std::string::npos) << nc.output;
+  std::filesystem::remove(no_current);
 
   // The free-run fitness: its own defaults (PSO 16 × 16) and the samples it simulated (each record's last 20 %).
   const auto fr = testing::run_dampbench("lssvm --train " + (dir / "train_2Hz_0p4A.csv").string() + " --train " +

@@ -98,6 +98,11 @@ int lssvm_command(const LssvmOptions& o) {
 
   const std::vector<Dataset> train = load_records(o.train, o.data);
   const std::vector<Dataset> test = load_records(o.test, o.data);
+  // The current is a regressor input; a record without one is taken as 0 A (lssvm.hpp), and the output says so.
+  std::vector<std::string> without_current;
+  for (const auto* records : {&train, &test})
+    for (const Dataset& r : *records)
+      if (!r.operating.contains("I")) without_current.push_back(r.source.empty() ? r.name : r.source);
   for (const Dataset& r : test)
     if (!r.has_force())
       throw DataError(fmt::format("lssvm: test record '{}' has no force (F column); it is needed for one-step "
@@ -169,6 +174,7 @@ int lssvm_command(const LssvmOptions& o) {
     j["lags"] = {{"d", lags.d}, {"v", lags.v}, {"y", lags.y}};
     j["train_samples"] = rows.size();
     j["train_samples_available"] = rows.available;
+    j["records_without_current"] = without_current;
     j["one_step"] = metrics_json(one_step);
     j["free_run"] = metrics_json(free_run);
     nlohmann::ordered_json recs = nlohmann::ordered_json::array();
@@ -182,6 +188,13 @@ int lssvm_command(const LssvmOptions& o) {
   std::cout << "# LS-SVM damper model (lssvm paper)\n\n";
   std::cout << fmt::format("- training: {} records, {} samples{}; lags {} ({} inputs)\n", train.size(), rows.size(),
                            subsampled, lssvm::format_lags(lags), lags.dim());
+  if (!without_current.empty()) {
+    std::string names;
+    for (const std::string& n : without_current) names += (names.empty() ? "" : ", ") + n;
+    std::cout << fmt::format("- current: {} of {} records have no operating variable I and are taken as 0 A (give it "
+                             "with --set I=..., --conditions utfsm, a column or a '# operating:' line): {}\n",
+                             without_current.size(), train.size() + test.size(), names);
+  }
   if (fixed) {
     std::cout << "- hyperparameters given (no GA)\n";
   } else {
