@@ -479,6 +479,10 @@ files = ["{0}/data/t0.csv"]
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("verify re-runs them with " + low), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("every stored number identical bit for bit"), std::string::npos) << r.output;
+  r = run_dampbench("verify " + store.string() + " --isa " + best);  // the user's level is kept: the bits differ
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("verify re-runs them with " + best + " as --isa or DAMPBENCH_ISA asks"), std::string::npos)
+      << r.output;
 
   r = run_dampbench("--isa avx1024 " + args(store));
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
       lssvm_command);
   for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, verify_cmd, compare_cmd, lssvm_cmd})
     cmd->add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-  for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, compare_cmd, lssvm_cmd, bench_cmd})
+  for (auto* cmd : {simulate_cmd, fit_cmd, run_cmd, sensitivity_cmd, verify_cmd, compare_cmd, lssvm_cmd, bench_cmd})
     cmd->add_option("--isa", isa, "vector instruction set of the kernels: sse2, avx2 or avx512 (default: the CPU's best)");
 
   using namespace dampbench;

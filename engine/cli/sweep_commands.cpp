@@ -146,11 +146,17 @@ int verify_command(const VerifyOptions& o) {
   const sweep::Store store = sweep::Store::open(o.store);
   const sweep::StoreHeader header = store.header();
   const std::string spec_path = o.spec.empty() ? header.spec_path : o.spec;
-  // Vector levels differ in the last bits (engine/kernels/isa.hpp): re-run at the store's level if this CPU has it.
+  // Vector levels differ in the last bits (engine/kernels/isa.hpp): re-run at the store's level if this CPU has it,
+  // unless --isa or DAMPBENCH_ISA asked for another.
   if (const std::string stored = sweep::isa_of_build_flags(header.build_flags);
       !stored.empty() && stored != isa_name(active_isa())) {
     const auto level = parse_isa(stored);
-    if (level && std::ranges::find(supported_isas(), *level) != supported_isas().end()) {
+    if (isa_chosen_by_user()) {
+      std::cout << fmt::format("note: the store was computed with {} kernels; verify re-runs them with {} as --isa or "
+                               "DAMPBENCH_ISA asks: results of different levels differ in the last bits of vector math, "
+                               "and a fit's path can then differ (docs/performance.md, \"Vector levels\")\n",
+                               stored, isa_name(active_isa()));
+    } else if (level && std::ranges::find(supported_isas(), *level) != supported_isas().end()) {
       std::cout << fmt::format("note: the store was computed with {} kernels; verify re-runs them with {} (this process "
                                "would use {})\n", stored, stored, isa_name(active_isa()));
       select_isa(*level);

@@ -44,6 +44,11 @@ std::atomic<Isa>& active_level() {
   return level;
 }
 
+std::atomic<bool>& chosen_by_user() {
+  static std::atomic<bool> chosen{false};
+  return chosen;
+}
+
 std::string level_list() {
   std::string list;
   for (Isa i : supported_isas()) list += (list.empty() ? "" : ", ") + std::string(isa_name(i));
@@ -89,7 +94,10 @@ void select_isa(std::string_view name, std::string_view where) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", where, e.what()));
   }
+  chosen_by_user().store(true, std::memory_order_relaxed);
 }
+
+bool isa_chosen_by_user() { return chosen_by_user().load(std::memory_order_relaxed); }
 
 std::string isa_summary() { return fmt::format("{} (of {})", isa_name(active_isa()), level_list()); }
 

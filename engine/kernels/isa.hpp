@@ -47,8 +47,11 @@ Isa active_isa();
 /// Runs the kernels with `isa` from now on (call it before any evaluation starts, e.g. at start-up).
 /// Throws InputError naming the supported levels if this CPU or build does not have it.
 void select_isa(Isa isa);
-/// select_isa(parse_isa(name)) with `where` (an option or variable name) in the error message.
+/// select_isa(parse_isa(name)) with `where` (an option or variable name) in the error message: the user's choice
+/// (--isa, DAMPBENCH_ISA), which isa_chosen_by_user() reports from then on.
 void select_isa(std::string_view name, std::string_view where);
+/// True once select_isa(name, where) succeeded: `verify` then keeps the user's level instead of the store's.
+bool isa_chosen_by_user();
 /// "avx512 (of sse2, avx2, avx512)": the active level and the supported ones, for --version and bench.
 std::string isa_summary();
 
