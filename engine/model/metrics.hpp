@@ -29,7 +29,7 @@ inline constexpr std::array kAllMetrics = {Metric::of_abs,   Metric::of_sq, Metr
 inline constexpr int kMetricCount = static_cast<int>(kAllMetrics.size());
 
 std::string_view metric_name(Metric m);
-/// Throws InputError "unknown metric 'x' (known: of_abs, of_sq, rmse, nrmse, mae)".
+/// Throws InputError "unknown metric 'x' (known: <metric_names()>)".
 Metric parse_metric(std::string_view name);
 /// "of_abs, of_sq, rmse, nrmse, mae, crfd_eps, ...": every metric's name, in the order of kAllMetrics.
 std::string metric_names();

@@ -262,7 +262,7 @@ struct TrainingRecords {
 
 struct TuneResult {
   double c = 0, sigma = 0;
-  double objective = 0;      ///< minimized value: validation MSE [N²] or training SSE [N²] (paper)
+  double objective = 0;      ///< minimized value: validation or free-run MSE [N²], or training SSE [N²] (paper)
   int fit_rows = 0, validation_rows = 0;
   long long free_run_samples = 0;  ///< samples one free-run fitness simulates (Fitness::free_run)
   int factorizations = 0;    ///< eigendecompositions computed (distinct grid σ, recomputations included)
@@ -281,7 +281,7 @@ double snap_sigma(double sigma, int per_decade);
 /// log10 σ instead, one model per candidate, and needs `records` (InputError without them).
 TuneResult tune(const TrainingRows& rows, const TuneSettings& settings, const TrainingRecords& records = {});
 
-/// The objective the GA minimizes, for one (c, σ) (the same code path as tune(); for tests and scans).
+/// The objective tune() minimizes, for one (c, σ) (the same code path as tune(); for tests and scans).
 double objective(const TrainingRows& rows, const TuneSettings& settings, double c, double sigma,
                  const TrainingRecords& records = {});
 

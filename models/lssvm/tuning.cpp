@@ -201,62 +201,58 @@ TuneResult tune(const TrainingRows& rows, const TuneSettings& s, const TrainingR
   std::vector<double> values(static_cast<std::size_t>(n));
   std::vector<int> keys(static_cast<std::size_t>(n));
   std::vector<const SpectralFactor*> factors(static_cast<std::size_t>(n));
-  for (long long generation = 0; !optimizer->finished(); ++generation) {
-    optimizer->ask(batch, 0);
-    if (s.fitness == Fitness::free_run) {  // one model per candidate: nothing to share between them
-      tbb::parallel_for(
-          tbb::blocked_range<int>(0, n, 1),
-          [&](const tbb::blocked_range<int>& range) {
-            for (int i = range.begin(); i != range.end(); ++i)
-              values[static_cast<std::size_t>(i)] = obj.free_run_value(
-                  to_value(batch.at(i, 0)), snap_sigma(to_value(batch.at(i, 1)), s.sigma_per_decade));
-          },
-          tbb::simple_partitioner());
-      optimizer->tell(values);
-      result.evaluations += n;
-      result.best_history.push_back(optimizer->best_value());
-      continue;
-    }
-    // 1. The grid σ of this batch that are not cached, in increasing order, decomposed in parallel.
-    std::vector<int> missing;
-    for (int i = 0; i < n; ++i) {
-      keys[static_cast<std::size_t>(i)] = sigma_grid_index(batch.at(i, 1), s.sigma_per_decade);
-      if (!cache.contains(keys[static_cast<std::size_t>(i)])) missing.push_back(keys[static_cast<std::size_t>(i)]);
-    }
-    std::ranges::sort(missing);
-    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
-    std::vector<std::shared_ptr<const SpectralFactor>> made(missing.size());
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, missing.size(), 1),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t k = range.begin(); k != range.end(); ++k)
-            made[k] = obj.factor(sigma_of_grid_index(missing[k], s.sigma_per_decade));
-        },
-        tbb::simple_partitioner());
-    for (std::size_t k = 0; k < missing.size(); ++k) {
-      cache_bytes += made[k]->memory_bytes();
-      cache[missing[k]].factor = std::move(made[k]);
-    }
-    result.factorizations += static_cast<int>(missing.size());
-
-    // 2. Every candidate from its factor, in parallel; a value depends only on (c, grid σ).
-    for (int i = 0; i < n; ++i) {
-      Cached& entry = cache.at(keys[static_cast<std::size_t>(i)]);
-      entry.last_used = generation;
-      factors[static_cast<std::size_t>(i)] = entry.factor.get();
-    }
+  // Every candidate's value in parallel; a value depends only on (c, grid σ): the same bits for any thread count.
+  const auto evaluate_candidates = [&](const auto& value_of) {
     tbb::parallel_for(
         tbb::blocked_range<int>(0, n, 1),
         [&](const tbb::blocked_range<int>& range) {
-          for (int i = range.begin(); i != range.end(); ++i)
-            values[static_cast<std::size_t>(i)] = obj.value(*factors[static_cast<std::size_t>(i)], batch.at(i, 0));
+          for (int i = range.begin(); i != range.end(); ++i) values[static_cast<std::size_t>(i)] = value_of(i);
         },
         tbb::simple_partitioner());
+  };
+  for (long long generation = 0; !optimizer->finished(); ++generation) {
+    optimizer->ask(batch, 0);
+    if (free_run_search) {  // one model per candidate: nothing to share between them
+      evaluate_candidates([&](int i) {
+        return obj.free_run_value(to_value(batch.at(i, 0)), snap_sigma(to_value(batch.at(i, 1)), s.sigma_per_decade));
+      });
+    } else {
+      // 1. The grid σ of this batch that are not cached, in increasing order, decomposed in parallel.
+      std::vector<int> missing;
+      for (int i = 0; i < n; ++i) {
+        keys[static_cast<std::size_t>(i)] = sigma_grid_index(batch.at(i, 1), s.sigma_per_decade);
+        if (!cache.contains(keys[static_cast<std::size_t>(i)])) missing.push_back(keys[static_cast<std::size_t>(i)]);
+      }
+      std::ranges::sort(missing);
+      missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+      std::vector<std::shared_ptr<const SpectralFactor>> made(missing.size());
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, missing.size(), 1),
+          [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k)
+              made[k] = obj.factor(sigma_of_grid_index(missing[k], s.sigma_per_decade));
+          },
+          tbb::simple_partitioner());
+      for (std::size_t k = 0; k < missing.size(); ++k) {
+        cache_bytes += made[k]->memory_bytes();
+        cache[missing[k]].factor = std::move(made[k]);
+      }
+      result.factorizations += static_cast<int>(missing.size());
+
+      // 2. Every candidate from its factor.
+      for (int i = 0; i < n; ++i) {
+        Cached& entry = cache.at(keys[static_cast<std::size_t>(i)]);
+        entry.last_used = generation;
+        factors[static_cast<std::size_t>(i)] = entry.factor.get();
+      }
+      evaluate_candidates([&](int i) { return obj.value(*factors[static_cast<std::size_t>(i)], batch.at(i, 0)); });
+    }
     optimizer->tell(values);
     result.evaluations += n;
     result.best_history.push_back(optimizer->best_value());
 
-    // 3. Bound the cache: drop the least recently used (ties: lowest grid index), never one used just now.
+    // 3. Bound the cache (empty for the free-run fitness): drop the least recently used (ties: lowest grid index),
+    //    never one used just now.
     while (cache_bytes > kCacheBytes) {
       auto oldest = cache.begin();
       for (auto it = cache.begin(); it != cache.end(); ++it)
