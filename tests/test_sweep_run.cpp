@@ -562,6 +562,50 @@ files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
   EXPECT_NE(r.output.find("2 task groups, 6 tasks (2 run now, 0 from the store, 0 failed)"), std::string::npos) << r.output;
 }
 
+TEST_F(ExeSweep, ARunRemovesTheOutputsOfThePreviousRunThatItDoesNotWriteAgain) {
+  const auto spec = [&](const char* tables) {
+    write(spec_, fmt::format(R"toml(name = "small"
+runs = 2
+models = ["fvd.linear_viscous"]
+tables = [{}]
+[optimizer]
+population = 8
+iterations = 4
+[[datasets]]
+name = "tests"
+files = ["{}/data/t0.csv"]
+)toml",
+                             tables, dir_.string()));
+  };
+  const fs::path store = dir_ / "s.sqlite", out = dir_ / "out";
+  spec(R"("runs", "errors")");
+  auto r = run_dampbench(args(store));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "errors.csv"));
+  ASSERT_TRUE(fs::exists(out / "report.html"));
+  std::ifstream manifest(out / "outputs.txt");
+  const std::string listed((std::istreambuf_iterator<char>(manifest)), {});
+  EXPECT_NE(listed.find("\nerrors.csv\n"), std::string::npos) << listed;
+  EXPECT_NE(listed.find("\nreport.html\n"), std::string::npos) << listed;
+
+  // A user's file in the folder and a manifest line pointing outside it are never removed.
+  write(out / "my_notes.txt", "mine\n");
+  write(dir_ / "outside.csv", "not an output\n");
+  std::ofstream(out / "outputs.txt", std::ios::app) << "../outside.csv\n" << fs::absolute(dir_ / "outside.csv").string() << "\n";
+
+  spec(R"("runs")");
+  r = run_dampbench(args(store) + " --fresh --no-report");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "runs_fvd.linear_viscous.csv"));
+  EXPECT_TRUE(fs::exists(out / "tables.md"));
+  EXPECT_FALSE(fs::exists(out / "errors.csv"));
+  EXPECT_FALSE(fs::exists(out / "report.html"));
+  EXPECT_NE(r.output.find("removed 2 file(s) of the previous run"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "my_notes.txt"));
+  EXPECT_TRUE(fs::exists(dir_ / "outside.csv"));
+  EXPECT_TRUE(fs::exists(store));
+}
+
 TEST_F(ExeSweep, NothingStartsUntilTheWholeFileIsValid) {
   write(spec_, fmt::format("name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"t\"\nglob = \"{}/data/*.csv\"\n"
                            "[[tables]]\nkind = \"plots\"\n",

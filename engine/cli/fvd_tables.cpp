@@ -69,10 +69,15 @@ std::string part_summary(const sweep::StoreResults& results, int part, const std
 
 }  // namespace
 
-void write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir, const OutputInfo& info,
-                         std::ostream* print) {
+std::vector<std::string> write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir,
+                                             const OutputInfo& info, std::ostream* print) {
   namespace fs = std::filesystem;
   const int parts = results.part_count();
+  std::vector<std::string> written;
+  const auto write_output = [&](const fs::path& relative, const std::string& text) {
+    write_file(out_dir / relative, text);
+    written.push_back(relative.generic_string());
+  };
   std::string top;
   if (parts > 1) {
     top = fmt::format("# {}\n\nSweep file `{}`, store `{}`: {} task groups, {} tasks; this session ran {} groups in "
@@ -85,17 +90,18 @@ void write_sweep_outputs(const sweep::StoreResults& results, const std::filesyst
   }
   for (int p = 0; p < parts; ++p) {
     const auto& part = results.header.parts[static_cast<std::size_t>(p)];
-    const fs::path dir = parts > 1 ? out_dir / part.name : out_dir;
+    const fs::path sub = parts > 1 ? fs::path(part.name) : fs::path();
+    const fs::path dir = out_dir / sub;
     fs::create_directories(dir);
     const std::vector<sweep::Report> tables = sweep::sweep_tables(results, p);
     std::string md = "# " + part.title + "\n\n";
     for (const auto& t : tables) {
       md += sweep::to_markdown(t) + "\n";
-      write_file(dir / (t.id + ".csv"), sweep::to_csv(t));
+      write_output(sub / (t.id + ".csv"), sweep::to_csv(t));
       if (print && parts == 1) *print << sweep::to_markdown(t) << "\n";
     }
-    write_file(dir / "tables.md", md);
-    write_file(dir / "summary.md", part_summary(results, p, tables, info));
+    write_output(sub / "tables.md", md);
+    write_output(sub / "summary.md", part_summary(results, p, tables, info));
     if (parts > 1) {
       const PartFigures f = figures(results, p);
       top += fmt::format("| {} | {}/ | {} | {} | {} | {:.4g} | {:.1f} |\n", part.title, part.name, f.groups, f.tasks,
@@ -103,7 +109,8 @@ void write_sweep_outputs(const sweep::StoreResults& results, const std::filesyst
       if (print) *print << fmt::format("{}: {} tables in {}\n", part.name, tables.size(), dir.string());
     }
   }
-  if (parts > 1) write_file(out_dir / "summary.md", top);
+  if (parts > 1) write_output("summary.md", top);
+  return written;
 }
 
 }  // namespace dampbench::cli

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "engine/sweep/runner.hpp"
 #include "engine/sweep/tables.hpp"
@@ -17,8 +18,9 @@ struct OutputInfo {
   sweep::RunnerSummary summary;  ///< this session
 };
 
-/// Writes the outputs; prints the tables to `print` (when not null) for a single-part sweep.
-void write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir,
+/// Writes the outputs; prints the tables to `print` (when not null) for a single-part sweep. Returns the paths
+/// written, relative to `out_dir` (for the folder's manifest, engine/cli/output_manifest.hpp).
+std::vector<std::string> write_sweep_outputs(const sweep::StoreResults& results, const std::filesystem::path& out_dir,
                          const OutputInfo& info, std::ostream* print);
 
 }  // namespace dampbench::cli

@@ -5,8 +5,10 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "engine/cli/fvd_tables.hpp"
+#include "engine/cli/output_manifest.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/distributed/mpi_runner.hpp"
@@ -91,7 +93,7 @@ int run_command(const RunOptions& options) {
   }
 
   const sweep::StoreResults results(store);
-  write_sweep_outputs(results, out_dir, {spec_path, store_path, summary}, &std::cout);
+  std::vector<std::string> written = write_sweep_outputs(results, out_dir, {spec_path, store_path, summary}, &std::cout);
   std::string report_note;
   if (!options.no_report) {
     // The tables and the store are written: a report that cannot be drawn only warns.
@@ -99,10 +101,15 @@ int run_command(const RunOptions& options) {
     try {
       write_text_file(report_path, report::store_report_html(store, sweep_loader()));
       report_note = ", report " + report_path;
+      written.push_back("report.html");
     } catch (const std::exception& e) {
       std::cerr << fmt::format("warning: no HTML report: {}\n", e.what());
     }
   }
+  const std::vector<std::string> stale = replace_output_manifest(out_dir, written);
+  if (!stale.empty())
+    std::cout << fmt::format("removed {} file(s) of the previous run into {} that this run does not write: {}\n",
+                             stale.size(), out_dir.string(), fmt::join(stale, ", "));
 
   double stored_cs = 0, stored_wall = 0;
   for (const auto& g : results.groups) {
