@@ -6,20 +6,50 @@
 
 namespace dampbench {
 
-std::string_view metric_name(Metric m) {
-  switch (m) {
-    case Metric::of_abs: return "of_abs";
-    case Metric::of_sq: return "of_sq";
-    case Metric::rmse: return "rmse";
-    case Metric::nrmse: return "nrmse";
-    case Metric::mae: return "mae";
-    case Metric::crfd_eps: return "crfd_eps";
-    case Metric::mfm_E: return "mfm_E";
-    case Metric::fdsp_pct: return "fdsp_pct";
-    case Metric::fdsp_signed_pct: return "fdsp_signed_pct";
-  }
-  return "?";
+namespace {
+
+/// A metric's name, the one sum it is finished from and how: one row per metric, so that the sum a kernel
+/// computes for an objective (sum_set_of) is by construction the one finish_metric reads.
+struct MetricDefinition {
+  Metric metric;
+  std::string_view name;
+  SumSet sums;
+  double (*finish)(const MetricSums& s, const Signals& d, double n);  ///< n = samples
+};
+
+constexpr std::array<MetricDefinition, kMetricCount> kDefinitions{{
+    {Metric::of_abs, "of_abs", SumSet::abs_weighted,
+     [](const MetricSums& s, const Signals& d, double) { return s.abs_weighted / (d.force_std_N * d.duration_s); }},
+    {Metric::of_sq, "of_sq", SumSet::sq_weighted,
+     [](const MetricSums& s, const Signals& d, double) {
+       return s.sq_weighted / (d.force_std_N * d.force_std_N * d.duration_s);
+     }},
+    {Metric::rmse, "rmse", SumSet::sq, [](const MetricSums& s, const Signals&, double n) { return std::sqrt(s.sq / n); }},
+    {Metric::nrmse, "nrmse", SumSet::sq,
+     [](const MetricSums& s, const Signals& d, double n) { return std::sqrt(s.sq / n) / d.force_max_abs_N; }},
+    {Metric::mae, "mae", SumSet::abs, [](const MetricSums& s, const Signals&, double n) { return s.abs / n; }},
+    {Metric::crfd_eps, "crfd_eps", SumSet::sq,
+     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(0.5 * s.sq / d.force_max_abs_N) * 100.0; }},
+    {Metric::mfm_E, "mfm_E", SumSet::sq,
+     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(s.sq / d.force_sum_sq); }},
+    {Metric::fdsp_pct, "fdsp_pct", SumSet::abs_magnitude,
+     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs_magnitude / (n * d.force_max_abs_N); }},
+    {Metric::fdsp_signed_pct, "fdsp_signed_pct", SumSet::abs,
+     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs / (n * d.force_max_abs_N); }},
+}};
+
+constexpr bool rows_in_enum_order() {
+  for (int i = 0; i < kMetricCount; ++i)
+    if (kDefinitions[i].metric != kAllMetrics[i] || static_cast<int>(kAllMetrics[i]) != i) return false;
+  return true;
 }
+static_assert(rows_in_enum_order(), "kDefinitions must list every metric in the order of enum Metric");
+
+const MetricDefinition& definition(Metric m) { return kDefinitions[static_cast<std::size_t>(m)]; }
+
+}  // namespace
+
+std::string_view metric_name(Metric m) { return definition(m).name; }
 
 std::string metric_names() {
   std::string names;
@@ -33,35 +63,10 @@ Metric parse_metric(std::string_view name) {
   throw InputError(fmt::format("unknown metric '{}' (known: {})", name, metric_names()));
 }
 
-SumSet sum_set_of(Metric m) {
-  switch (m) {
-    case Metric::of_abs: return SumSet::abs_weighted;
-    case Metric::of_sq: return SumSet::sq_weighted;
-    case Metric::rmse:
-    case Metric::nrmse:
-    case Metric::crfd_eps:
-    case Metric::mfm_E: return SumSet::sq;
-    case Metric::mae:
-    case Metric::fdsp_signed_pct: return SumSet::abs;
-    case Metric::fdsp_pct: return SumSet::abs_magnitude;
-  }
-  return SumSet::every;
-}
+SumSet sum_set_of(Metric m) { return definition(m).sums; }
 
 double finish_metric(Metric m, const MetricSums& s, const Signals& data) {
-  const double n = static_cast<double>(data.size());
-  double value = 0;
-  switch (m) {
-    case Metric::of_abs: value = s.abs_weighted / (data.force_std_N * data.duration_s); break;
-    case Metric::of_sq: value = s.sq_weighted / (data.force_std_N * data.force_std_N * data.duration_s); break;
-    case Metric::rmse: value = std::sqrt(s.sq / n); break;
-    case Metric::nrmse: value = std::sqrt(s.sq / n) / data.force_max_abs_N; break;
-    case Metric::mae: value = s.abs / n; break;
-    case Metric::crfd_eps: value = std::sqrt(0.5 * s.sq / data.force_max_abs_N) * 100.0; break;
-    case Metric::mfm_E: value = std::sqrt(s.sq / data.force_sum_sq); break;
-    case Metric::fdsp_pct: value = 100.0 * s.abs_magnitude / (n * data.force_max_abs_N); break;
-    case Metric::fdsp_signed_pct: value = 100.0 * s.abs / (n * data.force_max_abs_N); break;
-  }
+  const double value = definition(m).finish(s, data, static_cast<double>(data.size()));
   return std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
 }
 
