@@ -13,6 +13,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <sqlite3.h>
 #include <tbb/task_arena.h>
 
 #include "engine/common/error.hpp"
@@ -255,6 +256,12 @@ TEST(Merge, ThreeShardsMergeIntoTheStoreOfOneProcess) {
     run_into(plan, dir, parts.back(), {s, 3});
     EXPECT_EQ(Store::open(parts.back()).header().shard, fmt::format("{}/3", s + 1));
   }
+  // When a shard finished its groups is kept through the merge (not replaced by the time of the merge).
+  const std::string stamp = "2001-02-03T04:05:06Z";
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(parts[0].c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, ("UPDATE groups SET finished_at = '" + stamp + "'").c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
   // Two shards first (partial), then all three again: groups already merged are checked, not written twice.
   const MergeSummary first = merge_stores((dir / "merged.sqlite").string(), {parts[0], parts[1]});
   EXPECT_GT(first.missing, 0);
@@ -265,6 +272,11 @@ TEST(Merge, ThreeShardsMergeIntoTheStoreOfOneProcess) {
   EXPECT_EQ(all.shards, (std::vector<std::string>{"1/3", "2/3", "3/3"}));
   EXPECT_EQ(Store::open((dir / "merged.sqlite").string()).header().shard, "");
   expect_same_results((dir / "whole.sqlite").string(), (dir / "merged.sqlite").string());
+  const auto shard1 = Store::open(parts[0]).groups({.runs = false, .details = false});
+  ASSERT_FALSE(shard1.empty());
+  const Store merged = Store::open((dir / "merged.sqlite").string());
+  for (const auto& g : shard1) EXPECT_EQ(merged.group(g.index)->finished_at, stamp) << "group " << g.index;
+  EXPECT_NE(merged.group(Store::open(parts[1]).groups({.runs = false, .details = false}).front().index)->finished_at, stamp);
 }
 
 TEST(Merge, PartsOfAnotherSweepOrWithOtherNumbersAreRefused) {

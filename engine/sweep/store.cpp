@@ -518,7 +518,7 @@ void Store::write(const GroupRecord& g) {
         .bind(7, std::string(metric_name(g.metric))).bind(8, g.runs).bind(9, fmt::format("{:016x}", g.task_key))
         .bind(10, std::string(g.failed ? "failed" : "done")).bind(11, g.message).bind(12, g.wall_time_s)
         .bind(13, g.candidate_samples).bind(14, g.evaluations).bind(15, g.dampbench_version).bind(16, g.build_flags)
-        .bind(17, g.spec_hash).bind(18, g.dataset_hash).bind(19, now_utc()).run();
+        .bind(17, g.spec_hash).bind(18, g.dataset_hash).bind(19, g.finished_at.empty() ? now_utc() : g.finished_at).run();
     Stmt r(db_, "INSERT INTO runs VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const auto& x : g.run_results)
       r.bind(1, g.index).bind(2, x.run).bind(3, x.best_value).bind(4, x.metrics).bind(5, x.params)
@@ -566,7 +566,7 @@ namespace {
 
 constexpr const char* kGroupColumns =
     "grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, wall_time_s, "
-    "candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash";
+    "candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at";
 
 GroupRecord read_group_row(const Stmt& s) {
   GroupRecord g;
@@ -588,6 +588,7 @@ GroupRecord read_group_row(const Stmt& s) {
   g.build_flags = s.text(15);
   g.spec_hash = s.text(16);
   g.dataset_hash = s.text(17);
+  g.finished_at = s.text(18);
   return g;
 }
 

@@ -127,6 +127,9 @@ struct GroupRecord : GroupRef {
   double wall_time_s = 0, candidate_samples = 0;
   long long evaluations = 0;
   std::string dampbench_version, build_flags, spec_hash, dataset_hash;  ///< fingerprint
+  /// UTC time the group was first stored (ISO 8601); empty in a new record: write() stamps it. A merge copies it,
+  /// so a merged store says when each shard finished its groups.
+  std::string finished_at;
   std::vector<RunRecord> run_results;
   std::vector<DatasetMetricRecord> dataset_metrics;
   std::optional<SensitivityRecord> sensitivity;
