@@ -53,4 +53,15 @@ TEST(RandomStream, NormalMomentsMatch) {
   EXPECT_NEAR(sum_sq / n, 1.0, 0.02);
 }
 
+TEST(RandomStream, ShortcutsGiveTheDefinedNumbers) {
+  // Draw k of a stream is mix64(key ^ mix64(k)), whether mix64(k) comes from the table of the first draws or not.
+  const std::uint64_t key = hash_key({7, 11, 13});
+  RandomStream rng(key);
+  for (std::uint64_t k = 0; k < 200; ++k) EXPECT_EQ(rng.next_u64(), mix64(key ^ mix64(k))) << "draw " << k;
+  // A key extended part by part is the key of all the parts.
+  EXPECT_EQ(extend_key(hash_key({7, 11}), 13), key);
+  EXPECT_EQ(extend_key(extend_key(hash_key({7}), 11), 13), key);
+  EXPECT_NE(extend_key(hash_key({7, 13}), 11), key);
+}
+
 }  // namespace dampbench

@@ -6,6 +6,7 @@
 // Generator: the SplitMix64 finalizer (Steele, Lea & Flood 2014, "Fast splittable pseudorandom number
 // generators") applied to a counter mixed into a 64-bit key. Keys are built by hashing their parts one
 // after the other with the same finalizer.
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -22,12 +23,23 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
+/// A key with one more part: extend_key(hash_key({a, b}), c) == hash_key({a, b, c}). Lets a loop over members
+/// hash the parts they share (run, generation) once.
+constexpr std::uint64_t extend_key(std::uint64_t key, std::uint64_t part) { return mix64(key ^ mix64(part)); }
+
 /// Combines key parts in order: hash_key({seed, task, run}) differs from hash_key({seed, run, task}).
 constexpr std::uint64_t hash_key(std::initializer_list<std::uint64_t> parts) {
   std::uint64_t h = 0x6A09E667F3BCC909ULL;
-  for (std::uint64_t p : parts) h = mix64(h ^ mix64(p));
+  for (std::uint64_t p : parts) h = extend_key(h, p);
   return h;
 }
+
+/// mix64(k) for the first draws of a stream, the same in every stream: a draw then costs one mix, not two.
+inline constexpr auto kMixedCounters = [] {
+  std::array<std::uint64_t, 64> t{};
+  for (std::uint64_t k = 0; k < t.size(); ++k) t[k] = mix64(k);
+  return t;
+}();
 
 /// Stable 64-bit hash of a name (FNV-1a), for task keys built from model and dataset names.
 constexpr std::uint64_t hash_name(std::string_view s) {
@@ -41,7 +53,10 @@ class RandomStream {
  public:
   explicit constexpr RandomStream(std::uint64_t key) : key_(key) {}
 
-  constexpr std::uint64_t next_u64() { return mix64(key_ ^ mix64(counter_++)); }
+  constexpr std::uint64_t next_u64() {
+    const std::uint64_t k = counter_++;
+    return mix64(key_ ^ (k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k)));
+  }
 
   /// Uniform in [0, 1) with 53 random bits.
   constexpr double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }

@@ -57,8 +57,9 @@ void De::make_trials() {
   int best = 0;  // lowest value, ties to the lowest index
   for (int i = 1; i < n; ++i)
     if (values_[i] < values_[best]) best = i;
+  const std::uint64_t generation_key = hash_key({run_key_, static_cast<std::uint64_t>(generation_)});
   for (int i = 0; i < n; ++i) {
-    RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(generation_), static_cast<std::uint64_t>(i)}));
+    RandomStream rng(extend_key(generation_key, static_cast<std::uint64_t>(i)));  // (run, generation, i)
     const auto draw_index = [&] { return std::min(static_cast<int>(rng.uniform() * n), n - 1); };
     int r1, r2, r3;
     do r1 = draw_index(); while (r1 == i);

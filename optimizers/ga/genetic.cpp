@@ -126,9 +126,10 @@ void GeneticAlgorithm::breed() {
   if (finite > 0) stats.mean_finite = sum / finite;
 
   std::vector<double> spare(dim_);  // the unused second child of the last pair when N is odd
+  const std::uint64_t generation_key = hash_key({run_key_, g});
   for (int k = 0; k < (n + 1) / 2; ++k) {
-    const auto pair = static_cast<std::uint64_t>(k);
-    RandomStream select(hash_key({run_key_, g, pair, kSelect}));
+    const std::uint64_t pair_key = extend_key(generation_key, static_cast<std::uint64_t>(k));  // (run, g, pair)
+    RandomStream select(extend_key(pair_key, kSelect));
     const int a = genetic::tournament(values_, settings_.tournament, select);
     const int b = genetic::tournament(values_, settings_.tournament, select);
     const PairRates r = rates(values_[a], values_[b], stats);
@@ -136,7 +137,7 @@ void GeneticAlgorithm::breed() {
     const std::array<int, 2> child{2 * k, 2 * k + 1};
     const std::span<double> child_a = member(offspring_, child[0]);
     const std::span<double> child_b = child[1] < n ? member(offspring_, child[1]) : std::span<double>(spare);
-    RandomStream crossover(hash_key({run_key_, g, pair, kCrossover}));
+    RandomStream crossover(extend_key(pair_key, kCrossover));
     if (crossover.uniform() < r.pc) {
       genetic::sbx(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower, bounds_.upper,
                    settings_.eta_c, crossover);
@@ -145,7 +146,7 @@ void GeneticAlgorithm::breed() {
       std::ranges::copy(member(population_, b), child_b.begin());
     }
     for (int c = 0; c < 2 && child[c] < n; ++c) {
-      RandomStream mutate(hash_key({run_key_, g, static_cast<std::uint64_t>(child[c]), kMutate}));
+      RandomStream mutate(extend_key(extend_key(generation_key, static_cast<std::uint64_t>(child[c])), kMutate));
       const std::span<double> x = c == 0 ? child_a : child_b;
       for (int j = 0; j < dim_; ++j)
         if (mutate.uniform() < r.pm[c])

@@ -73,8 +73,9 @@ void Pso::move_swarm() {
   const double w = settings_.inertia + (settings_.inertia_end - settings_.inertia) * progress;
   const bool constricted = settings_.variant == PsoVariant::constriction;
   const double chi = constricted ? settings_.constriction_factor() : 1.0;
+  const std::uint64_t generation_key = hash_key({run_key_, static_cast<std::uint64_t>(generation_)});
   for (int i = 0; i < settings_.population; ++i) {
-    RandomStream rng(hash_key({run_key_, static_cast<std::uint64_t>(generation_), static_cast<std::uint64_t>(i)}));
+    RandomStream rng(extend_key(generation_key, static_cast<std::uint64_t>(i)));  // (run, generation, i)
     for (int j = 0; j < dim_; ++j) {
       const double lo = bounds_.lower[j], hi = bounds_.upper[j];
       const double vmax = settings_.vmax_fraction * (hi - lo);
