@@ -588,10 +588,17 @@ files = ["{}/data/t0.csv"]
   EXPECT_NE(listed.find("\nerrors.csv\n"), std::string::npos) << listed;
   EXPECT_NE(listed.find("\nreport.html\n"), std::string::npos) << listed;
 
-  // A user's file in the folder and a manifest line pointing outside it are never removed.
+  // The manifest as an editor on another system might leave it (CRLF, a trailing space, "./"), with lines that
+  // must never remove anything: a user's file and a store-like file in the folder, files outside it by "..", by
+  // an absolute path and through a symlinked subfolder.
   write(out / "my_notes.txt", "mine\n");
+  write(out / "fake.sqlite", "a store\n");
   write(dir_ / "outside.csv", "not an output\n");
-  std::ofstream(out / "outputs.txt", std::ios::app) << "../outside.csv\n" << fs::absolute(dir_ / "outside.csv").string() << "\n";
+  write(dir_ / "elsewhere" / "linked.csv", "not an output\n");
+  fs::create_directory_symlink(dir_ / "elsewhere", out / "link");
+  std::ofstream(out / "outputs.txt", std::ios::trunc)
+      << "# header\r\nerrors.csv\r\n./runs_fvd.linear_viscous.csv\r\nreport.html \r\ntables.md\r\nmy_notes.txt\r\n"
+      << "fake.sqlite\r\n../outside.csv\r\n" << fs::absolute(dir_ / "outside.csv").string() << "\r\nlink/linked.csv\r\n";
 
   spec(R"("runs")");
   r = run_dampbench(args(store) + " --fresh --no-report");
@@ -602,7 +609,9 @@ files = ["{}/data/t0.csv"]
   EXPECT_FALSE(fs::exists(out / "report.html"));
   EXPECT_NE(r.output.find("removed 2 file(s) of the previous run"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "my_notes.txt"));
+  EXPECT_TRUE(fs::exists(out / "fake.sqlite"));
   EXPECT_TRUE(fs::exists(dir_ / "outside.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "elsewhere" / "linked.csv"));
   EXPECT_TRUE(fs::exists(store));
 }
 

@@ -106,10 +106,14 @@ int run_command(const RunOptions& options) {
       std::cerr << fmt::format("warning: no HTML report: {}\n", e.what());
     }
   }
-  const std::vector<std::string> stale = replace_output_manifest(out_dir, written);
+  std::vector<std::string> kept;
+  const std::vector<std::string> stale = replace_output_manifest(out_dir, written, &kept);
   if (!stale.empty())
     std::cout << fmt::format("removed {} file(s) of the previous run into {} that this run does not write: {}\n",
                              stale.size(), out_dir.string(), fmt::join(stale, ", "));
+  if (!kept.empty())
+    std::cerr << fmt::format("warning: could not remove {} file(s) of the previous run into {}: {}\n", kept.size(),
+                             out_dir.string(), fmt::join(kept, ", "));
 
   double stored_cs = 0, stored_wall = 0;
   for (const auto& g : results.groups) {

@@ -45,7 +45,11 @@ constexpr bool rows_in_enum_order() {
 }
 static_assert(rows_in_enum_order(), "kDefinitions must list every metric in the order of enum Metric");
 
-const MetricDefinition& definition(Metric m) { return kDefinitions[static_cast<std::size_t>(m)]; }
+const MetricDefinition& definition(Metric m) {
+  const auto i = static_cast<std::size_t>(m);
+  if (i >= kDefinitions.size()) throw InputError(fmt::format("metric number {} is not a metric (0-{})", i, kMetricCount - 1));
+  return kDefinitions[i];
+}
 
 }  // namespace
 
