@@ -83,6 +83,34 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
   EXPECT_NEAR(full.run.best_value, 0.25, 1e-15);
 }
 
+TEST(GaLm, AtItsCapAnLmThatStillGainsIsNotAtItsOptimumAndOneThatCreepsIs) {
+  // Cubic residuals (x − 0.3)³, (y − 0.3)³: Gauss–Newton closes a third of the distance per step, so ‖r‖ falls by
+  // ~70 % per Jacobian and 3 Jacobians stop on the cap while still gaining. Add a fixed residual 1 and the same
+  // steps change ‖r‖ by < 1e-7: the LM only creeps, and at the cap it counts as at its optimum (ftol is off so
+  // that the cap, not the relative-decrease test, stops both).
+  for (const double fixed : {0.0, 1.0}) {
+    SCOPED_TRACE(::testing::Message() << "fixed residual " << fixed);
+    const FunctionProblem problem(
+        [fixed](std::span<const double> x) {
+          return std::vector<double>{std::pow(x[0] - 0.3, 3), std::pow(x[1] - 0.3, 3), fixed};
+        },
+        testing::box(2, 0.25, 0.36));
+    GaLmSettings s = settings(6, 2);
+    s.lm_iterations = 3;
+    s.ftol = 0;
+    const auto h = run_hybrid(s, problem, 5);
+    ASSERT_EQ(h.report.status, "iterations");
+    if (fixed == 0) {
+      EXPECT_GT(h.report.late_decrease, 0.3);
+      EXPECT_FALSE(h.at_local_optimum);
+    } else {
+      EXPECT_GE(h.report.late_decrease, 0.0);
+      EXPECT_LT(h.report.late_decrease, 1e-7);
+      EXPECT_TRUE(h.at_local_optimum);
+    }
+  }
+}
+
 TEST(GaLm, OptimumOutsideTheBoxEndsOnTheBound) {
   // r = x − (3, 0.25, −4) over [−1, 1]³: the box's optimum is (1, 0.25, −1), value 4 + 9 = 13.
   const FunctionProblem problem(

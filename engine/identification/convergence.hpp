@@ -8,7 +8,8 @@
 //                  on the best run's best-so-far history, E its evaluations (it no longer improved in the
 //                  last fifth of its budget)
 //                  — or the best run ended in a local refinement that stopped on its own convergence test
-//                  (hybrids: LM or SLSQP at a local optimum; RunHistory::at_local_optimum), whose late gain
+//                  (hybrids: LM or SLSQP at a local optimum, or LM at its iteration cap gaining ≤ 0.01 % over
+//                  its last fifth; RunHistory::at_local_optimum), whose late gain
 //                  is by design
 //   converged   ⇔  runs agree and stalled
 // abs_tol keeps differences that no metric can show (noise-free synthetic fits reaching 1e-9 and 1e-8)

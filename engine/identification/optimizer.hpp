@@ -53,7 +53,8 @@ class Optimizer {
   /// the metric's terms). Default: nothing.
   virtual void refine(const LocalProblem& /*problem*/) {}
   /// After refine(): the local stage stopped on its own convergence test (a gradient method at a local
-  /// optimum: LM's gradient, ftol, xtol; SLSQP's ftol, xtol, success), not on an iteration cap or a failure.
+  /// optimum: LM's gradient, ftol, xtol; SLSQP's ftol, xtol, success), not on a failure, nor on an iteration
+  /// cap while still gaining (LM at its cap counts if its last fifth gained ≤ 0.01 %, ga_lm.hpp).
   /// The convergence evidence then does not ask the run to have stopped improving (engine/identification/
   /// convergence.hpp): the refinement's late gain is by design. Default: false (no local stage).
   [[nodiscard]] virtual bool at_local_optimum() const { return false; }

@@ -35,7 +35,9 @@ constexpr int kMaxRejectedSteps = 20;
 
 bool GaLm::at_local_optimum() const {
   const std::string& s = report_.status;
-  return report_.ran && (s == "gradient" || s == "ftol" || s == "xtol" || s == "zero residual");
+  if (!report_.ran) return false;
+  if (s == "iterations") return report_.late_decrease <= kStalledDecrease;  // false for NaN
+  return s == "gradient" || s == "ftol" || s == "xtol" || s == "zero residual";
 }
 
 GaLm::GaLm(const GaLmSettings& settings, const Bounds& bounds, std::uint64_t run_key)
@@ -78,6 +80,7 @@ void GaLm::refine(const LocalProblem& problem) {
   report_.ran = true;
   report_.status = "iterations";
 
+  std::vector<double> costs;  // ‖r‖² where each Jacobian was taken
   Eigen::MatrixXd J(static_cast<Eigen::Index>(n), m);
   Eigen::VectorXd r_step, r_new, y_new;
   double lambda = -1, nu = 2;
@@ -107,6 +110,7 @@ void GaLm::refine(const LocalProblem& problem) {
       if (res.size() == n && std::isfinite(r_i.squaredNorm())) J.col(i) = (r_i - r) / steps[i];  // as cost_at accepts
       else J.col(i).setZero();
     }
+    costs.push_back(S);
     ++report_.iterations;
     const Eigen::VectorXd g = J.transpose() * r;
     const Eigen::MatrixXd A = J.transpose() * J;
@@ -207,6 +211,10 @@ void GaLm::refine(const LocalProblem& problem) {
     }
   }
   report_.end_cost = S;
+  if (!costs.empty()) {
+    const std::size_t last_fifth = std::max<std::size_t>(1, (costs.size() + 4) / 5);
+    report_.late_decrease = 1 - std::sqrt(S / costs[costs.size() - last_fifth]);
+  }
 
   // The end point in the run metric's terms.
   const std::vector<double> x = box.to_params(std::span<const double>(y.data(), m));
