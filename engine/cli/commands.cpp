@@ -287,10 +287,11 @@ int fit_command(const FitOptions& o) {
   if (!plan.why.empty()) std::cout << plan.why << "\n\n";
   std::cout << params_table.to_markdown() << "\n" << metrics_table.to_markdown() << "\n" << runs_table.to_markdown() << "\n";
   std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
-                           "improved {:.3g} % over its last {:.0f} % of evaluations{}\n",
+                           "improved {:.3g} % over its last {:.0f} % of evaluations{}{}\n",
                            convergence.converged ? "Converged" : "NOT CONVERGED (" + convergence.verdict() + ")",
                            100 * convergence.median_above_best_rel, 100 * convergence.worst_above_best_rel,
                            100 * convergence.late_gain_rel, 100 * rule.late_fraction,
+                           convergence.best_at_local_optimum ? ", in its local stage, which ended at its optimum" : "",
                            convergence.converged ? "" : ": do not trust this fit; raise --runs, --pop or --iters");
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", evaluations,
                            samples, id.wall_time_s, rate);

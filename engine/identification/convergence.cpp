@@ -67,6 +67,7 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   const double gain = earlier - best->best_value;
   c.late_gain_rel = rel(gain);
   c.no_history = best->trace.empty();
+  c.best_at_local_optimum = best->at_local_optimum;
   c.stalled = !c.no_history && (best->at_local_optimum || gain <= rule.late_gain_rel * scale + rule.abs_tol);
   c.converged = c.runs_agree && c.stalled;
   return c;

@@ -48,6 +48,7 @@ struct Convergence {
   bool all_failed = false;   ///< no run has a finite best value
   bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
   bool single_run = false;   ///< one run: agreement cannot be shown
+  bool best_at_local_optimum = false;  ///< the best run's local stage ended at its optimum (its late gain is by design)
   /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
   /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed", and for a
   /// single run "one run" or "one run, still improving".
