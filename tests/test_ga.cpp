@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <span>
 #include <limits>
 #include <string>
 #include <vector>
@@ -15,6 +18,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/identification/identification.hpp"
+#include "engine/kernels/isa.hpp"
 #include "models/registry.hpp"
 #include "optimizers/registry.hpp"
 #include "optimizer_test_support.hpp"
@@ -176,6 +180,42 @@ TEST(GeneticOperators, PolynomialMutationStaysInBoundsAndIsCentred) {
   EXPECT_NEAR(sum / 4000, 0.0, 0.01);  // symmetric perturbation of a centred gene
   RandomStream rng(hash_key({2}));
   EXPECT_EQ(genetic::polynomial_mutation(3.0, 3.0, 3.0, 20, rng), 3.0);  // a fixed parameter stays fixed
+}
+
+// pow_each at every vector level: within 2 ulp of glibc's scalar pow (hand-checkable values among them), and
+// elementwise: an element gives the same bits alone, at another position, or in a span of another length
+// (the GA's results must not depend on how many variables a generation crosses).
+TEST(GeneticOperators, PowEachIsPowElementByElementAtEveryLevel) {
+  const Isa saved = active_isa();
+  std::vector<double> base{2.0, 0.5, 1.0, 0.0, 16.0, 1e-12, 3.7, 0.999999, 1e6};
+  for (int i = 0; i < 40; ++i) base.push_back(0.01 + 0.37 * i);
+  for (const Isa isa : supported_isas()) {
+    select_isa(isa);
+    for (const double exponent : {-16.0, 1.0 / 16.0, 21.0, 1.0 / 21.0, -3.0}) {
+      std::vector<double> all = base;
+      genetic::pow_each(all, exponent);
+      for (std::size_t i = 0; i < base.size(); ++i) {
+        const double expected = std::pow(base[i], exponent);
+        if (std::isinf(expected))
+          EXPECT_EQ(all[i], expected) << isa_name(isa) << " " << base[i] << "^" << exponent;  // 0^-16
+        else
+          EXPECT_NEAR(all[i], expected, 2 * std::numeric_limits<double>::epsilon() * std::abs(expected))
+              << isa_name(isa) << " " << base[i] << "^" << exponent;
+        double alone = base[i];
+        genetic::pow_each(std::span(&alone, 1), exponent);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(alone), std::bit_cast<std::uint64_t>(all[i])) << isa_name(isa);
+        std::vector<double> shifted(base.begin() + static_cast<std::ptrdiff_t>(i), base.end());
+        genetic::pow_each(shifted, exponent);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(shifted[0]), std::bit_cast<std::uint64_t>(all[i])) << isa_name(isa);
+      }
+    }
+    std::vector<double> known{2.0, 16.0, 0.0};
+    genetic::pow_each(known, 0.25);
+    EXPECT_DOUBLE_EQ(known[0], std::sqrt(std::sqrt(2.0)));
+    EXPECT_EQ(known[1], 2.0);
+    EXPECT_EQ(known[2], 0.0);
+  }
+  select_isa(saved);
 }
 
 // ---- settings ---------------------------------------------------------------------------------------

@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/common/vector_math.hpp"
+#include "engine/kernels/isa.hpp"
 
 namespace dampbench {
 namespace {
@@ -48,49 +50,119 @@ int tournament(std::span<const double> values, int size, RandomStream& rng) {
   return winner;
 }
 
-void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-         std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-         double eta_c, RandomStream& rng) {
-  const double exponent = 1.0 / (eta_c + 1.0);
-  // Spread factor for a uniform draw u, given how far the parents sit from the bound on their side.
-  const auto beta_q = [&](double u, double distance_to_bound, double gap) {
-    const double beta = 1.0 + 2.0 * distance_to_bound / gap;
-    const double alpha = 2.0 - std::pow(beta, -(eta_c + 1.0));
-    return u <= 1.0 / alpha ? std::pow(u * alpha, exponent) : std::pow(1.0 / (2.0 - u * alpha), exponent);
-  };
+namespace {
+
+/// pow_each's loop, compiled per vector level (IsaClones): blocks of kBlock elements with a constant trip count,
+/// so that every element goes through the vector pow of the level (no scalar remainder loop).
+struct PowBlocks {
+  static constexpr int kBlock = 16;
+  static void run(double* x, std::size_t blocks, double exponent) {
+    for (std::size_t b = 0; b < blocks; ++b) {
+      double* v = x + b * kBlock;
+#pragma omp simd
+      for (int l = 0; l < kBlock; ++l) v[l] = std::pow(v[l], exponent);
+    }
+  }
+};
+
+}  // namespace
+
+void pow_each(std::span<double> x, double exponent) {
+  constexpr std::size_t kBlock = PowBlocks::kBlock;
+  const std::size_t whole = x.size() / kBlock;
+  if (whole > 0) IsaClones<PowBlocks>::call(x.data(), whole, exponent);
+  const std::size_t rest = x.size() - whole * kBlock;
+  if (rest == 0) return;
+  alignas(64) double tail[kBlock];
+  std::fill(std::begin(tail), std::end(tail), 1.0);
+  std::copy(x.end() - static_cast<std::ptrdiff_t>(rest), x.end(), tail);
+  IsaClones<PowBlocks>::call(&tail[0], std::size_t{1}, exponent);
+  std::copy(tail, tail + rest, x.end() - static_cast<std::ptrdiff_t>(rest));
+}
+
+void sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
+              std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
+              RandomStream& rng, std::vector<SbxGene>& crossed) {
   for (std::size_t j = 0; j < parent_a.size(); ++j) {
     const double a = parent_a[j], b = parent_b[j];
     child_a[j] = a;
     child_b[j] = b;
     if (rng.uniform() >= 0.5) continue;  // this variable is inherited unchanged
-    const double y1 = std::min(a, b), y2 = std::max(a, b), gap = y2 - y1;
-    if (!(gap > 1e-14)) continue;  // identical parents: nothing to spread
-    const double lo = lower[j], hi = upper[j];
+    const double y1 = std::min(a, b), y2 = std::max(a, b);
+    if (!(y2 - y1 > 1e-14)) continue;  // identical parents: nothing to spread
     const double u = rng.uniform();
-    const double c1 = std::clamp(0.5 * ((y1 + y2) - beta_q(u, y1 - lo, gap) * gap), lo, hi);
-    const double c2 = std::clamp(0.5 * ((y1 + y2) + beta_q(u, hi - y2, gap) * gap), lo, hi);
     const bool swap = rng.uniform() < 0.5;
-    child_a[j] = swap ? c2 : c1;
-    child_b[j] = swap ? c1 : c2;
+    crossed.push_back({child_a.data(), child_b.data(), static_cast<int>(j), y1, y2, lower[j], upper[j], u, swap});
+  }
+}
+
+void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<double>& scratch) {
+  // Spread factor for a uniform draw u, given how far the parents sit from the bound on their side (beta):
+  // alpha = 2 − beta^−(η_c + 1); beta_q = (u·alpha)^(1/(η_c + 1)) if u ≤ 1/alpha, else (1/(2 − u·alpha))^(1/(η_c + 1)).
+  // Lower child at 2k, upper at 2k + 1.
+  const std::size_t n = crossed.size();
+  scratch.resize(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const SbxGene& g = crossed[k];
+    const double gap = g.y2 - g.y1;
+    scratch[2 * k] = 1.0 + 2.0 * (g.y1 - g.lower) / gap;
+    scratch[2 * k + 1] = 1.0 + 2.0 * (g.upper - g.y2) / gap;
+  }
+  pow_each(scratch, -(eta_c + 1.0));
+  for (std::size_t i = 0; i < 2 * n; ++i) {
+    const double alpha = 2.0 - scratch[i], u = crossed[i / 2].u;
+    scratch[i] = u <= 1.0 / alpha ? u * alpha : 1.0 / (2.0 - u * alpha);
+  }
+  pow_each(scratch, 1.0 / (eta_c + 1.0));
+  for (std::size_t k = 0; k < n; ++k) {
+    const SbxGene& g = crossed[k];
+    const double gap = g.y2 - g.y1;
+    const double c1 = std::clamp(0.5 * ((g.y1 + g.y2) - scratch[2 * k] * gap), g.lower, g.upper);
+    const double c2 = std::clamp(0.5 * ((g.y1 + g.y2) + scratch[2 * k + 1] * gap), g.lower, g.upper);
+    g.child_a[g.j] = g.swap ? c2 : c1;
+    g.child_b[g.j] = g.swap ? c1 : c2;
+  }
+}
+
+void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
+         std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
+         double eta_c, RandomStream& rng) {
+  std::vector<SbxGene> crossed;
+  std::vector<double> scratch;
+  sbx_draw(parent_a, parent_b, child_a, child_b, lower, upper, rng, crossed);
+  sbx_finish(crossed, eta_c, scratch);
+}
+
+void mutate_all(std::span<const MutationGene> genes, double eta_m, std::vector<double>& scratch) {
+  // δ_q = (2u + (1 − 2u)·xy^(η_m + 1))^(1/(η_m + 1)) − 1 with xy = 1 − (x − lower)/range for u < 1/2, and
+  // 1 − (2(1 − u) + 2(u − 1/2)·xy^(η_m + 1))^(1/(η_m + 1)) with xy = 1 − (upper − x)/range otherwise.
+  const std::size_t n = genes.size();
+  scratch.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const MutationGene& g = genes[i];
+    const double range = g.upper - g.lower;
+    scratch[i] = range > 0 ? 1.0 - (g.u < 0.5 ? *g.x - g.lower : g.upper - *g.x) / range : 1.0;
+  }
+  pow_each(scratch, eta_m + 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = genes[i].u;
+    scratch[i] = u < 0.5 ? 2.0 * u + (1.0 - 2.0 * u) * scratch[i] : 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * scratch[i];
+  }
+  pow_each(scratch, 1.0 / (eta_m + 1.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const MutationGene& g = genes[i];
+    const double range = g.upper - g.lower;
+    if (!(range > 0)) continue;  // a fixed parameter stays fixed
+    const double delta_q = g.u < 0.5 ? scratch[i] - 1.0 : 1.0 - scratch[i];
+    *g.x = std::clamp(*g.x + delta_q * range, g.lower, g.upper);
   }
 }
 
 double polynomial_mutation(double x, double lower, double upper, double eta_m, RandomStream& rng) {
-  const double range = upper - lower;
-  const double u = rng.uniform();
-  if (!(range > 0)) return x;
-  const double exponent = 1.0 / (eta_m + 1.0);
-  double delta_q;
-  if (u < 0.5) {
-    const double xy = 1.0 - (x - lower) / range;
-    const double val = 2.0 * u + (1.0 - 2.0 * u) * std::pow(xy, eta_m + 1.0);
-    delta_q = std::pow(val, exponent) - 1.0;
-  } else {
-    const double xy = 1.0 - (upper - x) / range;
-    const double val = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * std::pow(xy, eta_m + 1.0);
-    delta_q = 1.0 - std::pow(val, exponent);
-  }
-  return std::clamp(x + delta_q * range, lower, upper);
+  const MutationGene gene{&x, lower, upper, rng.uniform()};
+  std::vector<double> scratch;
+  mutate_all(std::span(&gene, 1), eta_m, scratch);
+  return x;
 }
 
 }  // namespace genetic
@@ -125,34 +197,42 @@ void GeneticAlgorithm::breed() {
   }
   if (finite > 0) stats.mean_finite = sum / finite;
 
+  // Two passes: every random draw of the generation in stream order, then the crossed variables and the mutated
+  // genes, whose powers go through one vector pow per stage (genetic::pow_each).
   std::vector<double> spare(dim_);  // the unused second child of the last pair when N is odd
+  crossed_.clear();
   const std::uint64_t generation_key = hash_key({run_key_, g});
+  std::vector<std::array<double, 2>> pm((n + 1) / 2);
   for (int k = 0; k < (n + 1) / 2; ++k) {
     const std::uint64_t pair_key = extend_key(generation_key, static_cast<std::uint64_t>(k));  // (run, g, pair)
     RandomStream select(extend_key(pair_key, kSelect));
     const int a = genetic::tournament(values_, settings_.tournament, select);
     const int b = genetic::tournament(values_, settings_.tournament, select);
     const PairRates r = rates(values_[a], values_[b], stats);
+    pm[static_cast<std::size_t>(k)] = r.pm;
 
-    const std::array<int, 2> child{2 * k, 2 * k + 1};
-    const std::span<double> child_a = member(offspring_, child[0]);
-    const std::span<double> child_b = child[1] < n ? member(offspring_, child[1]) : std::span<double>(spare);
+    const std::span<double> child_a = member(offspring_, 2 * k);
+    const std::span<double> child_b = 2 * k + 1 < n ? member(offspring_, 2 * k + 1) : std::span<double>(spare);
     RandomStream crossover(extend_key(pair_key, kCrossover));
     if (crossover.uniform() < r.pc) {
-      genetic::sbx(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower, bounds_.upper,
-                   settings_.eta_c, crossover);
+      genetic::sbx_draw(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower,
+                        bounds_.upper, crossover, crossed_);
     } else {
       std::ranges::copy(member(population_, a), child_a.begin());
       std::ranges::copy(member(population_, b), child_b.begin());
     }
-    for (int c = 0; c < 2 && child[c] < n; ++c) {
-      RandomStream mutate(extend_key(extend_key(generation_key, static_cast<std::uint64_t>(child[c])), kMutate));
-      const std::span<double> x = c == 0 ? child_a : child_b;
-      for (int j = 0; j < dim_; ++j)
-        if (mutate.uniform() < r.pm[c])
-          x[j] = genetic::polynomial_mutation(x[j], bounds_.lower[j], bounds_.upper[j], settings_.eta_m, mutate);
-    }
   }
+  genetic::sbx_finish(crossed_, settings_.eta_c, pow_scratch_);
+
+  mutated_.clear();
+  for (int c = 0; c < n; ++c) {
+    RandomStream mutate(extend_key(extend_key(generation_key, static_cast<std::uint64_t>(c)), kMutate));
+    const std::span<double> x = member(offspring_, c);
+    const double rate = pm[static_cast<std::size_t>(c / 2)][static_cast<std::size_t>(c % 2)];
+    for (int j = 0; j < dim_; ++j)
+      if (mutate.uniform() < rate) mutated_.push_back({&x[j], bounds_.lower[j], bounds_.upper[j], mutate.uniform()});
+  }
+  genetic::mutate_all(mutated_, settings_.eta_m, pow_scratch_);
 }
 
 void GeneticAlgorithm::tell(std::span<const double> values) {
