@@ -14,7 +14,7 @@ const FitPlan kAlgebraic{"pso", 50, 100, 50, ""};
 
 /// Models with internal states (and law models built on them): a short GA finds the basin, Levenberg–Marquardt
 /// the optimum within it (the mfm paper's method; the utfsm preset's ga-lm-ode settings, whose bests lie within
-/// 0.0004 % of a 10× budget's on all 30 UTFSM files, scripts/utfsm_budget_check.py, 2026-11-25). Four runs, so that their
+/// 0.08 % of a 10× budget's on all 30 UTFSM files, scripts/utfsm_budget_check.py, 2026-11-25). Four runs, so that their
 /// agreement means something. Measured on the 2-core AMD EPYC (Zen 5), UTFSM 10mm1Hz1A (11 854 samples, nrmse):
 /// Spencer 4.6 s, best 0.04209 with all 4 runs within 2e-8 %, where the earlier default for every model (pso
 /// 50 × 100, 50 runs) took 127 s for a best 3 % worse (0.04344) and runs 5-51 % apart. The joint current-law

@@ -17,7 +17,8 @@ namespace dampbench {
 struct GaSettings : GeneticSettings {
   /// `ga`'s own defaults over the shared ones: SBX η_c = 2, Deb & Agrawal's (1995) broad setting, and
   /// ⌈N/10⌉ elites (5 of 50). Measured with 50 × 100 (tests/test_ga.cpp, seeds 7…): runs reaching 1.02 ×
-  /// the noise RMSE on a noisy Kwok record went from 6 of 40 (η_c 15, one elite) to 23 of 40, and on the
+  /// the noise RMSE on a noisy Kwok record went from 6 of 40 (η_c 15, one elite) to 23 of 40 (8 and 30 of 40
+  /// with the code of 2026-11-25, before and after the GAs' vector pow alike), and on the
   /// fvd test-3 record (gv_quadratic_elastic) within 2 % of the best from 20 to 29 of 40. The standard
   /// functions (tests/test_optimizer_conformance.cpp) improved or held everywhere (e.g. 10-D Rastrigin's
   /// 18th-best of 20 from 0.17 to 0.004, 10-D sphere 6e-4 to 4e-6) except 5-D Rosenbrock, whose runs
