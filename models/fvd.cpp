@@ -22,10 +22,17 @@ Sample prepare_sample(const Signals& s, std::size_t k) {
   return {x, x * x, s.v_m_s[k], s.a_m_s2[k], s.sgn_v[k], s.log_abs_v[k]};
 }
 
-/// C·sgn(v)|v|^α, written exp(α·log|v|) so the lane loop needs one vector exp.
+/// The generalized viscous laws write |v|^α = exp(α·log|v|), their one vector exp: each gives the exp's argument
+/// (exp_argument) and its force from e = |v|^α (force_with_exp), and AlgebraicKernel runs the exps of 16 samples
+/// back to back (engine/kernels/algebraic_kernel.hpp). α·log|v|:
 template <class P>
-double generalized_viscous_force(const P& p, int l, int iC, int ialpha, const Sample& s) {
-  return p.p[iC][l] * s.sgn_v * std::exp(p.p[ialpha][l] * s.log_abs_v);
+double abs_v_pow_argument(const P& p, int l, int ialpha, const Sample& s) {
+  return p.p[ialpha][l] * s.log_abs_v;
+}
+/// C·sgn(v)|v|^α from e = |v|^α.
+template <class P>
+double generalized_viscous_force(const P& p, int l, int iC, const Sample& s, double e) {
+  return p.p[iC][l] * s.sgn_v * e;
 }
 
 // Parameter descriptions shared by the four laws.
@@ -73,8 +80,10 @@ struct GeneralizedViscous {
   }
   static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
   template <class P>
-  static double force(const P& p, int l, const Sample& s) {
-    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s);
+  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P>
+  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e);
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, -1, -1); }
 };
@@ -90,8 +99,10 @@ struct GvLinearElastic {
   }
   static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
   template <class P>
-  static double force(const P& p, int l, const Sample& s) {
-    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s) + p.p[3][l] * s.x;
+  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P>
+  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x;
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, -1); }
 };
@@ -108,8 +119,10 @@ struct GvQuadraticElastic {
   }
   static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
   template <class P>
-  static double force(const P& p, int l, const Sample& s) {
-    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, 2, s) + p.p[3][l] * s.x + p.p[4][l] * s.x2;
+  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P>
+  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+    return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x + p.p[4][l] * s.x2;
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, 4); }
 };

@@ -149,7 +149,12 @@ struct LaneBlockRun {
     const std::size_t n = data->size();
     for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - k0);
-      for (std::size_t i = 0; i < m; ++i) kernel.forces(k0 + i, f[i]);
+      if constexpr (requires { kernel.forces_chunk(k0, m, f); }) {  // a kernel that does a chunk at once
+        static_assert(kChunk <= KernelT<Law, W>::kMaxChunk);
+        kernel.forces_chunk(k0, m, f);
+      } else {
+        for (std::size_t i = 0; i < m; ++i) kernel.forces(k0 + i, f[i]);
+      }
       if constexpr (kSums) {
         sums.add(f, m, data->F_N.data() + k0, data->w_trapz_s.data() + k0, wanted);
       } else {
