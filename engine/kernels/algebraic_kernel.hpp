@@ -31,23 +31,22 @@ class AlgebraicKernel {
     Law::force_with_exp(p, 0, s, 1.0);
   };
 
-  void forces(std::size_t k, double* f) const {
+  /// Force of every lane at sample k (a law with `force`).
+  void forces(std::size_t k, double* f) const
+    requires(!kOneExp)
+  {
     const auto s = Law::prepare(data_, k);
 #pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      if constexpr (kOneExp) f[l] = Law::force_with_exp(p_, l, s, std::exp(Law::exp_argument(p_, l, s)));
-      else f[l] = Law::force(p_, l, s);
-    }
+    for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, s);
   }
   /// The forces of samples k0 … k0 + m − 1 (m ≤ kMaxChunk) of a one-exp law, in three passes (see the top of
-  /// this file); each lane's operations are those of `forces`: the same bits.
+  /// this file); lane l's force is force_with_exp(…, exp(exp_argument(…))), the same operations as one pass.
   static constexpr std::size_t kMaxChunk = 16;
   void forces_chunk(std::size_t k0, std::size_t m, double (*f)[W]) const
     requires kOneExp
   {
-    constexpr std::size_t kMax = kMaxChunk;
-    alignas(64) double e[kMax][W];
-    typename Law::Sample s[kMax];
+    alignas(64) double e[kMaxChunk][W];
+    typename Law::Sample s[kMaxChunk];
     for (std::size_t i = 0; i < m; ++i) {
       s[i] = Law::prepare(data_, k0 + i);
 #pragma omp simd

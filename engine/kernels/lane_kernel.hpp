@@ -174,7 +174,8 @@ struct LaneBlockRun {
 
 /// A Model from a Law and a kernel template KernelT<Law, W>, which has:
 ///   KernelT(const LawLanes<Law, W>&, const Signals&);
-///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...)
+///   void forces(std::size_t k, double* f);    force of every lane at sample k (called for k = 0, 1, ...),
+///     or forces_chunk(k0, m, f) with kMaxChunk: samples k0 … k0 + m − 1 at once (AlgebraicKernel, one-exp laws)
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
 ///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
 /// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
