@@ -26,6 +26,9 @@ class AlgebraicKernel {
       throw std::logic_error("signals '" + data.name + "' were not built by prepare_signals");
   }
 
+  /// Clones compiled without GCC's PRE pass: faster for the algebraic laws (engine/kernels/isa.hpp).
+  static constexpr bool kWithoutTreePre = true;
+
   static constexpr bool kOneExp = requires(const LawLanes<Law, W>& p, const typename Law::Sample& s) {
     Law::exp_argument(p, 0, s);
     Law::force_with_exp(p, 0, s, 1.0);

@@ -28,6 +28,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace dampbench {
@@ -62,14 +63,46 @@ std::string isa_summary();
 #define DAMPBENCH_ISA_DISPATCH 0
 #endif
 
-// GCC 12's partial redundancy elimination, run over a whole flattened time loop, leaves control flow in some
-// lane loops that then stay scalar (crfd.maxwell: its force loop and first RK4 stage called scalar exp and
-// log, 0.62× the native build's speed); -fopt-info-vec shows them vectorized again without it. Clang has no
-// optimize attribute.
+// GCC 12's partial redundancy elimination (PRE, -ftree-pre), run over a whole flattened time loop, helps some
+// bodies and hurts others, so a Body chooses: with `static constexpr bool kWithoutTreePre = true` its clones
+// are compiled with gnu::optimize("no-tree-pre"). Measured (dampbench bench, 2 threads, Zen 5, 2026-11-25,
+// median of 3 interleaved runs; docs/performance.md): without PRE the algebraic kernels run faster
+// (mrd.magic_formula 1.07x, crfd.kwok 1.03x, the rest within 2 %), so AlgebraicKernel asks for it; with PRE the ODE
+// kernels do (crfd.maxwell 1.19x: without it its RK4 stages keep control flow GCC does not vectorize; the MR ODE
+// models within 1 %). Either way the same floating-point operations run, so the bits do not change. Clang has
+// no optimize attribute and ignores the choice.
+template <class Body>
+inline constexpr bool clones_without_tree_pre = requires { requires Body::kWithoutTreePre; };
+
+#if DAMPBENCH_ISA_DISPATCH
+/// The three clones of Body::run (flattened, one per level) with the extra function attributes `...`.
+#define DAMPBENCH_ISA_CLONE_SET(NAME, ...)                                                          \
+  template <class Body>                                                                            \
+  struct NAME {                                                                                    \
+    template <class... Args>                                                                       \
+    [[gnu::target("arch=x86-64-v4"), gnu::flatten __VA_OPT__(, ) __VA_ARGS__]] static void avx512( \
+        Args... args) {                                                                            \
+      Body::run(args...);                                                                          \
+    }                                                                                              \
+    template <class... Args>                                                                       \
+    [[gnu::target("arch=x86-64-v3"), gnu::flatten __VA_OPT__(, ) __VA_ARGS__]] static void avx2(   \
+        Args... args) {                                                                            \
+      Body::run(args...);                                                                          \
+    }                                                                                              \
+    template <class... Args>                                                                       \
+    [[gnu::flatten __VA_OPT__(, ) __VA_ARGS__]] static void sse2(Args... args) {                   \
+      Body::run(args...);                                                                          \
+    }                                                                                              \
+  };
+namespace isa_clones {
+DAMPBENCH_ISA_CLONE_SET(WithTreePre)
 #if defined(__clang__)
-#define DAMPBENCH_CLONE_OPTIMIZE
+DAMPBENCH_ISA_CLONE_SET(WithoutTreePre)
 #else
-#define DAMPBENCH_CLONE_OPTIMIZE , gnu::optimize("no-tree-pre")
+DAMPBENCH_ISA_CLONE_SET(WithoutTreePre, gnu::optimize("no-tree-pre"))
+#endif
+}  // namespace isa_clones
+#undef DAMPBENCH_ISA_CLONE_SET
 #endif
 
 /// Body::run(args...) compiled once per level; call() runs the active level's copy.
@@ -78,24 +111,17 @@ struct IsaClones {
   template <class... Args>
   static void call(Args... args) {
 #if DAMPBENCH_ISA_DISPATCH
+    using Clones = std::conditional_t<clones_without_tree_pre<Body>, isa_clones::WithoutTreePre<Body>,
+                                      isa_clones::WithTreePre<Body>>;
     switch (active_isa()) {
-      case Isa::avx512: return avx512(args...);
-      case Isa::avx2: return avx2(args...);
-      default: return sse2(args...);
+      case Isa::avx512: return Clones::avx512(args...);
+      case Isa::avx2: return Clones::avx2(args...);
+      default: return Clones::sse2(args...);
     }
 #else
     Body::run(args...);
 #endif
   }
-
-#if DAMPBENCH_ISA_DISPATCH
-  template <class... Args>
-  [[gnu::target("arch=x86-64-v4"), gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void avx512(Args... args) { Body::run(args...); }
-  template <class... Args>
-  [[gnu::target("arch=x86-64-v3"), gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void avx2(Args... args) { Body::run(args...); }
-  template <class... Args>
-  [[gnu::flatten DAMPBENCH_CLONE_OPTIMIZE]] static void sse2(Args... args) { Body::run(args...); }
-#endif
 };
 
 }  // namespace dampbench

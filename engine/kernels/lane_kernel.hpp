@@ -140,6 +140,8 @@ struct LaneBlockRun {
   /// sums loop keeps its accumulators in registers (fvd.gv_linear_elastic: see docs/performance.md). The
   /// order of every operation on a lane is unchanged, so are the bits.
   static constexpr std::size_t kChunk = 16;
+  /// The kernel's choice of GCC's PRE pass in the clones (engine/kernels/isa.hpp).
+  static constexpr bool kWithoutTreePre = clones_without_tree_pre<KernelT<Law, W>>;
 
   static void run(const LawLanes<Law, W>* lanes, const Signals* data, int count, Out* out,
                   SumSet wanted = SumSet::every) {
