@@ -64,4 +64,19 @@ TEST(RandomStream, ShortcutsGiveTheDefinedNumbers) {
   EXPECT_NE(extend_key(hash_key({7, 13}), 11), key);
 }
 
+TEST(RandomStream, PeekAndSkipGiveTheDrawsUniformWouldGive) {
+  // peek_uniform(a) is draw counter + a as a uniform, (bits >> 11)·2^-53, without moving on; skip(n) moves on by
+  // n draws. Across the end of the table of first draws (64) too.
+  const std::uint64_t key = hash_key({3, 5});
+  const auto uniform_at = [&](std::uint64_t k) { return static_cast<double>(mix64(key ^ mix64(k)) >> 11) * 0x1.0p-53; };
+  RandomStream rng(key);
+  std::uint64_t at = 0;
+  for (std::uint64_t n : {0, 1, 2, 3, 57, 1, 2, 40}) {
+    for (std::uint64_t a = 0; a < 4; ++a) EXPECT_EQ(rng.peek_uniform(a), uniform_at(at + a)) << "draw " << at + a;
+    rng.skip(n);
+    at += n;
+  }
+  EXPECT_EQ(rng.uniform(), uniform_at(at));
+}
+
 }  // namespace dampbench

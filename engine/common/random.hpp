@@ -53,14 +53,14 @@ class RandomStream {
  public:
   explicit constexpr RandomStream(std::uint64_t key) : key_(key) {}
 
-  constexpr std::uint64_t next_u64() {
-    const std::uint64_t k = counter_++;
-    return mix64(key_ ^ (k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k)));
-  }
-
+  constexpr std::uint64_t next_u64() { return u64_at(counter_++); }
   /// Uniform in [0, 1) with 53 random bits.
-  constexpr double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
-
+  constexpr double uniform() { return to_unit(next_u64()); }
+  /// The uniform `ahead` draws past the next one, without drawing it: peek_uniform(0) is what uniform() returns
+  /// next. With skip, a caller whose number of draws depends on earlier ones computes them without branching.
+  [[nodiscard]] constexpr double peek_uniform(std::uint64_t ahead) const { return to_unit(u64_at(counter_ + ahead)); }
+  /// Moves past `n` draws, as n calls of uniform() would.
+  constexpr void skip(std::uint64_t n) { counter_ += n; }
   /// Uniform in [lo, hi).
   constexpr double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
@@ -72,6 +72,11 @@ class RandomStream {
   }
 
  private:
+  [[nodiscard]] constexpr std::uint64_t u64_at(std::uint64_t k) const {
+    return mix64(key_ ^ (k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k)));
+  }
+  static constexpr double to_unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
+
   std::uint64_t key_;
   std::uint64_t counter_ = 0;
 };

@@ -80,20 +80,26 @@ void pow_each(std::span<double> x, double exponent) {
   std::copy(tail, tail + rest, x.end() - static_cast<std::ptrdiff_t>(rest));
 }
 
-void sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-              std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-              RandomStream& rng, std::vector<SbxGene>& crossed) {
+std::size_t sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
+                     std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
+                     RandomStream& rng, std::span<SbxGene> crossed) {
+  // Variable j is crossed when its first draw is below 1/2 and its parents differ (identical parents: nothing to
+  // spread); its next two draws are then u and the swap. All three are computed and the variable is kept or
+  // not without a branch on the draws, which no branch predictor guesses; the draws consumed are the same.
+  std::size_t count = 0;
   for (std::size_t j = 0; j < parent_a.size(); ++j) {
     const double a = parent_a[j], b = parent_b[j];
     child_a[j] = a;
     child_b[j] = b;
-    if (rng.uniform() >= 0.5) continue;  // this variable is inherited unchanged
     const double y1 = std::min(a, b), y2 = std::max(a, b);
-    if (!(y2 - y1 > 1e-14)) continue;  // identical parents: nothing to spread
-    const double u = rng.uniform();
-    const bool swap = rng.uniform() < 0.5;
-    crossed.push_back({child_a.data(), child_b.data(), static_cast<int>(j), y1, y2, lower[j], upper[j], u, swap});
+    const bool picked = rng.peek_uniform(0) < 0.5;
+    const bool crosses = picked && y2 - y1 > 1e-14;
+    crossed[count] = {child_a.data(), child_b.data(), static_cast<int>(j), y1, y2, lower[j], upper[j],
+                      rng.peek_uniform(1), rng.peek_uniform(2) < 0.5};
+    count += crosses ? 1 : 0;
+    rng.skip(crosses ? 3 : 1);
   }
+  return count;
 }
 
 void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<double>& scratch) {
@@ -127,10 +133,10 @@ void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<doub
 void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
          std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
          double eta_c, RandomStream& rng) {
-  std::vector<SbxGene> crossed;
+  std::vector<SbxGene> crossed(parent_a.size());
   std::vector<double> scratch;
-  sbx_draw(parent_a, parent_b, child_a, child_b, lower, upper, rng, crossed);
-  sbx_finish(crossed, eta_c, scratch);
+  const std::size_t count = sbx_draw(parent_a, parent_b, child_a, child_b, lower, upper, rng, crossed);
+  sbx_finish(std::span(crossed).first(count), eta_c, scratch);
 }
 
 void mutate_all(std::span<const MutationGene> genes, double eta_m, std::vector<double>& scratch) {
@@ -199,47 +205,57 @@ void GeneticAlgorithm::breed() {
 
   // Two passes: every random draw of the generation in stream order, then the crossed variables and the mutated
   // genes, whose powers go through one vector pow per stage (genetic::pow_each).
-  std::vector<double> spare(dim_);  // the unused second child of the last pair when N is odd
-  crossed_.clear();
+  const auto pairs = static_cast<std::size_t>((n + 1) / 2), genes = static_cast<std::size_t>(dim_);
+  spare_child_.resize(genes);
+  pair_pm_.resize(pairs);
+  crossed_.resize(pairs * genes);
+  std::size_t crossed = 0;
   const std::uint64_t generation_key = hash_key({run_key_, g});
-  std::vector<std::array<double, 2>> pm((n + 1) / 2);
   for (int k = 0; k < (n + 1) / 2; ++k) {
     const std::uint64_t pair_key = extend_key(generation_key, static_cast<std::uint64_t>(k));  // (run, g, pair)
     RandomStream select(extend_key(pair_key, kSelect));
     const int a = genetic::tournament(values_, settings_.tournament, select);
     const int b = genetic::tournament(values_, settings_.tournament, select);
     const PairRates r = rates(values_[a], values_[b], stats);
-    pm[static_cast<std::size_t>(k)] = r.pm;
+    pair_pm_[static_cast<std::size_t>(k)] = r.pm;
 
     const std::span<double> child_a = member(offspring_, 2 * k);
-    const std::span<double> child_b = 2 * k + 1 < n ? member(offspring_, 2 * k + 1) : std::span<double>(spare);
+    const std::span<double> child_b = 2 * k + 1 < n ? member(offspring_, 2 * k + 1) : std::span<double>(spare_child_);
     RandomStream crossover(extend_key(pair_key, kCrossover));
     if (crossover.uniform() < r.pc) {
-      genetic::sbx_draw(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower,
-                        bounds_.upper, crossover, crossed_);
+      crossed += genetic::sbx_draw(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower,
+                                   bounds_.upper, crossover, std::span(crossed_).subspan(crossed, genes));
     } else {
       std::ranges::copy(member(population_, a), child_a.begin());
       std::ranges::copy(member(population_, b), child_b.begin());
     }
   }
-  genetic::sbx_finish(crossed_, settings_.eta_c, pow_scratch_);
+  genetic::sbx_finish(std::span(crossed_).first(crossed), settings_.eta_c, pow_scratch_);
 
-  mutated_.clear();
+  // Gene j of child c mutates when its draw is below the child's rate, and then takes the next draw as its u:
+  // both are computed and the gene kept or not without a branch on the draw (as in sbx_draw).
+  mutated_.resize(static_cast<std::size_t>(n) * genes);
+  std::size_t mutated = 0;
   for (int c = 0; c < n; ++c) {
     RandomStream mutate(extend_key(extend_key(generation_key, static_cast<std::uint64_t>(c)), kMutate));
     const std::span<double> x = member(offspring_, c);
-    const double rate = pm[static_cast<std::size_t>(c / 2)][static_cast<std::size_t>(c % 2)];
-    for (int j = 0; j < dim_; ++j)
-      if (mutate.uniform() < rate) mutated_.push_back({&x[j], bounds_.lower[j], bounds_.upper[j], mutate.uniform()});
+    const double rate = pair_pm_[static_cast<std::size_t>(c / 2)][static_cast<std::size_t>(c % 2)];
+    for (int j = 0; j < dim_; ++j) {
+      const bool mutates = mutate.peek_uniform(0) < rate;
+      mutated_[mutated] = {&x[j], bounds_.lower[j], bounds_.upper[j], mutate.peek_uniform(1)};
+      mutated += mutates ? 1 : 0;
+      mutate.skip(mutates ? 2 : 1);
+    }
   }
-  genetic::mutate_all(mutated_, settings_.eta_m, pow_scratch_);
+  genetic::mutate_all(std::span(mutated_).first(mutated), settings_.eta_m, pow_scratch_);
 }
 
 void GeneticAlgorithm::tell(std::span<const double> values) {
   const int n = settings_.population;
   assert(static_cast<int>(values.size()) == n);
   std::vector<double>& evaluated = generation_ == 0 ? population_ : offspring_;
-  std::vector<double> told(n);
+  std::vector<double>& told = told_;
+  told.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     told[i] = failure_as_inf(values[i]);
     if (told[i] < best_value_) {
@@ -250,7 +266,10 @@ void GeneticAlgorithm::tell(std::span<const double> values) {
   }
   if (generation_ > 0) {
     // Elitism: the e best parents against the e worst offspring (ties: lower index counts as better).
-    std::vector<int> parents(n), offspring(n);
+    std::vector<int>& parents = best_parents_;
+    std::vector<int>& offspring = worst_offspring_;
+    parents.resize(static_cast<std::size_t>(n));
+    offspring.resize(static_cast<std::size_t>(n));
     std::iota(parents.begin(), parents.end(), 0);
     std::iota(offspring.begin(), offspring.end(), 0);
     const auto better = [](const std::vector<double>& v) {
@@ -273,7 +292,7 @@ void GeneticAlgorithm::tell(std::span<const double> values) {
     }
     population_.swap(offspring_);
   }
-  values_ = std::move(told);
+  values_.swap(told);  // told_ keeps the old values' storage for the next generation
   ++generation_;
 }
 

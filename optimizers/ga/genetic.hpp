@@ -82,10 +82,11 @@ struct SbxGene {
 };
 
 /// Bounded SBX on one pair of parents (Deb & Agrawal 1995; NSGA-II code), first half: copies the parents into
-/// the children and appends the variables to cross to `crossed`, drawing every random number of the pair.
-void sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-              std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-              RandomStream& rng, std::vector<SbxGene>& crossed);
+/// the children, writes the variables to cross to the front of `crossed` (room for one per variable) and
+/// returns how many; draws every random number of the pair.
+std::size_t sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
+                     std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
+                     RandomStream& rng, std::span<SbxGene> crossed);
 /// Second half: the children's values of every crossed variable. The powers of all variables go through one
 /// vector pow per stage (pow_each), which is why crossing is split in two.
 void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<double>& scratch);
@@ -141,9 +142,14 @@ class GeneticAlgorithm : public PopulationOptimizer {
   void breed();
 
   GeneticSettings settings_;
-  std::vector<genetic::SbxGene> crossed_;        ///< breed's scratch: this generation's crossed variables
-  std::vector<genetic::MutationGene> mutated_;   ///< and mutated genes
+  // Scratch of breed and tell, kept between generations so that a generation allocates nothing.
+  std::vector<genetic::SbxGene> crossed_;        ///< this generation's crossed variables (room for all)
+  std::vector<genetic::MutationGene> mutated_;   ///< and mutated genes (room for all)
   std::vector<double> pow_scratch_;
+  std::vector<std::array<double, 2>> pair_pm_;   ///< each pair's per-gene mutation probabilities
+  std::vector<double> spare_child_;              ///< the unused second child of the last pair when N is odd
+  std::vector<double> told_;                     ///< tell's values of the offspring
+  std::vector<int> best_parents_, worst_offspring_;  ///< tell's index orders for elitism
   std::vector<double> values_;     ///< values of the parents (population_)
   std::vector<double> offspring_;  ///< the generation being evaluated (generation ≥ 1)
 };
