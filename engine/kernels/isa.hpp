@@ -68,9 +68,10 @@ std::string isa_summary();
 // are compiled with gnu::optimize("no-tree-pre"). Measured (dampbench bench, 2 threads, Zen 5, 2026-11-25,
 // median of 3 interleaved runs; docs/performance.md): without PRE the algebraic kernels run faster
 // (mrd.magic_formula 1.07x, crfd.kwok 1.03x, the rest within 2 %), so AlgebraicKernel asks for it; with PRE the ODE
-// kernels do (crfd.maxwell 1.19x: without it its RK4 stages keep control flow GCC does not vectorize; the MR ODE
-// models within 1 %). Either way the same floating-point operations run, so the bits do not change. Clang has
-// no optimize attribute and ignores the choice.
+// kernels do (crfd.maxwell 1.19x, the MR ODE models within 1 %; why was not analysed: perf shows the same
+// libmvec calls in both). The attribute was added for all clones when PRE left Maxwell's force loop and first
+// RK4 stage scalar (0.62x native); today's Maxwell code vectorizes either way. Either way the same
+// floating-point operations run, so the bits do not change. Clang has no optimize attribute and ignores the choice.
 template <class Body>
 inline constexpr bool clones_without_tree_pre = requires { requires Body::kWithoutTreePre; };
 
