@@ -180,6 +180,7 @@ struct LaneBlockRun {
 ///     or forces_chunk(k0, m, f) with kMaxChunk: samples k0 … k0 + m − 1 at once (AlgebraicKernel, one-exp laws)
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
 ///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
+///   optional: static constexpr bool kWithoutTreePre   its clones compiled without GCC's PRE (engine/kernels/isa.hpp)
 /// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
 /// evaluate_block, simulate and simulate_block run the same lane block at the active vector level, so they
 /// see the same bits; evaluate_scalar runs one lane (W = 1) of plain scalar code, the reference of `bench`.
