@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -122,6 +124,38 @@ TEST(GeneticOperators, TournamentPrefersFiniteAndLowestIndex) {
   const std::vector<double> all_failed(4, std::numeric_limits<double>::infinity());
   RandomStream rng(hash_key({5}));
   EXPECT_EQ(genetic::tournament(all_failed, 200, rng), 0);  // ties to the lowest index
+}
+
+TEST(GeneticOperators, FirstInOrderIsWhatPartialSortGives) {
+  // Values with many ties and failures (+inf), ordered as the elitism orders them: lower value first, ties to the
+  // lower index; and the reverse order (the worst offspring first, ties to the higher index).
+  for (std::uint64_t k = 0; k < 50; ++k) {
+    RandomStream rng(hash_key({k, 7}));
+    const int n = 1 + static_cast<int>(rng.uniform() * 60);
+    std::vector<double> v(static_cast<std::size_t>(n));
+    for (double& x : v) {
+      const double u = rng.uniform();
+      x = u < 0.1 ? std::numeric_limits<double>::infinity() : std::floor(u * 8);
+    }
+    const auto better = [&](int i, int j) { return v[i] < v[j] || (v[i] == v[j] && i < j); };
+    const auto worse = [&](int i, int j) { return v[j] < v[i] || (v[i] == v[j] && j < i); };
+    for (int count : {0, 1, 2, 5, n / 2, n, n + 3}) {
+      for (int order = 0; order < 2; ++order) {
+        std::vector<int> expected(static_cast<std::size_t>(n)), got{42};
+        std::iota(expected.begin(), expected.end(), 0);
+        const int m = std::min(count, n);
+        if (order == 0) {
+          std::partial_sort(expected.begin(), expected.begin() + m, expected.end(), better);
+          genetic::first_in_order(n, count, better, got);
+        } else {
+          std::partial_sort(expected.begin(), expected.begin() + m, expected.end(), worse);
+          genetic::first_in_order(n, count, worse, got);
+        }
+        expected.resize(static_cast<std::size_t>(m));
+        EXPECT_EQ(got, expected) << "n " << n << ", count " << count << ", order " << order;
+      }
+    }
+  }
 }
 
 TEST(GeneticOperators, SbxKeepsChildrenInBoundsAndCopiesIdenticalParents) {

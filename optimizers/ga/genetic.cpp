@@ -4,7 +4,6 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include <fmt/format.h>
 
@@ -41,11 +40,15 @@ void GeneticSettings::validate(std::string_view algorithm) const {
 namespace genetic {
 
 int tournament(std::span<const double> values, int size, RandomStream& rng) {
+  // Which entrant wins is a coin toss to a branch predictor: the winner is chosen with selects, not branches.
   const int n = static_cast<int>(values.size());
-  int winner = n;
-  for (int e = 0; e < size; ++e) {
-    const int i = std::min(static_cast<int>(rng.uniform() * n), n - 1);
-    if (winner == n || values[i] < values[winner] || (values[i] == values[winner] && i < winner)) winner = i;
+  const auto entrant = [&] { return std::min(static_cast<int>(rng.uniform() * n), n - 1); };
+  int winner = entrant();
+  for (int e = 1; e < size; ++e) {
+    const int i = entrant();
+    const double vi = values[i], vw = values[winner];
+    const bool wins = (vi < vw) | ((vi == vw) & (i < winner));
+    winner = wins ? i : winner;
   }
   return winner;
 }
@@ -266,25 +269,13 @@ void GeneticAlgorithm::tell(std::span<const double> values) {
   }
   if (generation_ > 0) {
     // Elitism: the e best parents against the e worst offspring (ties: lower index counts as better).
-    std::vector<int>& parents = best_parents_;
-    std::vector<int>& offspring = worst_offspring_;
-    parents.resize(static_cast<std::size_t>(n));
-    offspring.resize(static_cast<std::size_t>(n));
-    std::iota(parents.begin(), parents.end(), 0);
-    std::iota(offspring.begin(), offspring.end(), 0);
-    const auto better = [](const std::vector<double>& v) {
-      return [&v](int i, int j) { return v[i] < v[j] || (v[i] == v[j] && i < j); };
-    };
-    // Only the e best parents and the e worst offspring are needed: partial sorts (the order is total, so they
-    // give what full sorts give).
     const int elites = settings_.elite_count();
-    const auto worse = [](const std::vector<double>& v) {
-      return [&v](int i, int j) { return v[j] < v[i] || (v[i] == v[j] && j < i); };
-    };
-    std::ranges::partial_sort(parents, parents.begin() + elites, better(values_));
-    std::ranges::partial_sort(offspring, offspring.begin() + elites, worse(told));
+    const auto parent_better = [&](int i, int j) { return values_[i] < values_[j] || (values_[i] == values_[j] && i < j); };
+    const auto offspring_worse = [&](int i, int j) { return told[j] < told[i] || (told[i] == told[j] && j < i); };
+    genetic::first_in_order(n, elites, parent_better, best_parents_);
+    genetic::first_in_order(n, elites, offspring_worse, worst_offspring_);
     for (int e = 0; e < elites; ++e) {
-      const int p = parents[e], o = offspring[e];
+      const int p = best_parents_[e], o = worst_offspring_[e];
       if (values_[p] < told[o]) {
         std::ranges::copy(member(population_, p), member(offspring_, o).begin());
         told[o] = values_[p];

@@ -67,9 +67,27 @@ struct GeneticSettings {
 
 namespace genetic {
 
-/// Winner of one tournament over `values` (lowest value, ties to the lowest index); entrants uniform with
-/// replacement. Values must be NaN-free (+inf allowed).
+/// Winner of one tournament over `values` (lowest value, ties to the lowest index); `size` ≥ 1 entrants uniform
+/// with replacement. Values must be NaN-free (+inf allowed).
 int tournament(std::span<const double> values, int size, RandomStream& rng);
+
+/// The first `count` of 0 … n − 1 in the strict total order `before`, in that order, into `out` (resized to
+/// min(count, n)): what std::partial_sort of 0 … n − 1 gives, in one pass that keeps the `count` first seen so far in a
+/// sorted buffer. For the few elites of a generation (count ≪ n) most indices fail the first comparison, with
+/// the buffer's last, and nothing moves; partial_sort's heap compared and moved at every index.
+template <class Before>
+void first_in_order(int n, int count, Before before, std::vector<int>& out) {
+  count = std::clamp(count, 0, n);
+  out.resize(static_cast<std::size_t>(count));
+  int kept = 0;
+  for (int i = 0; i < n && count > 0; ++i) {
+    if (kept == count && !before(i, out[static_cast<std::size_t>(count - 1)])) continue;
+    int at = kept < count ? kept++ : count - 1;  // i goes in at `at` or before; the last kept drops out when full
+    for (; at > 0 && before(i, out[static_cast<std::size_t>(at - 1)]); --at)
+      out[static_cast<std::size_t>(at)] = out[static_cast<std::size_t>(at - 1)];
+    out[static_cast<std::size_t>(at)] = i;
+  }
+}
 
 /// One crossed variable of one pair, drawn by sbx_draw and finished by sbx_finish: the children's rows, the
 /// parents' values in order (y1 <= y2), the bounds, the uniform draw u and whether the children swap.

@@ -1,0 +1,54 @@
+// The optimizers' own cost per candidate (ask + tell, 1 thread), on an objective that costs next to nothing:
+// the shifted sphere Σ (x_j − 0.3)² over [0, 1]^dim (optimum 0 at x = 0.3). This is the serial work a fit adds on
+// top of the model's evaluation (issue 16: it is what keeps the `ga` fit on the fvd record below DE's rate).
+// Population 50 and 100 generations as the fvd paper; dim 4 as fvd.gv_linear_elastic, 8 as a Spencer-sized model.
+// items_per_second is candidates per second (1e9 / it = ns per candidate). Run: ./build/bench/bench_optimizers
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "engine/model/batch.hpp"
+#include "optimizers/registry.hpp"
+
+namespace {
+
+using namespace dampbench;
+
+constexpr int kPopulation = 50, kGenerations = 100;
+
+void BM_AskTell(benchmark::State& state, const std::string& optimizer) {
+  const int dim = static_cast<int>(state.range(0));
+  const OptimizerFactory make = make_optimizer_factory({optimizer, kPopulation, kGenerations, {}});
+  const Bounds bounds{std::vector<double>(dim, 0.0), std::vector<double>(dim, 1.0)};
+  CandidateBatch batch(dim, kPopulation);
+  std::vector<double> values(kPopulation);
+  std::uint64_t run = 0;
+  long long candidates = 0;
+  double best = 0;
+  for (auto _ : state) {
+    const auto opt = make(bounds, ++run);
+    while (!opt->finished()) {
+      opt->ask(batch, 0);
+      for (int i = 0; i < kPopulation; ++i) {
+        double s = 0;
+        for (int j = 0; j < dim; ++j) s += (batch.at(i, j) - 0.3) * (batch.at(i, j) - 0.3);
+        values[i] = s;
+      }
+      opt->tell(values);
+      candidates += kPopulation;
+    }
+    best += opt->best_value();
+  }
+  benchmark::DoNotOptimize(best);
+  state.SetItemsProcessed(candidates);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_AskTell, ga, std::string("ga"))->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AskTell, aga, std::string("aga"))->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AskTell, de, std::string("de"))->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_AskTell, pso, std::string("pso"))->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
