@@ -41,6 +41,9 @@ inline constexpr auto kMixedCounters = [] {
   return t;
 }();
 
+/// A draw's 64 bits as a uniform in [0, 1): the top 53 bits times 2^-53 (exact).
+constexpr double to_uniform(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
+
 /// Stable 64-bit hash of a name (FNV-1a), for task keys built from model and dataset names.
 constexpr std::uint64_t hash_name(std::string_view s) {
   std::uint64_t h = 0xCBF29CE484222325ULL;
@@ -55,10 +58,10 @@ class RandomStream {
 
   constexpr std::uint64_t next_u64() { return u64_at(counter_++); }
   /// Uniform in [0, 1) with 53 random bits.
-  constexpr double uniform() { return to_unit(next_u64()); }
+  constexpr double uniform() { return to_uniform(next_u64()); }
   /// The uniform `ahead` draws past the next one, without drawing it: peek_uniform(0) is what uniform() returns
   /// next. With skip, a caller whose number of draws depends on earlier ones computes them without branching.
-  [[nodiscard]] constexpr double peek_uniform(std::uint64_t ahead) const { return to_unit(u64_at(counter_ + ahead)); }
+  [[nodiscard]] constexpr double peek_uniform(std::uint64_t ahead) const { return to_uniform(u64_at(counter_ + ahead)); }
   /// Moves past `n` draws, as n calls of uniform() would.
   constexpr void skip(std::uint64_t n) { counter_ += n; }
   /// Uniform in [lo, hi).
@@ -75,7 +78,6 @@ class RandomStream {
   [[nodiscard]] constexpr std::uint64_t u64_at(std::uint64_t k) const {
     return mix64(key_ ^ (k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k)));
   }
-  static constexpr double to_unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
 
   std::uint64_t key_;
   std::uint64_t counter_ = 0;

@@ -8,8 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
-#include "engine/common/vector_math.hpp"
-#include "engine/kernels/isa.hpp"
+#include "optimizers/random_draws.hpp"
 
 namespace dampbench {
 namespace {
@@ -37,147 +36,31 @@ void GeneticSettings::validate(std::string_view algorithm) const {
     throw InputError(fmt::format("{}: eta_m must be a finite number >= 0, got {}", algorithm, eta_m));
 }
 
-namespace genetic {
-
-int tournament(std::span<const double> values, int size, RandomStream& rng) {
-  // Which entrant wins is a coin toss to a branch predictor: the winner is chosen with selects, not branches.
-  const int n = static_cast<int>(values.size());
-  const auto entrant = [&] { return std::min(static_cast<int>(rng.uniform() * n), n - 1); };
-  int winner = entrant();
-  for (int e = 1; e < size; ++e) {
-    const int i = entrant();
-    const double vi = values[i], vw = values[winner];
-    const bool wins = (vi < vw) | ((vi == vw) & (i < winner));
-    winner = wins ? i : winner;
-  }
-  return winner;
+void GenerationDraws::draw(std::uint64_t generation_key, int pairs, int children, int select_count,
+                           int crossover_count, int mutate_count) {
+  // Member i's key (run, g, i) is extend_key(generation_key, i): pair k's for k < pairs, child c's for c < children.
+  member_keys_.resize(static_cast<std::size_t>(std::max(pairs, children)));
+  for (std::size_t i = 0; i < member_keys_.size(); ++i) member_keys_[i] = i;
+  mix_each(member_keys_);
+  for (std::uint64_t& k : member_keys_) k ^= generation_key;
+  mix_each(member_keys_);
+  const auto stream_draws = [&](int members, std::uint64_t name, int count, std::vector<double>& out) {
+    keys_.assign(member_keys_.begin(), member_keys_.begin() + members);
+    extend_keys(keys_, name);
+    first_uniforms(keys_, count, out, scratch_);
+  };
+  stream_draws(pairs, kSelect, select_count, select_);
+  stream_draws(pairs, kCrossover, crossover_count, crossover_);
+  stream_draws(children, kMutate, mutate_count, mutate_);
+  select_count_ = select_count;
+  crossover_count_ = crossover_count;
+  mutate_count_ = mutate_count;
 }
 
-namespace {
-
-/// pow_each's loop, compiled per vector level (IsaClones): blocks of kBlock elements with a constant trip count,
-/// so that every element goes through the vector pow of the level (no scalar remainder loop).
-struct PowBlocks {
-  static constexpr int kBlock = 16;
-  static void run(double* x, std::size_t blocks, double exponent) {
-    for (std::size_t b = 0; b < blocks; ++b) {
-      double* v = x + b * kBlock;
-#pragma omp simd
-      for (int l = 0; l < kBlock; ++l) v[l] = std::pow(v[l], exponent);
-    }
-  }
-};
-
-}  // namespace
-
-void pow_each(std::span<double> x, double exponent) {
-  constexpr std::size_t kBlock = PowBlocks::kBlock;
-  const std::size_t whole = x.size() / kBlock;
-  if (whole > 0) IsaClones<PowBlocks>::call(x.data(), whole, exponent);
-  const std::size_t rest = x.size() - whole * kBlock;
-  if (rest == 0) return;
-  alignas(64) double tail[kBlock];
-  std::fill(std::begin(tail), std::end(tail), 1.0);
-  std::copy(x.end() - static_cast<std::ptrdiff_t>(rest), x.end(), tail);
-  IsaClones<PowBlocks>::call(&tail[0], std::size_t{1}, exponent);
-  std::copy(tail, tail + rest, x.end() - static_cast<std::ptrdiff_t>(rest));
-}
-
-std::size_t sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-                     std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-                     RandomStream& rng, std::span<SbxGene> crossed) {
-  // Variable j is crossed when its first draw is below 1/2 and its parents differ (identical parents: nothing to
-  // spread); its next two draws are then u and the swap. All three are computed and the variable is kept or
-  // not without a branch on the draws, which no branch predictor guesses; the draws consumed are the same.
-  std::size_t count = 0;
-  for (std::size_t j = 0; j < parent_a.size(); ++j) {
-    const double a = parent_a[j], b = parent_b[j];
-    child_a[j] = a;
-    child_b[j] = b;
-    const double y1 = std::min(a, b), y2 = std::max(a, b);
-    const bool picked = rng.peek_uniform(0) < 0.5;
-    const bool crosses = picked && y2 - y1 > 1e-14;
-    crossed[count] = {child_a.data(), child_b.data(), static_cast<int>(j), y1, y2, lower[j], upper[j],
-                      rng.peek_uniform(1), rng.peek_uniform(2) < 0.5};
-    count += crosses ? 1 : 0;
-    rng.skip(crosses ? 3 : 1);
-  }
-  return count;
-}
-
-void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<double>& scratch) {
-  // Spread factor for a uniform draw u, given how far the parents sit from the bound on their side (beta):
-  // alpha = 2 − beta^−(η_c + 1); beta_q = (u·alpha)^(1/(η_c + 1)) if u ≤ 1/alpha, else (1/(2 − u·alpha))^(1/(η_c + 1)).
-  // Lower child at 2k, upper at 2k + 1.
-  const std::size_t n = crossed.size();
-  scratch.resize(2 * n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const SbxGene& g = crossed[k];
-    const double gap = g.y2 - g.y1;
-    scratch[2 * k] = 1.0 + 2.0 * (g.y1 - g.lower) / gap;
-    scratch[2 * k + 1] = 1.0 + 2.0 * (g.upper - g.y2) / gap;
-  }
-  pow_each(scratch, -(eta_c + 1.0));
-  for (std::size_t i = 0; i < 2 * n; ++i) {
-    const double alpha = 2.0 - scratch[i], u = crossed[i / 2].u;
-    scratch[i] = u <= 1.0 / alpha ? u * alpha : 1.0 / (2.0 - u * alpha);
-  }
-  pow_each(scratch, 1.0 / (eta_c + 1.0));
-  for (std::size_t k = 0; k < n; ++k) {
-    const SbxGene& g = crossed[k];
-    const double gap = g.y2 - g.y1;
-    const double c1 = std::clamp(0.5 * ((g.y1 + g.y2) - scratch[2 * k] * gap), g.lower, g.upper);
-    const double c2 = std::clamp(0.5 * ((g.y1 + g.y2) + scratch[2 * k + 1] * gap), g.lower, g.upper);
-    g.child_a[g.j] = g.swap ? c2 : c1;
-    g.child_b[g.j] = g.swap ? c1 : c2;
-  }
-}
-
-void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-         std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-         double eta_c, RandomStream& rng) {
-  std::vector<SbxGene> crossed(parent_a.size());
-  std::vector<double> scratch;
-  const std::size_t count = sbx_draw(parent_a, parent_b, child_a, child_b, lower, upper, rng, crossed);
-  sbx_finish(std::span(crossed).first(count), eta_c, scratch);
-}
-
-void mutate_all(std::span<const MutationGene> genes, double eta_m, std::vector<double>& scratch) {
-  // δ_q = (2u + (1 − 2u)·xy^(η_m + 1))^(1/(η_m + 1)) − 1 with xy = 1 − (x − lower)/range for u < 1/2, and
-  // 1 − (2(1 − u) + 2(u − 1/2)·xy^(η_m + 1))^(1/(η_m + 1)) with xy = 1 − (upper − x)/range otherwise.
-  const std::size_t n = genes.size();
-  scratch.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const MutationGene& g = genes[i];
-    const double range = g.upper - g.lower;
-    scratch[i] = range > 0 ? 1.0 - (g.u < 0.5 ? *g.x - g.lower : g.upper - *g.x) / range : 1.0;
-  }
-  pow_each(scratch, eta_m + 1.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double u = genes[i].u;
-    scratch[i] = u < 0.5 ? 2.0 * u + (1.0 - 2.0 * u) * scratch[i] : 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * scratch[i];
-  }
-  pow_each(scratch, 1.0 / (eta_m + 1.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    const MutationGene& g = genes[i];
-    const double range = g.upper - g.lower;
-    if (!(range > 0)) continue;  // a fixed parameter stays fixed
-    const double delta_q = g.u < 0.5 ? scratch[i] - 1.0 : 1.0 - scratch[i];
-    *g.x = std::clamp(*g.x + delta_q * range, g.lower, g.upper);
-  }
-}
-
-double polynomial_mutation(double x, double lower, double upper, double eta_m, RandomStream& rng) {
-  const MutationGene gene{&x, lower, upper, rng.uniform()};
-  std::vector<double> scratch;
-  mutate_all(std::span(&gene, 1), eta_m, scratch);
-  return x;
-}
-
-}  // namespace genetic
 
 GeneticAlgorithm::GeneticAlgorithm(const GeneticSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : PopulationOptimizer(settings.population, settings.generations, bounds, run_key), settings_(settings) {
+  population_.resize(population_.size() + static_cast<std::size_t>(dim_));  // row N (genetic.hpp)
   offspring_.resize(population_.size());
   values_.assign(settings_.population, std::numeric_limits<double>::infinity());
 }
@@ -206,51 +89,38 @@ void GeneticAlgorithm::breed() {
   }
   if (finite > 0) stats.mean_finite = sum / finite;
 
-  // Two passes: every random draw of the generation in stream order, then the crossed variables and the mutated
-  // genes, whose powers go through one vector pow per stage (genetic::pow_each).
-  const auto pairs = static_cast<std::size_t>((n + 1) / 2), genes = static_cast<std::size_t>(dim_);
-  spare_child_.resize(genes);
-  pair_pm_.resize(pairs);
-  crossed_.resize(pairs * genes);
-  std::size_t crossed = 0;
-  const std::uint64_t generation_key = hash_key({run_key_, g});
-  for (int k = 0; k < (n + 1) / 2; ++k) {
-    const std::uint64_t pair_key = extend_key(generation_key, static_cast<std::uint64_t>(k));  // (run, g, pair)
-    RandomStream select(extend_key(pair_key, kSelect));
-    const int a = genetic::tournament(values_, settings_.tournament, select);
-    const int b = genetic::tournament(values_, settings_.tournament, select);
+  // Every draw of the generation first, as vector loops; then selection and what to cross and mutate; then the
+  // crossed variables' and mutated genes' values, one vector loop each (optimizers/ga/operators.hpp).
+  const int pairs = (n + 1) / 2;
+  const auto genes = static_cast<std::size_t>(dim_);
+  const int t = settings_.tournament;
+  draws_.draw(hash_key({run_key_, g}), pairs, n, 2 * t, 1 + 3 * dim_, 2 * dim_);
+  pair_pm_.resize(static_cast<std::size_t>(pairs));
+  crossed_.clear(static_cast<std::size_t>(pairs) * genes);
+  for (int k = 0; k < pairs; ++k) {
+    const std::span<const double> select = draws_.select(k);
+    const int a = genetic::tournament(values_, select.first(static_cast<std::size_t>(t)));
+    const int b = genetic::tournament(values_, select.subspan(static_cast<std::size_t>(t)));
     const PairRates r = rates(values_[a], values_[b], stats);
     pair_pm_[static_cast<std::size_t>(k)] = r.pm;
-
-    const std::span<double> child_a = member(offspring_, 2 * k);
-    const std::span<double> child_b = 2 * k + 1 < n ? member(offspring_, 2 * k + 1) : std::span<double>(spare_child_);
-    RandomStream crossover(extend_key(pair_key, kCrossover));
-    if (crossover.uniform() < r.pc) {
-      crossed += genetic::sbx_draw(member(population_, a), member(population_, b), child_a, child_b, bounds_.lower,
-                                   bounds_.upper, crossover, std::span(crossed_).subspan(crossed, genes));
+    // Children 2k and 2k + 1 (row N when N is odd and 2k + 1 = N): copies of the parents, some variables crossed.
+    const std::span<const double> crossover = draws_.crossover(k);
+    if (crossover[0] < r.pc) {
+      genetic::sbx_draw(member(population_, a), member(population_, b), offspring_, 2 * k * genes,
+                        (2 * k + 1) * genes, bounds_.lower, bounds_.upper, crossover.subspan(1), crossed_);
     } else {
-      std::ranges::copy(member(population_, a), child_a.begin());
-      std::ranges::copy(member(population_, b), child_b.begin());
+      std::ranges::copy(member(population_, a), member(offspring_, 2 * k).begin());
+      std::ranges::copy(member(population_, b), member(offspring_, 2 * k + 1).begin());
     }
   }
-  genetic::sbx_finish(std::span(crossed_).first(crossed), settings_.eta_c, pow_scratch_);
+  genetic::sbx_finish(crossed_, settings_.eta_c, offspring_);
 
-  // Gene j of child c mutates when its draw is below the child's rate, and then takes the next draw as its u:
-  // both are computed and the gene kept or not without a branch on the draw (as in sbx_draw).
-  mutated_.resize(static_cast<std::size_t>(n) * genes);
-  std::size_t mutated = 0;
+  mutated_.clear(static_cast<std::size_t>(n) * genes);
   for (int c = 0; c < n; ++c) {
-    RandomStream mutate(extend_key(extend_key(generation_key, static_cast<std::uint64_t>(c)), kMutate));
-    const std::span<double> x = member(offspring_, c);
     const double rate = pair_pm_[static_cast<std::size_t>(c / 2)][static_cast<std::size_t>(c % 2)];
-    for (int j = 0; j < dim_; ++j) {
-      const bool mutates = mutate.peek_uniform(0) < rate;
-      mutated_[mutated] = {&x[j], bounds_.lower[j], bounds_.upper[j], mutate.peek_uniform(1)};
-      mutated += mutates ? 1 : 0;
-      mutate.skip(mutates ? 2 : 1);
-    }
+    genetic::mutation_draw(c * genes, rate, bounds_.lower, bounds_.upper, draws_.mutate(c), mutated_);
   }
-  genetic::mutate_all(std::span(mutated_).first(mutated), settings_.eta_m, pow_scratch_);
+  genetic::mutate_all(mutated_, settings_.eta_m, offspring_);
 }
 
 void GeneticAlgorithm::tell(std::span<const double> values) {

@@ -24,10 +24,10 @@
 // Random numbers: initial member i from stream (run_key, 0, i); in generation g ≥ 1 pair k selects from
 // (run_key, g, k, "select"), crosses over from (run_key, g, k, "crossover"), and child c mutates from
 // (run_key, g, c, "mutate"). Nothing depends on evaluation order or batch layout.
-// Powers: a generation draws all its random numbers first, then finishes every crossed variable and every
-// mutated gene with one vector pow per stage (pow_each; 4 per crossed variable, 2 per mutated gene, glibc's
-// scalar pow took 13 % of a `ga` fit on the fvd record). Same bits for any thread count; like the kernels'
-// exp and log, the last bits of pow differ between vector levels (engine/kernels/isa.hpp).
+// Order of work: a generation computes all its draws first (GenerationDraws, as vector loops), then selects,
+// decides what to cross and mutate, and finishes every crossed variable and mutated gene in one vector loop each
+// (optimizers/ga/operators.hpp). Same bits for any thread count; like the kernels' exp and log, the last bits
+// of the operators' pow differ between vector levels (engine/kernels/isa.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,8 +38,9 @@
 #include <string_view>
 #include <vector>
 
-#include "optimizers/population.hpp"
 #include "engine/common/random.hpp"
+#include "optimizers/ga/operators.hpp"
+#include "optimizers/population.hpp"
 
 namespace dampbench {
 
@@ -65,74 +66,27 @@ struct GeneticSettings {
   void validate(std::string_view algorithm) const;
 };
 
-namespace genetic {
+/// The random draws of one generation (the streams of the comment above), all computed before breeding starts as
+/// vector loops (optimizers/random_draws.hpp): pair k's selection and crossover draws and child c's mutation draws.
+class GenerationDraws {
+ public:
+  /// Draws for generation key hash_key({run_key, g}): `pairs` pairs with select_count selection and
+  /// crossover_count crossover draws each, `children` children with mutate_count mutation draws each.
+  void draw(std::uint64_t generation_key, int pairs, int children, int select_count, int crossover_count,
+            int mutate_count);
+  [[nodiscard]] std::span<const double> select(int pair) const { return row(select_, select_count_, pair); }
+  [[nodiscard]] std::span<const double> crossover(int pair) const { return row(crossover_, crossover_count_, pair); }
+  [[nodiscard]] std::span<const double> mutate(int child) const { return row(mutate_, mutate_count_, child); }
 
-/// Winner of one tournament over `values` (lowest value, ties to the lowest index); `size` ≥ 1 entrants uniform
-/// with replacement. Values must be NaN-free (+inf allowed).
-int tournament(std::span<const double> values, int size, RandomStream& rng);
-
-/// The first `count` of 0 … n − 1 in the strict total order `before`, in that order, into `out` (resized to
-/// min(count, n)): what std::partial_sort of 0 … n − 1 gives, in one pass that keeps the `count` first seen so far in a
-/// sorted buffer. For the few elites of a generation (count ≪ n) most indices fail the first comparison, with
-/// the buffer's last, and nothing moves; partial_sort's heap compared and moved at every index.
-template <class Before>
-void first_in_order(int n, int count, Before before, std::vector<int>& out) {
-  count = std::clamp(count, 0, n);
-  out.resize(static_cast<std::size_t>(count));
-  int kept = 0;
-  for (int i = 0; i < n && count > 0; ++i) {
-    if (kept == count && !before(i, out[static_cast<std::size_t>(count - 1)])) continue;
-    int at = kept < count ? kept++ : count - 1;  // i goes in at `at` or before; the last kept drops out when full
-    for (; at > 0 && before(i, out[static_cast<std::size_t>(at - 1)]); --at)
-      out[static_cast<std::size_t>(at)] = out[static_cast<std::size_t>(at - 1)];
-    out[static_cast<std::size_t>(at)] = i;
+ private:
+  static std::span<const double> row(const std::vector<double>& draws, int count, int i) {
+    return std::span(draws).subspan(static_cast<std::size_t>(i) * count, static_cast<std::size_t>(count));
   }
-}
-
-/// One crossed variable of one pair, drawn by sbx_draw and finished by sbx_finish: the children's rows, the
-/// parents' values in order (y1 <= y2), the bounds, the uniform draw u and whether the children swap.
-struct SbxGene {
-  double* child_a;
-  double* child_b;
-  int j;
-  double y1, y2, lower, upper, u;
-  bool swap;
+  std::vector<std::uint64_t> member_keys_, keys_, scratch_;
+  std::vector<double> select_, crossover_, mutate_;
+  int select_count_ = 0, crossover_count_ = 0, mutate_count_ = 0;
 };
 
-/// Bounded SBX on one pair of parents (Deb & Agrawal 1995; NSGA-II code), first half: copies the parents into
-/// the children, writes the variables to cross to the front of `crossed` (room for one per variable) and
-/// returns how many; draws every random number of the pair.
-std::size_t sbx_draw(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-                     std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-                     RandomStream& rng, std::span<SbxGene> crossed);
-/// Second half: the children's values of every crossed variable. The powers of all variables go through one
-/// vector pow per stage (pow_each), which is why crossing is split in two.
-void sbx_finish(std::span<const SbxGene> crossed, double eta_c, std::vector<double>& scratch);
-
-/// sbx_draw then sbx_finish for one pair.
-void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std::span<double> child_a,
-         std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
-         double eta_c, RandomStream& rng);
-
-/// One gene to mutate: where it is, its bounds and the uniform draw u.
-struct MutationGene {
-  double* x;
-  double lower, upper, u;
-};
-
-/// Bounded polynomial mutation (Deb & Goyal 1996; NSGA-II code) of every gene in `genes`, with one vector pow per
-/// stage over all of them.
-void mutate_all(std::span<const MutationGene> genes, double eta_m, std::vector<double>& scratch);
-
-/// Bounded polynomial mutation of one gene in [lower, upper] (mutate_all of one gene; draws u from rng).
-double polynomial_mutation(double x, double lower, double upper, double eta_m, RandomStream& rng);
-
-/// x[i] = x[i]^exponent for every i, with the vector pow of the active vector level (engine/kernels/isa.hpp;
-/// libmvec). Elementwise: an element's bits depend on its value and the level only, not on its neighbours,
-/// its position or the span's length.
-void pow_each(std::span<double> x, double exponent);
-
-}  // namespace genetic
 
 /// The generational GA; subclasses choose the rates.
 class GeneticAlgorithm : public PopulationOptimizer {
@@ -161,15 +115,16 @@ class GeneticAlgorithm : public PopulationOptimizer {
 
   GeneticSettings settings_;
   // Scratch of breed and tell, kept between generations so that a generation allocates nothing.
-  std::vector<genetic::SbxGene> crossed_;        ///< this generation's crossed variables (room for all)
-  std::vector<genetic::MutationGene> mutated_;   ///< and mutated genes (room for all)
-  std::vector<double> pow_scratch_;
+  GenerationDraws draws_;
+  genetic::CrossedVariables crossed_;            ///< this generation's crossed variables
+  genetic::MutatedGenes mutated_;                ///< and mutated genes
   std::vector<std::array<double, 2>> pair_pm_;   ///< each pair's per-gene mutation probabilities
-  std::vector<double> spare_child_;              ///< the unused second child of the last pair when N is odd
   std::vector<double> told_;                     ///< tell's values of the offspring
   std::vector<int> best_parents_, worst_offspring_;  ///< tell's index orders for elitism
   std::vector<double> values_;     ///< values of the parents (population_)
   std::vector<double> offspring_;  ///< the generation being evaluated (generation ≥ 1)
+  // Both pools (population_ and offspring_, swapped every generation) have a row N past the population: when N is
+  // odd, the last pair's second child is bred there and never evaluated.
 };
 
 /// A told value as the GAs read it: failures (NaN, ±inf) become +inf.

@@ -1,0 +1,46 @@
+#include "optimizers/random_draws.hpp"
+
+#include "engine/common/random.hpp"
+#include "engine/kernels/isa.hpp"
+
+namespace dampbench {
+namespace {
+
+/// The loops, compiled per vector level (IsaClones); integer operations, so every level gives the same bits.
+struct MixLoop {
+  static void run(std::uint64_t* x, std::size_t n) {
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) x[i] = mix64(x[i]);
+  }
+};
+struct UniformLoop {
+  static void run(const std::uint64_t* x, double* out, std::size_t n) {
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) out[i] = to_uniform(mix64(x[i]));
+  }
+};
+
+}  // namespace
+
+void mix_each(std::span<std::uint64_t> x) { IsaClones<MixLoop>::call(x.data(), x.size()); }
+
+void extend_keys(std::span<std::uint64_t> keys, std::uint64_t part) {
+  const std::uint64_t mixed_part = mix64(part);
+  for (std::uint64_t& k : keys) k ^= mixed_part;
+  mix_each(keys);
+}
+
+void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<double>& out,
+                    std::vector<std::uint64_t>& scratch) {
+  // Draw d of stream s is mix64(key_s ^ mix64(d)) (RandomStream::u64_at).
+  const auto d_count = static_cast<std::size_t>(draws);
+  scratch.resize(keys.size() * d_count);
+  out.resize(scratch.size());
+  for (std::size_t d = 0; d < d_count; ++d) {
+    const std::uint64_t counter = d < kMixedCounters.size() ? kMixedCounters[d] : mix64(d);
+    for (std::size_t s = 0; s < keys.size(); ++s) scratch[s * d_count + d] = keys[s] ^ counter;
+  }
+  IsaClones<UniformLoop>::call(static_cast<const std::uint64_t*>(scratch.data()), out.data(), scratch.size());
+}
+
+}  // namespace dampbench
