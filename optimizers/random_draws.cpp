@@ -36,10 +36,12 @@ void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<
   const auto d_count = static_cast<std::size_t>(draws);
   scratch.resize(keys.size() * d_count);
   out.resize(scratch.size());
-  for (std::size_t d = 0; d < d_count; ++d) {
-    const std::uint64_t counter = d < kMixedCounters.size() ? kMixedCounters[d] : mix64(d);
-    for (std::size_t s = 0; s < keys.size(); ++s) scratch[s * d_count + d] = keys[s] ^ counter;
-  }
+  if (scratch.empty()) return;
+  std::uint64_t* x = scratch.data();
+  for (std::size_t d = 0; d < d_count && d < kMixedCounters.size(); ++d) x[d] = kMixedCounters[d];
+  for (std::size_t d = kMixedCounters.size(); d < d_count; ++d) x[d] = mix64(d);
+  for (std::size_t s = keys.size(); s-- > 0;)  // stream 0 last: its row holds the counters until then
+    for (std::size_t d = 0; d < d_count; ++d) x[s * d_count + d] = keys[s] ^ x[d];
   IsaClones<UniformLoop>::call(static_cast<const std::uint64_t*>(scratch.data()), out.data(), scratch.size());
 }
 

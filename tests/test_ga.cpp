@@ -1,4 +1,4 @@
-// GA (optimizers/ga/ga.hpp) and the operators it shares with the AGA (optimizers/ga/genetic.hpp): the lssvm
+// GA (optimizers/ga/ga.hpp) and the operators it shares with the AGA (optimizers/ga/operators.hpp): the lssvm
 // preset, operator properties, settings checks. The checks every optimizer passes (standard functions,
 // ask/tell conformance) are in test_optimizer_conformance.cpp.
 #include "optimizers/ga/ga.hpp"

@@ -17,7 +17,7 @@
 // types, while ours are `omp simd` lane loops (engine/kernels/lane_kernel.hpp) whose vector math is
 // libmvec, which the compiler selects per level by itself (engine/common/vector_math.hpp).
 //
-// Reproducibility: at one level the kernels (and the GAs' vector pow, optimizers/ga/genetic.hpp) run the same
+// Reproducibility: at one level the kernels (and the GAs' vector pow, optimizers/ga/operators.hpp) run the same
 // instructions on every CPU that has it (one
 // exception: libmvec's SSE2-level functions use SSE4.1 code where the CPU has it, as every x86-64 CPU since
 // 2008 does), and the same bits for any thread count or batch split. Levels differ from each other in the last bits of
