@@ -30,6 +30,13 @@ void extend_keys(std::span<std::uint64_t> keys, std::uint64_t part) {
   mix_each(keys);
 }
 
+void member_keys(std::uint64_t base, std::span<std::uint64_t> keys) {
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = i;
+  mix_each(keys);
+  for (std::uint64_t& k : keys) k ^= base;
+  mix_each(keys);
+}
+
 void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<double>& out,
                     std::vector<std::uint64_t>& scratch) {
   // Draw d of stream s is mix64(key_s ^ mix64(d)) (RandomStream::u64_at).

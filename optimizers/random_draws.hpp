@@ -15,6 +15,9 @@ void mix_each(std::span<std::uint64_t> x);
 /// keys[i] = extend_key(keys[i], part) for every i.
 void extend_keys(std::span<std::uint64_t> keys, std::uint64_t part);
 
+/// keys[i] = extend_key(base, i) for every i: the keys of members 0, 1, … under `base`.
+void member_keys(std::uint64_t base, std::span<std::uint64_t> keys);
+
 /// The first `draws` uniforms of each stream: out[s·draws + d] is what the (d + 1)-th uniform() of
 /// RandomStream(keys[s]) returns. `out` is resized to keys.size() × draws; `scratch` is working storage.
 void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<double>& out,

@@ -14,7 +14,7 @@
 namespace dampbench {
 namespace {
 
-TEST(RandomDraws, MixEachAndExtendKeysAreMix64AndExtendKey) {
+TEST(RandomDraws, MixEachExtendKeysAndMemberKeysAreMix64AndExtendKey) {
   const Isa saved = active_isa();
   for (const Isa isa : supported_isas()) {
     select_isa(isa);
@@ -24,9 +24,12 @@ TEST(RandomDraws, MixEachAndExtendKeysAreMix64AndExtendKey) {
       const std::vector<std::uint64_t> before = x;
       mix_each(x);
       extend_keys(keys, 0xfeedULL);
+      std::vector<std::uint64_t> members(n);
+      member_keys(hash_key({0x1234ULL}), members);
       for (std::size_t i = 0; i < n; ++i) {
         EXPECT_EQ(x[i], mix64(before[i])) << isa_name(isa) << " n " << n << " i " << i;
         EXPECT_EQ(keys[i], extend_key(before[i], 0xfeedULL)) << isa_name(isa) << " n " << n << " i " << i;
+        EXPECT_EQ(members[i], hash_key({0x1234ULL, i})) << isa_name(isa) << " n " << n << " i " << i;
       }
     }
   }

@@ -40,10 +40,7 @@ void GenerationDraws::draw(std::uint64_t generation_key, int pairs, int children
                            int crossover_count, int mutate_count) {
   // Member i's key (run, g, i) is extend_key(generation_key, i): pair k's for k < pairs, child c's for c < children.
   member_keys_.resize(static_cast<std::size_t>(std::max(pairs, children)));
-  for (std::size_t i = 0; i < member_keys_.size(); ++i) member_keys_[i] = i;
-  mix_each(member_keys_);
-  for (std::uint64_t& k : member_keys_) k ^= generation_key;
-  mix_each(member_keys_);
+  member_keys(generation_key, member_keys_);
   const auto stream_draws = [&](int members, std::uint64_t name, int count, std::vector<double>& out) {
     keys_.assign(member_keys_.begin(), member_keys_.begin() + members);
     extend_keys(keys_, name);
