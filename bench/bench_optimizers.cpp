@@ -68,7 +68,8 @@ void BM_AskTellLockstep(benchmark::State& state, const std::string& optimizer) {
         for (int j = 0; j < dim; ++j) s += (batch.at(i, j) - 0.3) * (batch.at(i, j) - 0.3);
         values[i] = s;
       }
-      for (int r = 0; r < runs; ++r) opts[r]->tell(std::span(values).subspan(static_cast<std::size_t>(r) * kPopulation, kPopulation));
+      for (int r = 0; r < runs; ++r)
+        opts[r]->tell(std::span(values).subspan(static_cast<std::size_t>(r) * kPopulation, kPopulation));
       candidates += static_cast<long long>(kPopulation) * runs;
     }
     for (const auto& o : opts) best += o->best_value();

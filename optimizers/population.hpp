@@ -33,7 +33,7 @@ class PopulationOptimizer : public Optimizer {
   std::uint64_t run_key_;
   int dim_;
   int generation_ = 0;              ///< generations (PSO: iterations) told so far
-  std::vector<double> population_;  ///< row-major N × dim
+  std::vector<double> population_;  ///< row-major N × dim (the GAs keep one more row: optimizers/ga/genetic.hpp)
   std::vector<double> best_position_;
   double best_value_ = std::numeric_limits<double>::infinity();
 

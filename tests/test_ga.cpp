@@ -183,6 +183,47 @@ TEST(GeneticOperators, SbxKeepsChildrenInBoundsAndCopiesIdenticalParents) {
   EXPECT_EQ(d, p);
 }
 
+// sbx_draw's decisions from hand-made draws: which variables are crossed, how many draws each takes (1 if not
+// crossed, 3 if crossed), identical parents left alone, each variable with its own bounds, children copied to their
+// pool offsets.
+TEST(GeneticOperators, SbxDrawDecidesFromItsDrawsVariableByVariable) {
+  const std::vector<double> lo{0, -5, 10, 0}, hi{1, 5, 20, 2};
+  const std::vector<double> a{0.2, 3.0, 12.0, 1.5}, b{0.7, -1.0, 12.0, 0.5};  // variable 2: identical parents
+  // Draw per variable: 0: 0.1 crosses (u 0.3, swap draw 0.9: no swap); 1: 0.6 not crossed; 2: 0.2 would cross but
+  // the parents are identical, so it is not crossed and takes one draw; 3: 0.4 crosses (u 0.8, swap draw 0.1: swap).
+  const std::vector<double> draws{0.1, 0.3, 0.9, 0.6, 0.2, 0.4, 0.8, 0.1, 0.0, 0.0, 0.0, 0.0};
+  std::vector<double> pool(12, -1.0);  // a pair's children at offsets 2 and 7
+  genetic::CrossedVariables crossed;
+  crossed.clear(4);
+  const std::size_t used = genetic::sbx_draw(a, b, pool, 2, 7, lo, hi, draws, crossed);
+  EXPECT_EQ(used, 3u + 1u + 1u + 3u);
+  ASSERT_EQ(crossed.count, 2u);
+  EXPECT_EQ(crossed.at_a[0], 2u);
+  EXPECT_EQ(crossed.at_b[0], 7u);
+  EXPECT_EQ(crossed.y1[0], 0.2);
+  EXPECT_EQ(crossed.y2[0], 0.7);
+  EXPECT_EQ(crossed.u[0], 0.3);
+  EXPECT_EQ(crossed.swap[0], 0.0);
+  EXPECT_EQ(crossed.at_a[1], 5u);
+  EXPECT_EQ(crossed.at_b[1], 10u);
+  EXPECT_EQ(crossed.y1[1], 0.5);
+  EXPECT_EQ(crossed.y2[1], 1.5);
+  EXPECT_EQ(crossed.lower[1], 0.0);
+  EXPECT_EQ(crossed.upper[1], 2.0);
+  EXPECT_EQ(crossed.u[1], 0.8);
+  EXPECT_EQ(crossed.swap[1], 1.0);
+  const std::vector<double> copies{-1, -1, 0.2, 3.0, 12.0, 1.5, -1, 0.7, -1.0, 12.0, 0.5, -1};
+  EXPECT_EQ(pool, copies);  // the children start as the parents' copies; sbx_finish crosses the two variables
+  genetic::sbx_finish(crossed, 2.0, pool);
+  EXPECT_EQ(pool[3], 3.0);   // not crossed
+  EXPECT_EQ(pool[8], -1.0);
+  EXPECT_EQ(pool[4], 12.0);  // identical parents
+  EXPECT_EQ(pool[9], 12.0);
+  for (const std::size_t i : {2u, 5u, 7u, 10u}) EXPECT_NE(pool[i], copies[i]) << "crossed variable at " << i;
+  EXPECT_GE(std::min(pool[5], pool[10]), 0.0);  // variable 3 stays in its own box [0, 2]
+  EXPECT_LE(std::max(pool[5], pool[10]), 2.0);
+}
+
 // SBX with a large distribution index keeps children near their parents (Deb & Agrawal 1995): the spread
 // factor β concentrates at 1, so children land near the parents, not between them.
 TEST(GeneticOperators, SbxDistributionIndexControlsSpread) {
@@ -246,7 +287,12 @@ TEST(GeneticOperators, SecondHalvesAreTheFormulasElementByElementAtEveryLevel) {
                                  1.0 / (eta + 1.0));
     return std::clamp(x + delta_q * range, lo, hi);
   };
-  const auto near = [](double got, double want) { return std::abs(got - want) <= 8e-16 * std::max(1.0, std::abs(want)); };
+  // The vector pow may differ from glibc's scalar pow by a few ulp of the power; a child or mutated gene is a sum of
+  // a parent's value and that power times the spread (gap or range), so its error is a few ulp of `scale`, the
+  // magnitude of the terms.
+  const auto near = [](double got, double want, double scale) {
+    return std::abs(got - want) <= 4 * std::numeric_limits<double>::epsilon() * scale;
+  };
   for (const Isa isa : supported_isas()) {
     select_isa(isa);
     RandomStream rng(hash_key({11}));
@@ -280,7 +326,8 @@ TEST(GeneticOperators, SecondHalvesAreTheFormulasElementByElementAtEveryLevel) {
         EXPECT_EQ(pool[i], before[i]) << "fixed parameter, " << isa_name(isa);
       }
       if (i == 0) continue;
-      EXPECT_PRED2(near, pool[i], mutation_reference(before[i], lower[i % 4], upper[i % 4], us[i]))
+      EXPECT_PRED3(near, pool[i], mutation_reference(before[i], lower[i % 4], upper[i % 4], us[i]),
+                   std::abs(before[i]) + (upper[i % 4] - lower[i % 4]))
           << "gene " << i << ", " << isa_name(isa);
       std::vector<double> alone{before[i]};
       const double draws[2] = {0.0, us[i]};
@@ -311,8 +358,9 @@ TEST(GeneticOperators, SecondHalvesAreTheFormulasElementByElementAtEveryLevel) {
       sbx_reference(std::min(parents[2 * k], parents[2 * k + 1]), std::max(parents[2 * k], parents[2 * k + 1]), -1, 3,
                     u[k], &c1, &c2);
       if (swap[k] < 0.5) std::swap(c1, c2);
-      EXPECT_PRED2(near, children[2 * k], c1) << "pair " << k << ", " << isa_name(isa);
-      EXPECT_PRED2(near, children[2 * k + 1], c2) << "pair " << k << ", " << isa_name(isa);
+      const double scale = std::abs(parents[2 * k]) + std::abs(parents[2 * k + 1]) + 4.0;  // 4: the box's width
+      EXPECT_PRED3(near, children[2 * k], c1, scale) << "pair " << k << ", " << isa_name(isa);
+      EXPECT_PRED3(near, children[2 * k + 1], c2, scale) << "pair " << k << ", " << isa_name(isa);
       std::vector<double> pair{parents[2 * k], parents[2 * k + 1]};
       genetic::CrossedVariables one;
       one.clear(1);

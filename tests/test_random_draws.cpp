@@ -38,13 +38,13 @@ TEST(RandomDraws, MixEachExtendKeysAndMemberKeysAreMix64AndExtendKey) {
 
 TEST(RandomDraws, FirstUniformsAreEachStreamsDraws) {
   const Isa saved = active_isa();
+  std::vector<double> out;               // reused over the shapes, as GenerationDraws reuses its storage
+  std::vector<std::uint64_t> scratch;
   for (const Isa isa : supported_isas()) {
     select_isa(isa);
-    for (const int draws : {1, 3, 13, 70}) {  // 70: past the 64 precomputed counters
+    for (const int draws : {1, 3, 13, 70, 0}) {  // 70: past the 64 precomputed counters
       std::vector<std::uint64_t> keys;
       for (std::uint64_t s = 0; s < 11; ++s) keys.push_back(hash_key({5, s}));
-      std::vector<double> out;
-      std::vector<std::uint64_t> scratch;
       first_uniforms(keys, draws, out, scratch);
       ASSERT_EQ(out.size(), keys.size() * static_cast<std::size_t>(draws));
       for (std::size_t s = 0; s < keys.size(); ++s) {
@@ -55,6 +55,8 @@ TEST(RandomDraws, FirstUniformsAreEachStreamsDraws) {
       }
     }
   }
+  first_uniforms({}, 5, out, scratch);  // no streams
+  EXPECT_TRUE(out.empty());
   select_isa(saved);
 }
 

@@ -8,17 +8,8 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
-#include "optimizers/random_draws.hpp"
 
 namespace dampbench {
-namespace {
-
-constexpr std::uint64_t kSelect = hash_name("select");
-constexpr std::uint64_t kCrossover = hash_name("crossover");
-constexpr std::uint64_t kMutate = hash_name("mutate");
-
-}  // namespace
-
 void GeneticSettings::validate(std::string_view algorithm) const {
   if (population < 4)
     throw InputError(fmt::format("{}: population must be at least 4, got {}", algorithm, population));
@@ -35,25 +26,6 @@ void GeneticSettings::validate(std::string_view algorithm) const {
   if (!(eta_m >= 0) || !std::isfinite(eta_m))
     throw InputError(fmt::format("{}: eta_m must be a finite number >= 0, got {}", algorithm, eta_m));
 }
-
-void GenerationDraws::draw(std::uint64_t generation_key, int pairs, int children, int select_count,
-                           int crossover_count, int mutate_count) {
-  // Member i's key (run, g, i) is extend_key(generation_key, i): pair k's for k < pairs, child c's for c < children.
-  member_keys_.resize(static_cast<std::size_t>(std::max(pairs, children)));
-  member_keys(generation_key, member_keys_);
-  const auto stream_draws = [&](int members, std::uint64_t name, int count, std::vector<double>& out) {
-    keys_.assign(member_keys_.begin(), member_keys_.begin() + members);
-    extend_keys(keys_, name);
-    first_uniforms(keys_, count, out, scratch_);
-  };
-  stream_draws(pairs, kSelect, select_count, select_);
-  stream_draws(pairs, kCrossover, crossover_count, crossover_);
-  stream_draws(children, kMutate, mutate_count, mutate_);
-  select_count_ = select_count;
-  crossover_count_ = crossover_count;
-  mutate_count_ = mutate_count;
-}
-
 
 GeneticAlgorithm::GeneticAlgorithm(const GeneticSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : PopulationOptimizer(settings.population, settings.generations, bounds, run_key), settings_(settings) {

@@ -24,10 +24,10 @@
 // Random numbers: initial member i from stream (run_key, 0, i); in generation g ≥ 1 pair k selects from
 // (run_key, g, k, "select"), crosses over from (run_key, g, k, "crossover"), and child c mutates from
 // (run_key, g, c, "mutate"). Nothing depends on evaluation order or batch layout.
-// Order of work: a generation computes all its draws first (GenerationDraws, as vector loops), then selects,
-// decides what to cross and mutate, and finishes every crossed variable and mutated gene in one vector loop each
-// (optimizers/ga/operators.hpp). Same bits for any thread count; like the kernels' exp and log, the last bits
-// of the operators' pow differ between vector levels (engine/kernels/isa.hpp).
+// Order of work: a generation computes all its draws first (optimizers/ga/generation_draws.hpp, as vector
+// loops), then selects, decides what to cross and mutate, and finishes every crossed variable and mutated gene in
+// one vector loop each (optimizers/ga/operators.hpp). Same bits for any thread count; like the kernels' exp and
+// log, the last bits of the operators' pow differ between vector levels (engine/kernels/isa.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "engine/common/random.hpp"
+#include "optimizers/ga/generation_draws.hpp"
 #include "optimizers/ga/operators.hpp"
 #include "optimizers/population.hpp"
 
@@ -65,28 +66,6 @@ struct GeneticSettings {
   /// outside [0, population / 2], eta_c or eta_m negative or not finite.
   void validate(std::string_view algorithm) const;
 };
-
-/// The random draws of one generation (the streams of the comment above), all computed before breeding starts as
-/// vector loops (optimizers/random_draws.hpp): pair k's selection and crossover draws and child c's mutation draws.
-class GenerationDraws {
- public:
-  /// Draws for generation key hash_key({run_key, g}): `pairs` pairs with select_count selection and
-  /// crossover_count crossover draws each, `children` children with mutate_count mutation draws each.
-  void draw(std::uint64_t generation_key, int pairs, int children, int select_count, int crossover_count,
-            int mutate_count);
-  [[nodiscard]] std::span<const double> select(int pair) const { return row(select_, select_count_, pair); }
-  [[nodiscard]] std::span<const double> crossover(int pair) const { return row(crossover_, crossover_count_, pair); }
-  [[nodiscard]] std::span<const double> mutate(int child) const { return row(mutate_, mutate_count_, child); }
-
- private:
-  static std::span<const double> row(const std::vector<double>& draws, int count, int i) {
-    return std::span(draws).subspan(static_cast<std::size_t>(i) * count, static_cast<std::size_t>(count));
-  }
-  std::vector<std::uint64_t> member_keys_, keys_, scratch_;
-  std::vector<double> select_, crossover_, mutate_;
-  int select_count_ = 0, crossover_count_ = 0, mutate_count_ = 0;
-};
-
 
 /// The generational GA; subclasses choose the rates.
 class GeneticAlgorithm : public PopulationOptimizer {

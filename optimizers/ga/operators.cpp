@@ -12,7 +12,8 @@ namespace dampbench::genetic {
 namespace {
 
 /// Lanes per block of the vector loops: every variable and gene goes through the vector pow of the level (the
-/// arrays are padded to whole blocks, so there is no scalar remainder loop with glibc's scalar pow).
+/// arrays are padded to whole blocks, so there is no scalar remainder loop with glibc's scalar pow). The loops'
+/// block() functions are always_inline: Clang's flatten inlines one level only (engine/kernels/isa.hpp).
 constexpr std::size_t kBlock = 16;
 
 std::size_t padded(std::size_t n) { return (n + kBlock - 1) / kBlock * kBlock; }
@@ -35,9 +36,11 @@ struct SbxBlocks {
                                                    upper + b * kBlock, u + b * kBlock, swap + b * kBlock,
                                                    child_a + b * kBlock, child_b + b * kBlock, spread_power, root);
   }
-  static void block(const double* __restrict y1, const double* __restrict y2, const double* __restrict lower,
-                    const double* __restrict upper, const double* __restrict u, const double* __restrict swap,
-                    double* __restrict child_a, double* __restrict child_b, double spread_power, double root) {
+  [[gnu::always_inline]] static void block(const double* __restrict y1, const double* __restrict y2,
+                                           const double* __restrict lower, const double* __restrict upper,
+                                           const double* __restrict u, const double* __restrict swap,
+                                           double* __restrict child_a, double* __restrict child_b,
+                                           double spread_power, double root) {
 #pragma omp simd
     for (std::size_t i = 0; i < kBlock; ++i) {
       const double gap = y2[i] - y1[i];
@@ -70,8 +73,9 @@ struct MutationBlocks {
     for (std::size_t b = 0; b < blocks; ++b)
       block(x + b * kBlock, lower + b * kBlock, upper + b * kBlock, u + b * kBlock, power, root);
   }
-  static void block(double* __restrict x, const double* __restrict lower, const double* __restrict upper,
-                    const double* __restrict u, double power, double root) {
+  [[gnu::always_inline]] static void block(double* __restrict x, const double* __restrict lower,
+                                           const double* __restrict upper, const double* __restrict u, double power,
+                                           double root) {
 #pragma omp simd
     for (std::size_t i = 0; i < kBlock; ++i) {
       const double range = upper[i] - lower[i];
@@ -110,7 +114,7 @@ int tournament(std::span<const double> values, int size, RandomStream& rng) {
 }
 
 void CrossedVariables::clear(std::size_t capacity) {
-  const std::size_t room = padded(capacity + 1);
+  const std::size_t room = padded(capacity);
   for (auto* v : {&at_a, &at_b}) v->resize(room);
   for (auto* v : {&y1, &y2, &lower, &upper, &u, &swap, &child_a, &child_b}) v->resize(room);
   count = 0;
@@ -177,7 +181,7 @@ void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std
 }
 
 void MutatedGenes::clear(std::size_t capacity) {
-  const std::size_t room = padded(capacity + 1);
+  const std::size_t room = padded(capacity);
   at.resize(room);
   for (auto* v : {&x, &lower, &upper, &u}) v->resize(room);
   count = 0;

@@ -11,7 +11,6 @@
 // level only, not on its place in the arrays or how many others there are; like the kernels' exp and log, the
 // last bits of pow differ between vector levels.
 #include <algorithm>
-#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -43,8 +42,9 @@ void first_in_order(int n, int count, Before before, std::vector<int>& out) {
   }
 }
 
-/// The variables a generation crosses, one entry each: where the two children's values go in the pool, the parents' values in order (y1 < y2), the bounds, the draw
-/// u and whether the children swap (1 or 0). Arrays have room for `reserve`'s count plus one block of padding.
+/// The variables a generation crosses, one entry each: where the two children's values go in the pool, the parents'
+/// values in order (y1 < y2), the bounds, the draw u and whether the children swap (1 or 0). The arrays have room
+/// for `clear`'s capacity rounded up to whole blocks of the vector loop (the padding is sbx_finish's).
 struct CrossedVariables {
   std::vector<std::size_t> at_a, at_b;
   std::vector<double> y1, y2, lower, upper, u, swap;
@@ -69,8 +69,9 @@ void sbx(std::span<const double> parent_a, std::span<const double> parent_b, std
          std::span<double> child_b, const std::vector<double>& lower, const std::vector<double>& upper,
          double eta_c, RandomStream& rng);
 
-/// The genes a generation mutates, one entry each: where the gene is in the pool, its bounds and the draw u.
-/// Arrays have room for `clear`'s count plus one block of padding.
+/// The genes a generation mutates, one entry each: where the gene is in the pool, its bounds and the draw u. The
+/// arrays have room for `clear`'s capacity rounded up to whole blocks of the vector loop (the padding is
+/// mutate_all's).
 struct MutatedGenes {
   std::vector<std::size_t> at;
   std::vector<double> x, lower, upper, u;
