@@ -198,20 +198,20 @@ TEST(GeneticOperators, SbxDrawDecidesFromItsDrawsVariableByVariable) {
   const std::size_t used = genetic::sbx_draw(a, b, pool, 2, 7, lo, hi, draws, crossed);
   EXPECT_EQ(used, 3u + 1u + 1u + 3u);
   ASSERT_EQ(crossed.count, 2u);
-  EXPECT_EQ(crossed.at_a[0], 2u);
-  EXPECT_EQ(crossed.at_b[0], 7u);
-  EXPECT_EQ(crossed.y1[0], 0.2);
-  EXPECT_EQ(crossed.y2[0], 0.7);
-  EXPECT_EQ(crossed.u[0], 0.3);
-  EXPECT_EQ(crossed.swap[0], 0.0);
-  EXPECT_EQ(crossed.at_a[1], 5u);
-  EXPECT_EQ(crossed.at_b[1], 10u);
-  EXPECT_EQ(crossed.y1[1], 0.5);
-  EXPECT_EQ(crossed.y2[1], 1.5);
-  EXPECT_EQ(crossed.lower[1], 0.0);
-  EXPECT_EQ(crossed.upper[1], 2.0);
-  EXPECT_EQ(crossed.u[1], 0.8);
-  EXPECT_EQ(crossed.swap[1], 1.0);
+  struct Entry {
+    std::size_t at_a, at_b;
+    double y1, y2, lower, upper, u, swap;
+  };
+  const Entry expected[2] = {{2, 7, 0.2, 0.7, 0, 1, 0.3, 0}, {5, 10, 0.5, 1.5, 0, 2, 0.8, 1}};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Entry& e = expected[k];
+    const Entry got{crossed.at_a[k],  crossed.at_b[k],  crossed.y1[k], crossed.y2[k],
+                    crossed.lower[k], crossed.upper[k], crossed.u[k],  crossed.swap[k]};
+    EXPECT_TRUE(got.at_a == e.at_a && got.at_b == e.at_b && got.y1 == e.y1 && got.y2 == e.y2 && got.lower == e.lower &&
+                got.upper == e.upper && got.u == e.u && got.swap == e.swap)
+        << "entry " << k << ": at " << got.at_a << ", " << got.at_b << "; y " << got.y1 << ", " << got.y2 << "; box "
+        << got.lower << ", " << got.upper << "; u " << got.u << "; swap " << got.swap;
+  }
   const std::vector<double> copies{-1, -1, 0.2, 3.0, 12.0, 1.5, -1, 0.7, -1.0, 12.0, 0.5, -1};
   EXPECT_EQ(pool, copies);  // the children start as the parents' copies; sbx_finish crosses the two variables
   genetic::sbx_finish(crossed, 2.0, pool);
