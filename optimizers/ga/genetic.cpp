@@ -10,6 +10,7 @@
 #include "engine/common/error.hpp"
 
 namespace dampbench {
+
 void GeneticSettings::validate(std::string_view algorithm) const {
   if (population < 4)
     throw InputError(fmt::format("{}: population must be at least 4, got {}", algorithm, population));
