@@ -39,16 +39,12 @@ void member_keys(std::uint64_t base, std::span<std::uint64_t> keys) {
 
 void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<double>& out,
                     std::vector<std::uint64_t>& scratch) {
-  // Draw d of stream s is mix64(key_s ^ mix64(d)) (RandomStream::u64_at).
+  // Draw d of stream s is mix64(key_s ^ mixed_counter(d)) (RandomStream::u64_at).
   const auto d_count = static_cast<std::size_t>(draws);
   scratch.resize(keys.size() * d_count);
   out.resize(scratch.size());
-  if (scratch.empty()) return;
-  std::uint64_t* x = scratch.data();
-  for (std::size_t d = 0; d < d_count && d < kMixedCounters.size(); ++d) x[d] = kMixedCounters[d];
-  for (std::size_t d = kMixedCounters.size(); d < d_count; ++d) x[d] = mix64(d);
-  for (std::size_t s = keys.size(); s-- > 0;)  // stream 0 last: its row holds the counters until then
-    for (std::size_t d = 0; d < d_count; ++d) x[s * d_count + d] = keys[s] ^ x[d];
+  for (std::size_t s = 0; s < keys.size(); ++s)
+    for (std::size_t d = 0; d < d_count; ++d) scratch[s * d_count + d] = keys[s] ^ mixed_counter(d);
   IsaClones<UniformLoop>::call(static_cast<const std::uint64_t*>(scratch.data()), out.data(), scratch.size());
 }
 

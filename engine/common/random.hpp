@@ -41,6 +41,9 @@ inline constexpr auto kMixedCounters = [] {
   return t;
 }();
 
+/// mix64(k), from kMixedCounters where it has it: what draw k of a stream mixes into the stream's key.
+constexpr std::uint64_t mixed_counter(std::uint64_t k) { return k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k); }
+
 /// A draw's 64 bits as a uniform in [0, 1): the top 53 bits times 2^-53 (exact).
 constexpr double to_uniform(std::uint64_t bits) { return static_cast<double>(bits >> 11) * 0x1.0p-53; }
 
@@ -76,7 +79,7 @@ class RandomStream {
 
  private:
   [[nodiscard]] constexpr std::uint64_t u64_at(std::uint64_t k) const {
-    return mix64(key_ ^ (k < kMixedCounters.size() ? kMixedCounters[k] : mix64(k)));
+    return mix64(key_ ^ mixed_counter(k));
   }
 
   std::uint64_t key_;
