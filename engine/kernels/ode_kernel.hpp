@@ -124,6 +124,7 @@ class OdeKernel {
   /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
+  static constexpr int kChainSteps = 4;
 
   static constexpr bool kStiff = requires(const LawLanes<Law, W>& p, const typename Law::Context& c) {
     Law::stiffness(p, 0, c, RecordScales{});
@@ -246,7 +247,8 @@ class OdeKernel {
       const double inv = 1.0 / n, h = dt * inv;  // LaneInputs: the same arithmetic lane by lane
       for (int i = 0; i < n; ++i) {
         const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
-        step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv});
+        step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv},
+             anchored(k, i));
       }
     } else {
       const double record = n;
@@ -257,7 +259,7 @@ class OdeKernel {
         inv_n_[l] = 1.0 / n_[l];
         n_max = std::max(n_max, n_[l]);
       }
-      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv));
+      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv), anchored(k, i));
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
@@ -266,7 +268,13 @@ class OdeKernel {
       for (int j = 0; j < S; ++j) bad = std::fabs(y_[j][l]) < kBlowUp ? bad : 1.0;
       failed_[l] += bad;
       for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
+      chain_near_[l] = bad > 0.0 ? 0.0 : chain_near_[l];
     }
+  }
+
+  /// Whether sub-step i of interval k takes the exact power of the state at its start ("Powers of a state").
+  static bool anchored(std::size_t k, int i) {
+    return i % kChainSteps == 0 && (i > 0 || k % kChainSteps == 0);
   }
 
   /// Each lane's stiff sub-step count on intervals up to dt long, ceil(dt·λ_l / kLawStiffStep), and their maximum;
@@ -334,13 +342,27 @@ class OdeKernel {
   /// One lane loop per stage: the lanes of a stage are independent, so the vector calls of neighbouring
   /// lane groups (log, exp of |z|^n) overlap in the CPU instead of waiting on the previous stage's result.
   template <class Inputs>
-  void step(const Inputs& in) {
+  void step(const Inputs& in, bool anchor) {
     if constexpr (kPower) {
+      constexpr int ps = Law::kPowerState;
+      double all_near = anchor ? 0.0 : 1.0;
+      if (!anchor) {
+#pragma omp simd reduction(min : all_near)
+        for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
+      }
+      if (all_near == 0.0) {
+        const double anchor_active = anchor ? 1.0 : 0.0;
+#pragma omp simd
+        for (int l = 0; l < W; ++l) exact_[l] = abs_pow(y_[ps][l], p_.p[Law::kPowerExponentRow][l]);
+#pragma omp simd
+        for (int l = 0; l < W; ++l) {
+          const bool exact = chain_near_[l] == 0.0 || (anchor_active > 0.0 && in.active(l));
+          power0_[l] = exact ? exact_[l] : power0_[l];
+        }
+      }
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        const double s0 = y_[Law::kPowerState][l];
-        power0_[l] = abs_pow(s0, p_.p[Law::kPowerExponentRow][l]);
-        inv0_[l] = 1.0 / s0;  // ±inf at s0 = 0: ε is then not finite and the stage takes the exact power
+        inv0_[l] = 1.0 / y_[ps][l];  // ±inf at s0 = 0: ε is then not finite and the stage takes the exact power
         Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, power0_[l], State{&k_[0][0][l]});
       }
     } else {
@@ -357,6 +379,14 @@ class OdeKernel {
       for (int j = 0; j < S; ++j) {
         const double next = y[j] + (in.h(l) / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
         y[j] = active ? next : y[j];
+      }
+      if constexpr (kPower) {
+        constexpr int ps = Law::kPowerState;
+        const double eps = (in.h(l) / 6.0) * (k1[ps] + 2.0 * k2[ps] + 2.0 * k3[ps] + k4[ps]) * inv0_[l];
+        const double chained = power0_[l] * series(eps, l);
+        const double near = static_cast<double>(std::fabs(eps) <= kSeriesRadius);
+        power0_[l] = active ? chained : power0_[l];
+        chain_near_[l] = active ? near : chain_near_[l];
       }
     }
   }
@@ -433,6 +463,7 @@ class OdeKernel {
   alignas(64) double inv_n_[W] = {};     // 1 / n_
   // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
   alignas(64) double power0_[W] = {};
+  alignas(64) double chain_near_[W] = {};  // 1 where power0_ is the series' power of the state
   alignas(64) double inv0_[W] = {};
   alignas(64) double power_[W] = {};
   alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
