@@ -35,13 +35,20 @@
 //
 // Powers of a state (issue 16): the Bouc–Wen evolution needs |z|^n, one vector log and exp per lane, and RK4
 // evaluates it at four stage points per sub-step. A law that names the state (`kPowerState`) and the lane-block
-// row of its exponent e (`kPowerExponentRow`) gets |s|^e as an argument of rhs: exact (abs_pow: log and exp)
-// at a sub-step's first stage, and at the three later stages, where s = s0·(1 + ε) moved little from that
-// stage's s0, |s0|^e·(1 + ε)^e with the binomial series of (1 + ε)^e to ε^kSeriesTerms, for |ε| ≤
-// kSeriesRadius: truncation error below |C(e, 9)|·32^−9 < 4e-16 relative for 0 ≤ e ≤ 7, less than the rounding
-// of the exact path's own log and exp. (Measured on `dampbench bench`, Zen 5: 8 terms to 1/32 ran 7 % faster than
-// 10 to 1/16, with which 2–4 % of the stages needed the exact power, 10–20 % in fits of UTFSM records.) Which of the two a lane takes depends on its own ε only, so a lane's bits do not
-// depend on its neighbours; the vector log and exp run only when some lane of the block needs them.
+// row of its exponent e (`kPowerExponentRow`) gets |s|^e as an argument of rhs, from the binomial series of
+// (1 + ε)^e to ε^kSeriesTerms wherever s = s0·(1 + ε) moved little from a point s0 whose power is known:
+//   - at the three later stages of a sub-step, from the sub-step's start;
+//   - at the start of a sub-step, from the start of the previous one (the power is chained along the lane),
+//     except at an anchor, where it is exact (abs_pow: log and exp): every kChainSteps-th sub-step of a sample
+//     interval counting from its first, and the first of every kChainSteps-th interval (`anchored`). A chain is
+//     shorter than kChainSteps² series, and the anchors depend on the record only, not on the lane.
+// Each series needs |ε| ≤ kSeriesRadius, else that power is exact: truncation error below |C(e, 9)|·32^−9 < 4e-16
+// relative for 0 ≤ e ≤ 7, the rounding of the exact path's own log and exp (which amplifies log's by e·|log s|,
+// 1e-15 at s = 1e-3, e = 3). A chain of 15 stays below 1e-14 relative, nine orders under RK4's error against
+// CVODE (tests/test_ode_power_chain.cpp measures it). (Measured on `dampbench bench`, Zen 5: 8 terms to 1/32 ran
+// 7 % faster than 10 to 1/16; chaining with kChainSteps = 4 made Spencer 1.4× faster at avx2, 1.25× at avx512.)
+// Which of the two a lane takes depends on its own ε and the record only, so a lane's bits do not depend on its
+// neighbours; the vector log and exp run only when some lane of the block needs them.
 //
 // Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
 // marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
@@ -124,7 +131,12 @@ class OdeKernel {
   /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
-  static constexpr int kChainSteps = 4;
+  /// Anchor spacing of the chained power ("Powers of a state"); a law may set its own (tests: 1, exact at every
+  /// sub-step's start, the kernel before chaining).
+  static constexpr int kChainSteps = [] {
+    if constexpr (requires { Law::kChainSteps; }) return Law::kChainSteps;
+    else return 4;
+  }();
 
   static constexpr bool kStiff = requires(const LawLanes<Law, W>& p, const typename Law::Context& c) {
     Law::stiffness(p, 0, c, RecordScales{});
@@ -344,25 +356,10 @@ class OdeKernel {
   template <class Inputs>
   void step(const Inputs& in, bool anchor) {
     if constexpr (kPower) {
-      constexpr int ps = Law::kPowerState;
-      double all_near = anchor ? 0.0 : 1.0;
-      if (!anchor) {
-#pragma omp simd reduction(min : all_near)
-        for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
-      }
-      if (all_near == 0.0) {
-        const double anchor_active = anchor ? 1.0 : 0.0;
-#pragma omp simd
-        for (int l = 0; l < W; ++l) exact_[l] = abs_pow(y_[ps][l], p_.p[Law::kPowerExponentRow][l]);
-#pragma omp simd
-        for (int l = 0; l < W; ++l) {
-          const bool exact = chain_near_[l] == 0.0 || (anchor_active > 0.0 && in.active(l));
-          power0_[l] = exact ? exact_[l] : power0_[l];
-        }
-      }
+      start_power(in, anchor);
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        inv0_[l] = 1.0 / y_[ps][l];  // ±inf at s0 = 0: ε is then not finite and the stage takes the exact power
+        inv0_[l] = 1.0 / y_[Law::kPowerState][l];  // ±inf at s0 = 0: ε is then not finite and the power exact
         Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, power0_[l], State{&k_[0][0][l]});
       }
     } else {
@@ -380,7 +377,7 @@ class OdeKernel {
         const double next = y[j] + (in.h(l) / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
         y[j] = active ? next : y[j];
       }
-      if constexpr (kPower) {
+      if constexpr (kPower) {  // the power at the next sub-step's start, chained: s = s0·(1 + ε) there
         constexpr int ps = Law::kPowerState;
         const double eps = (in.h(l) / 6.0) * (k1[ps] + 2.0 * k2[ps] + 2.0 * k3[ps] + k4[ps]) * inv0_[l];
         const double chained = power0_[l] * series(eps, l);
@@ -388,6 +385,26 @@ class OdeKernel {
         power0_[l] = active ? chained : power0_[l];
         chain_near_[l] = active ? near : chain_near_[l];
       }
+    }
+  }
+
+  /// power0_ at a sub-step's start: the chained power where the lane's last series was near and the sub-step is
+  /// not an anchor (or the lane is past its own sub-steps, and keeps its state), else exact; the loop with the
+  /// vector log and exp runs only if some lane needs it ("Powers of a state").
+  template <class Inputs>
+  void start_power(const Inputs& in, bool anchor) {
+    double all_near = anchor ? 0.0 : 1.0;
+    if (!anchor) {
+#pragma omp simd reduction(min : all_near)
+      for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
+    }
+    if (all_near > 0.0) return;
+#pragma omp simd
+    for (int l = 0; l < W; ++l) exact_[l] = abs_pow(y_[Law::kPowerState][l], p_.p[Law::kPowerExponentRow][l]);
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      const bool exact = chain_near_[l] == 0.0 || (anchor && in.active(l));
+      power0_[l] = exact ? exact_[l] : power0_[l];
     }
   }
 
@@ -462,8 +479,8 @@ class OdeKernel {
   alignas(64) double n_[W] = {};         // sub-steps of each lane on the current interval (a whole number)
   alignas(64) double inv_n_[W] = {};     // 1 / n_
   // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
-  alignas(64) double power0_[W] = {};
-  alignas(64) double chain_near_[W] = {};  // 1 where power0_ is the series' power of the state
+  alignas(64) double power0_[W] = {};      // after a sub-step: the chained power at the next one's start
+  alignas(64) double chain_near_[W] = {};  // 1 where that chained power came from a series with |ε| ≤ kSeriesRadius
   alignas(64) double inv0_[W] = {};
   alignas(64) double power_[W] = {};
   alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
