@@ -39,16 +39,20 @@
 // (1 + ε)^e to ε^kSeriesTerms wherever s = s0·(1 + ε) moved little from a point s0 whose power is known:
 //   - at the three later stages of a sub-step, from the sub-step's start;
 //   - at the start of a sub-step, from the start of the previous one (the power is chained along the lane),
-//     except at an anchor, where it is exact (abs_pow: log and exp): every kChainSteps-th sub-step of a sample
-//     interval counting from its first, and the first of every kChainSteps-th interval (`anchored`). A chain is
-//     shorter than kChainSteps² series, and the anchors depend on the record only, not on the lane.
+//     except where it is exact (abs_pow: log and exp): at an anchor (`anchored`: sub-steps K, 2K, ... of every
+//     sample interval and sub-step 0 of every K-th interval, K = kChainSteps), at a lane's first sub-step and
+//     after a reset (masking, below). The anchors a lane meets depend on the record and its own sub-step counts,
+//     never on its neighbours. A chain is at most K² − 1 series long: K − 1 sub-steps after an anchor in its
+//     interval, then at most K − 1 intervals of K sub-steps before the next anchor.
 // Each series needs |ε| ≤ kSeriesRadius, else that power is exact: truncation error below |C(e, 9)|·32^−9 < 4e-16
-// relative for 0 ≤ e ≤ 7, the rounding of the exact path's own log and exp (which amplifies log's by e·|log s|,
-// 1e-15 at s = 1e-3, e = 3). A chain of 15 stays below 1e-14 relative, nine orders under RK4's error against
-// CVODE (tests/test_ode_power_chain.cpp measures it). (Measured on `dampbench bench`, Zen 5: 8 terms to 1/32 ran
-// 7 % faster than 10 to 1/16; chaining with kChainSteps = 4 made Spencer 1.4× faster at avx2, 1.25× at avx512.)
-// Which of the two a lane takes depends on its own ε and the record only, so a lane's bits do not depend on its
-// neighbours; the vector log and exp run only when some lane of the block needs them.
+// relative for 0 ≤ e ≤ 7, less than the rounding of the exact path's own log and exp (which amplifies log's by
+// e·|log s|: 2e-15 at s = 1e-3, e = 3). A stage's power, after up to 15 chained series and its own, is within
+// about 1e-14 relative of the exact one, nine orders under RK4's error against CVODE; the forces differ from
+// those with the exact power at every sub-step's start by under 1e-15 of the peak force
+// (tests/test_ode_power_chain.cpp). (Measured on `dampbench bench`, Zen 5: 8 terms to 1/32 ran 7 % faster than 10
+// to 1/16; chaining with kChainSteps = 4 made Spencer 1.4× faster at avx2, 1.25× at avx512.) Which of the two
+// a lane takes depends on its own ε and sub-steps only, so a lane's bits do not depend on its neighbours; the
+// vector log and exp run only when some lane of the block needs them.
 //
 // Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
 // marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
@@ -131,12 +135,13 @@ class OdeKernel {
   /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
-  /// Anchor spacing of the chained power ("Powers of a state"); a law may set its own (tests: 1, exact at every
-  /// sub-step's start, the kernel before chaining).
+  /// Anchor spacing of the chained power ("Powers of a state"); a law may set its own (tests: 1, the exact power
+  /// at every sub-step's start).
   static constexpr int kChainSteps = [] {
     if constexpr (requires { Law::kChainSteps; }) return Law::kChainSteps;
     else return 4;
   }();
+  static_assert(kChainSteps >= 1);
 
   static constexpr bool kStiff = requires(const LawLanes<Law, W>& p, const typename Law::Context& c) {
     Law::stiffness(p, 0, c, RecordScales{});
@@ -271,7 +276,8 @@ class OdeKernel {
         inv_n_[l] = 1.0 / n_[l];
         n_max = std::max(n_max, n_[l]);
       }
-      for (int i = 0; i < static_cast<int>(n_max); ++i) step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv), anchored(k, i));
+      for (int i = 0; i < static_cast<int>(n_max); ++i)
+        step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv), anchored(k, i));
     }
     constexpr double kBlowUp = 1e30;
 #pragma omp simd
@@ -359,7 +365,8 @@ class OdeKernel {
       start_power(in, anchor);
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        inv0_[l] = 1.0 / y_[Law::kPowerState][l];  // ±inf at s0 = 0: ε is then not finite and the power exact
+        // ±inf at s0 = 0: ε is then not finite and the next power exact (0 at s0 = ±inf: that lane fails anyway)
+        inv0_[l] = 1.0 / y_[Law::kPowerState][l];
         Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, power0_[l], State{&k_[0][0][l]});
       }
     } else {
@@ -378,6 +385,8 @@ class OdeKernel {
         y[j] = active ? next : y[j];
       }
       if constexpr (kPower) {  // the power at the next sub-step's start, chained: s = s0·(1 + ε) there
+        // (ε from the increment: (s − s0)/s0 of the state as stored would follow its rounding, e·2^−52 relative
+        // per series, but made Spencer fits 6 % slower)
         constexpr int ps = Law::kPowerState;
         const double eps = (in.h(l) / 6.0) * (k1[ps] + 2.0 * k2[ps] + 2.0 * k3[ps] + k4[ps]) * inv0_[l];
         const double chained = power0_[l] * series(eps, l);
@@ -393,7 +402,7 @@ class OdeKernel {
   /// vector log and exp runs only if some lane needs it ("Powers of a state").
   template <class Inputs>
   void start_power(const Inputs& in, bool anchor) {
-    double all_near = anchor ? 0.0 : 1.0;
+    double all_near = anchor ? 0.0 : 1.0;  // (over every lane: skipping inactive ones made Spencer fits 1.5 % slower)
     if (!anchor) {
 #pragma omp simd reduction(min : all_near)
       for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
@@ -484,7 +493,7 @@ class OdeKernel {
   alignas(64) double inv0_[W] = {};
   alignas(64) double power_[W] = {};
   alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
-  alignas(64) double exact_[W] = {};  // the stage's exact power
+  alignas(64) double exact_[W] = {};  // exact powers (a sub-step's start or a stage)
   alignas(64) double series_[kSeriesTerms][W] = {};
   mutable bool failed_flags_[W] = {};  // failed_ > 0, filled by failed()
 };
