@@ -31,6 +31,9 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
   const int count = batch.count();
   // Candidates of similar cost side by side (Model::lane_costs, on the first dataset), in blocks whose widths
   // suit their costs (engine/evaluation/lane_blocks.hpp). A lane's bits do not depend on its block-mates.
+  // The threads take the costliest blocks first (longest processing time first): a block of stiff candidates can
+  // outlast all the others together, and taken last it left the other thread idle (Spencer PSO fits of a UTFSM
+  // record, 10 runs, 2 threads: 26.8 s → 25.1–25.7 s, same results).
   const int max_lanes = model_.max_block_lanes();
   std::vector<double> cost(static_cast<std::size_t>(count), 1.0);
   std::vector<int> order;
@@ -54,7 +57,8 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
       [&](const tbb::blocked_range<int>& range) {
         for (int task = range.begin(); task < range.end(); ++task) {
           const int d = task / B;
-          const LaneBlock& b = blocks[static_cast<std::size_t>(task % B)];
+          const int block = order.empty() ? task % B : B - 1 - task % B;  // costliest first
+          const LaneBlock& b = blocks[static_cast<std::size_t>(block)];
           model_.evaluate_block(run, b.first, b.count, *datasets_[d], wanted,
                                 out.data() + static_cast<std::size_t>(d) * count + b.first);
         }
