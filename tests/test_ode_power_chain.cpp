@@ -104,17 +104,19 @@ void expect_close(const std::vector<std::vector<double>>& chained, const std::ve
   EXPECT_GT(differ, 0) << what << ": the chain changed nothing; is it in use?";
 }
 
+/// The record: 3 cycles of 10 mm amplitude (a 20 mm stroke) at 1 Hz, sampled at 200 Hz.
+constexpr double kAmplitude_m = 0.01;
+Signals record() { return testing::sine_signals(kAmplitude_m, 1.0, 3.0, 200.0); }
+
 TEST(OdePowerChain, AgreesWithTheExactPowerOnTheRecordsSubsteps) {
-  const double stroke_m = 0.01;
-  const Signals data = testing::sine_signals(stroke_m, 1.0, 3.0, 200.0);
-  const auto p = lanes(2 * stroke_m, false);
+  const Signals data = record();
+  const auto p = lanes(2 * kAmplitude_m, false);
   expect_close(forces<ChainedBoucWen>(p, data), forces<ExactBoucWen>(p, data), 0, 1, "record's sub-steps");
 }
 
 TEST(OdePowerChain, AgreesWithTheExactPowerInABlockWithStiffLanes) {
-  const double stroke_m = 0.01;
-  const Signals data = testing::sine_signals(stroke_m, 1.0, 3.0, 200.0);
-  const auto p = lanes(2 * stroke_m, true);
+  const Signals data = record();
+  const auto p = lanes(2 * kAmplitude_m, true);
   const auto chained = forces<ChainedBoucWen>(p, data), exact = forces<ExactBoucWen>(p, data);
   expect_close(chained, exact, 1, 2, "stiff lanes");
   expect_close(chained, exact, 0, 2, "lanes on the record's counts beside them");
