@@ -358,7 +358,7 @@ class TinyStore : public ::testing::Test {
     return g;
   }
 
-  std::vector<Report> tables(const std::string& kind, std::function<void(TableSpec&)> edit = {}) const {
+  std::vector<Table> tables(const std::string& kind, std::function<void(TableSpec&)> edit = {}) const {
     const Store store = Store::open(store_path_);
     const StoreResults results(store);
     TableSpec t;
@@ -367,14 +367,14 @@ class TinyStore : public ::testing::Test {
     return make_tables(results, 0, t);
   }
 
-  static const Report& find(const std::vector<Report>& reports, const std::string& id) {
+  static const Table& find(const std::vector<Table>& reports, const std::string& id) {
     for (const auto& r : reports)
       if (r.id == id) return r;
-    static Report none;
+    static Table none;
     ADD_FAILURE() << "no table " << id;
     return none;
   }
-  static double value(const Report& r, std::size_t row, std::size_t col) {
+  static double value(const Table& r, std::size_t row, std::size_t col) {
     EXPECT_LT(row, r.rows.size());
     if (row >= r.rows.size() || col >= r.rows[row].size() || !r.rows[row][col].value) return std::nan("");
     return *r.rows[row][col].value;
@@ -387,7 +387,7 @@ class TinyStore : public ::testing::Test {
 TEST_F(TinyStore, RunStatisticsByHand) {
   const auto all = tables("runs", [](TableSpec& t) { t.splits = {"each"}; });
   // Model 0 with optimizer a: per dataset d the values {1, 2, 3} + d → mean 2 + d, max 3 + d, min 1 + d, std 1.
-  const Report& r = find(all, "runs_mrd.bingham_a");
+  const Table& r = find(all, "runs_mrd.bingham_a");
   ASSERT_EQ(r.rows.size(), 3u);
   for (int d = 0; d < 3; ++d) {
     EXPECT_EQ(r.rows[d][0].text, "d" + std::to_string(d));
@@ -396,13 +396,13 @@ TEST_F(TinyStore, RunStatisticsByHand) {
     EXPECT_DOUBLE_EQ(value(r, d, 3), 1.0 + d);
     EXPECT_DOUBLE_EQ(value(r, d, 4), 1.0);
   }
-  const Report& b = find(all, "runs_mrd.bingham_b");
+  const Table& b = find(all, "runs_mrd.bingham_b");
   EXPECT_DOUBLE_EQ(value(b, 0, 1), 5.0);
 }
 
 TEST_F(TinyStore, ParameterStatisticsAndVariabilityByHand) {
   const auto ps = tables("param-stats", [](TableSpec& t) { t.splits = {"each"}; t.optimizers = {"a"}; t.models = {"mrd.bingham"}; });
-  const Report& p = find(ps, "param-stats_mrd.bingham");
+  const Table& p = find(ps, "param-stats_mrd.bingham");
   // Rows: f_c(mean|max|min|std), c0(...), f0(...); columns d0, d1, d2. f_c over runs at d: 10+5d + {0,10,20}.
   EXPECT_EQ(p.rows[0][0].text, "f_c(mean) [N]");
   EXPECT_DOUBLE_EQ(value(p, 0, 1), 20.0);   // mean at d0
@@ -413,7 +413,7 @@ TEST_F(TinyStore, ParameterStatisticsAndVariabilityByHand) {
   EXPECT_DOUBLE_EQ(value(p, 10, 1), -1.0);
   EXPECT_DOUBLE_EQ(value(p, 11, 1), 1.0);
   const auto vs = tables("variability", [](TableSpec& t) { t.splits = {"each"}; t.optimizers = {"a"}; t.models = {"mrd.bingham"}; });
-  const Report& v = find(vs, "variability_mrd.bingham");
+  const Table& v = find(vs, "variability_mrd.bingham");
   // f_c means per condition 20, 25, 30: p̄ = 25, Δp̄ = 10, Δp̄/p̄ = 0.4. c0: 2, 3, 6 → 11/3, 4, 12/11.
   EXPECT_DOUBLE_EQ(value(v, 0, 1), 25.0);
   EXPECT_DOUBLE_EQ(value(v, 0, 2), 10.0);
@@ -425,14 +425,14 @@ TEST_F(TinyStore, ParameterStatisticsAndVariabilityByHand) {
 
 TEST_F(TinyStore, IdentifiedParametersAndRanking) {
   const auto ps = tables("params", [](TableSpec& t) { t.splits = {"each"}; t.optimizers = {"a"}; t.models = {"mrd.bingham"}; });
-  const Report& p = find(ps, "params_mrd.bingham");
+  const Table& p = find(ps, "params_mrd.bingham");
   // Best run is run 0 everywhere: f_c = 10 + 5d, c0 = 2 + d², last row the metric 1 + d.
   EXPECT_EQ(p.columns, (std::vector<std::string>{"Parameter", "unit", "d0", "d1", "d2"}));
   EXPECT_DOUBLE_EQ(value(p, 0, 4), 20.0);
   EXPECT_DOUBLE_EQ(value(p, 1, 4), 6.0);
   EXPECT_DOUBLE_EQ(value(p, 3, 3), 2.0);
   const auto rk = tables("ranking", [](TableSpec& t) { t.splits = {"each"}; });
-  const Report& r = find(rk, "ranking");
+  const Table& r = find(rk, "ranking");
   // Rows: (mrd.bingham, a), (mrd.bingham, b), (bingham2, a); best per condition and their mean.
   ASSERT_EQ(r.rows.size(), 3u);
   EXPECT_DOUBLE_EQ(value(r, 0, 4), 2.0);      // mean of 1, 2, 3
@@ -443,7 +443,7 @@ TEST_F(TinyStore, IdentifiedParametersAndRanking) {
 
 TEST_F(TinyStore, ErrorsOfJointFitAndPrediction) {
   const auto all = tables("errors", [](TableSpec& t) { t.splits = {"joint"}; });
-  const Report& e = find(all, "errors");
+  const Table& e = find(all, "errors");
   // Best run of the joint group is run 1 (0.25): rmse 7 on d0, 8 on d1 (fitted), 9 on d2 (predicted).
   ASSERT_EQ(e.rows.size(), 4u);
   EXPECT_DOUBLE_EQ(value(e, 0, 1), 7.0);
@@ -467,14 +467,14 @@ TEST_F(TinyStore, ErrorsOfJointFitAndPrediction) {
   EXPECT_EQ(find(at2, "errors").rows[0][1].text, "9*†");
   // Per-dataset fits: the best run's metric, one column per (model, optimizer).
   const auto each = tables("errors", [](TableSpec& t) { t.splits = {"each"}; });
-  const Report& x = find(each, "errors");
+  const Table& x = find(each, "errors");
   EXPECT_EQ(x.columns.size(), 4u);
   EXPECT_DOUBLE_EQ(value(x, 2, 1), 3.0);
 }
 
 TEST_F(TinyStore, RegressionOfPerConditionFits) {
   const auto all = tables("regression");
-  const Report& r = find(all, "regression_fc");
+  const Table& r = find(all, "regression_fc");
   // Laws in name order: c0 = 2 + I² exactly as a quadratic, then f_c = 10 + 5 I exactly (R² 1).
   ASSERT_EQ(r.rows.size(), 5u);
   EXPECT_EQ(r.rows[0][2].text, "c0_I0");
@@ -490,7 +490,7 @@ TEST_F(TinyStore, RegressionOfPerConditionFits) {
   EXPECT_EQ(r.rows[3][6].text, "‡ 1 of 3");
   EXPECT_EQ(r.rows[0][6].text, "none");
   EXPECT_NE(r.note.find("Not identifiable at"), std::string::npos) << r.note;
-  const Report& res = find(all, "regression_fc_residuals");
+  const Table& res = find(all, "regression_fc_residuals");
   ASSERT_EQ(res.rows.size(), 3u);
   EXPECT_DOUBLE_EQ(value(res, 2, 1), 6.0);   // observed c0 at I = 2
   EXPECT_DOUBLE_EQ(value(res, 2, 4), 20.0);  // observed f_c at I = 2
@@ -505,13 +505,13 @@ TEST_F(TinyStore, ParamsMarkUndeterminedAndBoundParameters) {
     t.optimizers = {"a"};
     t.models = {"mrd.bingham"};
   });
-  const Report& p = find(all, "params_mrd.bingham");
+  const Table& p = find(all, "params_mrd.bingham");
   // Rows f_c, c0, f0, metric; columns Parameter, unit, d0, d1, d2.
   EXPECT_EQ(p.rows[0][3].text, "15‡");
   EXPECT_EQ(p.rows[0][2].text, "10");
   EXPECT_EQ(p.rows[1][4].text, "6⊥");
   EXPECT_NE(p.note.find("‡ not identifiable"), std::string::npos) << p.note;
-  const Report& se = find(all, "params_mrd.bingham_se");
+  const Table& se = find(all, "params_mrd.bingham_se");
   EXPECT_EQ(se.rows[0][2].text, "250 (not identifiable)");
   EXPECT_DOUBLE_EQ(value(se, 0, 1), 1.0);
   EXPECT_EQ(se.rows[1][3].text, "2 (at bound)");
@@ -520,23 +520,23 @@ TEST_F(TinyStore, ParamsMarkUndeterminedAndBoundParameters) {
 TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {
   const auto rs = tables("ranksum", [](TableSpec& t) { t.splits = {"each"}; });
   // d0: optimizer a {1,2,3} vs b {4,5,6}: U = 0, exact p = 0.1; models: bingham {1,2,3} vs bingham2 {.5,.5,.5}.
-  const Report& o = find(rs, "ranksum_optimizers");
+  const Table& o = find(rs, "ranksum_optimizers");
   ASSERT_EQ(o.rows.size(), 1u);
   EXPECT_DOUBLE_EQ(value(o, 0, 6), 0.0);
   EXPECT_NEAR(value(o, 0, 7), 0.1, 1e-15);
-  const Report& m = find(rs, "ranksum_models");
+  const Table& m = find(rs, "ranksum_models");
   // bingham2's three 0.5 are tied: normal approximation, U = 9, Var = 4.65, z = (9 − 4.5 − 0.5)/sqrt(4.65).
   EXPECT_DOUBLE_EQ(value(m, 0, 6), 9.0);
   EXPECT_NEAR(value(m, 0, 7), std::erfc(4.0 / std::sqrt(4.65) / std::sqrt(2.0)), 1e-12);
 
   const auto bs = tables("bootstrap", [](TableSpec& t) { t.splits = {"each"}; t.models = {"bingham2"}; });
-  const Report& b = find(bs, "bootstrap_bingham2");
+  const Table& b = find(bs, "bootstrap_bingham2");
   EXPECT_DOUBLE_EQ(value(b, 0, 1), 0.5);
   EXPECT_DOUBLE_EQ(value(b, 0, 2), 0.5);
   EXPECT_DOUBLE_EQ(value(b, 0, 3), 0.5);
 
   const auto rt = tables("runtime", [](TableSpec& t) { t.splits = {"each"}; t.models = {"mrd.bingham"}; });
-  const Report& r = find(rt, "runtime");
+  const Table& r = find(rt, "runtime");
   // d0: best known 1 → target 1.01. Optimizer a: run 0 reaches 1 at 40, runs 1 and 2 never (2, 3):
   // ERT = (40 + 100 + 100)/1 = 240; b never (4, 5, 6): 0/3, ERT inf.
   EXPECT_EQ(r.rows[0][0].text, "d0");
@@ -545,7 +545,7 @@ TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {
   EXPECT_DOUBLE_EQ(value(r, 0, 4), 240.0);
   EXPECT_EQ(r.rows[0][5].text, "0/3");
   EXPECT_EQ(value(r, 0, 6), kInf);
-  const Report& e = find(rt, "runtime_ecdf");
+  const Table& e = find(rt, "runtime_ecdf");
   // Budgets from 10 (first trace point) to 100; a solves 3 of 9 (problem, run) pairs (one per condition) by 40.
   EXPECT_DOUBLE_EQ(value(e, 0, 0), 10.0);
   EXPECT_DOUBLE_EQ(value(e, 11, 0), 100.0);
@@ -563,17 +563,17 @@ TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {
 TEST_F(TinyStore, FormatsAndSweepTables) {
   const auto all = tables("runs", [](TableSpec& t) { t.splits = {"each"}; t.optimizers = {"a"}; t.models = {"mrd.bingham"}; });
   ASSERT_EQ(all.size(), 1u);
-  const std::string md = format_reports(all, "md");
+  const std::string md = format_tables(all, "md");
   EXPECT_NE(md.find("| d1 | 3 | 4 | 2 | 1 | 3 |"), std::string::npos) << md;
-  const std::string csv = format_reports(all, "csv");
+  const std::string csv = format_tables(all, "csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "Condition,Mean,Max,Min,Std,Runs,Converged");
-  const std::string tex = format_reports(all, "latex");
+  const std::string tex = format_tables(all, "latex");
   EXPECT_NE(tex.find("\\begin{tabular}{lrrrrrr}"), std::string::npos);
   EXPECT_NE(tex.find("\\label{tab:runs\\_mrd.bingham}"), std::string::npos) << tex;
-  const auto j = nlohmann::json::parse(format_reports(all, "json"));
+  const auto j = nlohmann::json::parse(format_tables(all, "json"));
   EXPECT_EQ(j.at("tables")[0].at("rows")[1][1].get<double>(), 3.0);
   EXPECT_EQ(j.at("tables")[0].at("rows")[1][0].get<std::string>(), "d1");
-  EXPECT_NE(testing::error_of([&] { (void)format_reports(all, "xml"); }).find("expected md, csv, latex or json"), std::string::npos);
+  EXPECT_NE(testing::error_of([&] { (void)format_tables(all, "xml"); }).find("expected md, csv, latex or json"), std::string::npos);
   // The sweep's own tables: the default set (fvd), its regression and the failures.
   const Store store = Store::open(store_path_);
   const StoreResults results(store);

@@ -224,9 +224,9 @@ TEST(OptimizerComparison, TableAndConvergenceCsv) {
   const Table t = comparison_table(c, "nrmse");
   ASSERT_EQ(t.rows.size(), 3u);
   EXPECT_EQ(t.columns.front(), "optimizer");
-  EXPECT_EQ(t.rows[2][0], "ga-lm:population=20,iterations=15");
-  EXPECT_EQ(t.rows[2][6], "5/5 (100 %)");
-  EXPECT_EQ(t.rows[1][7], "—");  // the GA's median evaluations to target: not reached by half the runs
+  EXPECT_EQ(t.rows[2][0].text, "ga-lm:population=20,iterations=15");
+  EXPECT_EQ(t.rows[2][6].text, "5/5 (100 %)");
+  EXPECT_EQ(t.rows[1][7].text, "—");  // the GA's median evaluations to target: not reached by half the runs
   const std::string csv = convergence_csv(c);
   std::istringstream in(csv);
   std::string line;

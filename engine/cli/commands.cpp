@@ -317,7 +317,7 @@ int evaluate_command(const EvaluateOptions& o) {
     if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(s);
     std::vector<MetricRow> row(1);
     BatchEvaluator(model, s).evaluate_all(batch, row);
-    std::vector<std::string> cells{s.name};
+    std::vector<Cell> cells{s.name};
     for (int m = 0; m < kMetricCount; ++m) {
       j[path][std::string(metric_name(kAllMetrics[m]))] = json_number(row[0][m]);
       cells.push_back(format_number(row[0][m]));
@@ -374,7 +374,7 @@ int sensitivity_command(const SensitivityOptions& o) {
                       o.normalized ? ", S_z·|z|" : ""),
           cols, {}};
   for (int j = 0; j < model.dim(); ++j) {
-    std::vector<std::string> row{params[j].name};
+    std::vector<Cell> row{params[j].name};
     double mean = 0;
     for (std::size_t c = 0; c < cases; ++c) {
       row.push_back(format_number(values[c][j]));

@@ -231,7 +231,7 @@ int lssvm_command(const LssvmOptions& o) {
            "MAE [N]", "max abs [N]", "max rel", "nrmse"},
           {}};
   auto row = [&](const std::string& name, const lssvm::ErrorMetrics& a, const lssvm::ErrorMetrics& b) {
-    std::vector<std::string> cells{name, std::to_string(a.samples)};
+    std::vector<Cell> cells{name, std::to_string(a.samples)};
     for (auto& c : metric_cells(a)) cells.push_back(c);
     for (auto& c : metric_cells(b)) cells.push_back(c);
     t.rows.push_back(cells);

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "engine/cli/fvd_tables.hpp"
+#include "engine/cli/sweep_outputs.hpp"
 #include "engine/cli/output_manifest.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"

@@ -52,18 +52,7 @@ void write_fit_report(const std::string& path, const FitReport& fit) {
   for (std::size_t r = 0; r < fit.identification->runs.size(); ++r)
     f.runs.push_back(sweep::run_record(static_cast<int>(r), fit.identification->runs[r]));
   in.fits.push_back(std::move(f));
-  for (const Table& t : fit.tables) {
-    sweep::Report r;
-    r.id = t.id;
-    r.title = t.title;
-    r.columns = t.columns;
-    for (const auto& row : t.rows) {
-      std::vector<sweep::Cell> cells;
-      for (const auto& text : row) cells.push_back({text, std::nullopt});
-      r.rows.push_back(std::move(cells));
-    }
-    in.tables.push_back(std::move(r));
-  }
+  in.tables = fit.tables;
   write_text_file(path, report::render_html(in));
 }
 

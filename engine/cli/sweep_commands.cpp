@@ -113,9 +113,9 @@ int table_command(const TableOptions& o) {
     std::cerr << fmt::format("note: {} holds shard {} of the sweep only: its tables are partial (dampbench merge joins "
                              "the shards' stores)\n", o.store, shard);
   const sweep::StoreResults results(store);
-  std::vector<sweep::Report> reports;
+  std::vector<Table> reports;
   for (int p = 0; p < results.part_count(); ++p) {
-    std::vector<sweep::Report> part;
+    std::vector<Table> part;
     if (o.kind == "sweep") {
       part = sweep::sweep_tables(results, p);
     } else {
@@ -138,7 +138,7 @@ int table_command(const TableOptions& o) {
     std::cerr << fmt::format("dampbench: no '{}' table in {} (no stored task group matches)\n", o.kind, o.store);
     return kExitDifferent;
   }
-  std::cout << sweep::format_reports(reports, o.format);
+  std::cout << sweep::format_tables(reports, o.format);
   return 0;
 }
 

@@ -220,7 +220,7 @@ json distributions(const ReportInput& in) {
 
 json ecdf_figures(const ReportInput& in) {
   json out = json::array();
-  for (const sweep::Report& r : in.ecdfs) {
+  for (const Table& r : in.ecdfs) {
     if (r.columns.size() < 2) continue;
     json budgets = json::array(), series = json::array();
     for (const auto& row : r.rows) budgets.push_back(number(row.at(0).value.value_or(NAN)));
@@ -293,7 +293,7 @@ json law_figures(const ReportInput& in) {
 
 json tables(const ReportInput& in) {
   json out = json::array();
-  for (const sweep::Report& r : in.tables) {
+  for (const Table& r : in.tables) {
     json rows = json::array();
     for (const auto& row : r.rows) {
       json cells = json::array();

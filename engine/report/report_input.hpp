@@ -47,8 +47,8 @@ struct ReportInput {
   std::vector<RecordInput> records;
   std::vector<FitInput> fits;
   std::vector<LawFigureInput> laws;
-  std::vector<sweep::Report> ecdfs;   ///< fixed-target runtime ECDF tables (column 0: evaluations, then one per optimizer)
-  std::vector<sweep::Report> tables;  ///< the sweep's tables, as `dampbench table --kind sweep` prints them
+  std::vector<Table> ecdfs;   ///< fixed-target runtime ECDF tables (column 0: evaluations, then one per optimizer)
+  std::vector<Table> tables;  ///< the sweep's tables, as `dampbench table --kind sweep` prints them
 };
 
 }  // namespace dampbench::report

@@ -67,12 +67,12 @@ class StoreSources {
                                  r.conditions, r.variables, std::move(law)});
       sweep::TableSpec runtime;
       runtime.kind = "runtime";
-      for (sweep::Report& r : sweep::make_tables(results_, p, runtime))
+      for (Table& r : sweep::make_tables(results_, p, runtime))
         if (r.id.starts_with("runtime_ecdf") && r.columns.size() > 2) {  // only where optimizers are compared
           r.title = prefix(p) + r.title;
           input_.ecdfs.push_back(std::move(r));
         }
-      for (sweep::Report& r : sweep::sweep_tables(results_, p)) {
+      for (Table& r : sweep::sweep_tables(results_, p)) {
         r.title = prefix(p) + r.title;
         input_.tables.push_back(std::move(r));
       }

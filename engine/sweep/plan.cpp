@@ -37,6 +37,86 @@ std::string value_label(const std::vector<std::string>& vars, const std::vector<
   return s;
 }
 
+/// `v` without the datasets in `drop`.
+std::vector<int> without(std::vector<int> v, const std::vector<int>& drop) {
+  std::erase_if(v, [&](int d) { return std::find(drop.begin(), drop.end(), d) != drop.end(); });
+  return v;
+}
+
+/// "a+b+c": the names of the datasets of a fit set.
+std::string datasets_key(const PartSpec& part, const std::vector<int>& ds) {
+  std::string k;
+  for (int d : ds) {
+    if (!k.empty()) k += '+';
+    k += part.datasets[d].name;
+  }
+  return k;
+}
+
+/// The (model, optimizer) pairs a split identifies: those its lists and the model's optimizers allow.
+std::vector<std::pair<int, int>> split_pairs(const PartSpec& part, const SplitSpec& split) {
+  std::vector<std::pair<int, int>> pairs;
+  for (int m = 0; m < static_cast<int>(part.models.size()); ++m) {
+    const ModelSpec& model = part.models[m];
+    if (!split.models.empty() && std::find(split.models.begin(), split.models.end(), model.name) == split.models.end())
+      continue;
+    for (int o = 0; o < static_cast<int>(part.optimizers.size()); ++o) {
+      const std::string& label = part.optimizers[o].label;
+      if (!split.optimizers.empty() && std::find(split.optimizers.begin(), split.optimizers.end(), label) == split.optimizers.end())
+        continue;
+      if (!model.optimizers.empty() && std::find(model.optimizers.begin(), model.optimizers.end(), label) == model.optimizers.end())
+        continue;
+      pairs.emplace_back(m, o);
+    }
+  }
+  return pairs;
+}
+
+/// Fit sets grouping the fit datasets by their values of the split's `by` variables, each predicting the
+/// datasets with the same values; a dataset that failed to load forms a fit set of its own (it fails with its
+/// loading message).
+std::vector<FitSet> fitsets_by_variables(const PartSpec& part, const SplitSpec& split,
+                                             const std::vector<LoadedDataset>& data, const std::vector<int>& fit,
+                                             const std::vector<int>& predict, const std::string& where) {
+  std::vector<FitSet> fitsets;
+  auto name_of = [&](int d) { return part.datasets[d].name; };
+  auto key_of = [&](const std::vector<int>& ds) { return datasets_key(part, ds); };
+  std::map<std::vector<double>, std::vector<int>> groups;  // values → fit datasets, ordered by value
+  std::vector<std::pair<std::vector<double>, std::vector<int>>> failed;
+  for (int d : fit) {
+    std::vector<double> values;
+    for (const auto& v : split.by_variables) {
+      const auto& vars = data[d].signals.law_variables;
+      const auto it = vars.find(v);
+      if (it == vars.end()) break;
+      values.push_back(it->second);
+    }
+    if (values.size() != split.by_variables.size()) {
+      if (data[d].ok())
+        throw DataError(fmt::format("{}: dataset '{}' has no operating variable '{}' to group by", where,
+                                     name_of(d), split.by_variables[values.size()]));
+      failed.push_back({{}, {d}});  // fails with its loading message
+      continue;
+    }
+    groups[values].push_back(d);
+  }
+  for (const auto& [values, ds] : groups) {
+    std::vector<int> pred;
+    for (int p : predict) {
+      const auto& vars = data[p].signals.law_variables;
+      bool same = true;
+      for (std::size_t i = 0; i < values.size() && same; ++i) {
+        const auto it = vars.find(split.by_variables[i]);
+        same = it != vars.end() && it->second == values[i];
+      }
+      if (same) pred.push_back(p);
+    }
+    fitsets.push_back({ds, without(pred, ds), value_label(split.by_variables, values), key_of(ds)});
+  }
+  for (const auto& [values, ds] : failed) fitsets.push_back({ds, {}, name_of(ds[0]), key_of(ds)});
+  return fitsets;
+}
+
 SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::vector<LoadedDataset>& data) {
   SplitPlan sp;
   std::vector<int> candidates;
@@ -60,19 +140,8 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
     predict = selected(*split.predict);
     if (predict.empty()) throw DataError(fmt::format("{}: 'predict' selects no dataset", where));
   }
-  auto without = [](std::vector<int> v, const std::vector<int>& drop) {
-    std::erase_if(v, [&](int d) { return std::find(drop.begin(), drop.end(), d) != drop.end(); });
-    return v;
-  };
   auto name_of = [&](int d) { return part.datasets[d].name; };
-  auto key_of = [&](const std::vector<int>& ds) {
-    std::string k;
-    for (int d : ds) {
-      if (!k.empty()) k += '+';
-      k += name_of(d);
-    }
-    return k;
-  };
+  auto key_of = [&](const std::vector<int>& ds) { return datasets_key(part, ds); };
 
   switch (split.by) {
     case SplitSpec::By::each:
@@ -82,57 +151,12 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
       sp.fitsets.push_back({fit, without(predict, fit),
                             fit.size() == 1 ? name_of(fit[0]) : split.name.empty() ? "all" : split.name, key_of(fit)});
       break;
-    case SplitSpec::By::variables: {
-      std::map<std::vector<double>, std::vector<int>> groups;  // values → fit datasets, ordered by value
-      std::vector<std::pair<std::vector<double>, std::vector<int>>> failed;
-      for (int d : fit) {
-        std::vector<double> values;
-        for (const auto& v : split.by_variables) {
-          const auto& vars = data[d].signals.law_variables;
-          const auto it = vars.find(v);
-          if (it == vars.end()) break;
-          values.push_back(it->second);
-        }
-        if (values.size() != split.by_variables.size()) {
-          if (data[d].ok())
-            throw DataError(fmt::format("{}: dataset '{}' has no operating variable '{}' to group by", where,
-                                         name_of(d), split.by_variables[values.size()]));
-          failed.push_back({{}, {d}});  // fails with its loading message
-          continue;
-        }
-        groups[values].push_back(d);
-      }
-      for (const auto& [values, ds] : groups) {
-        std::vector<int> pred;
-        for (int p : predict) {
-          const auto& vars = data[p].signals.law_variables;
-          bool same = true;
-          for (std::size_t i = 0; i < values.size() && same; ++i) {
-            const auto it = vars.find(split.by_variables[i]);
-            same = it != vars.end() && it->second == values[i];
-          }
-          if (same) pred.push_back(p);
-        }
-        sp.fitsets.push_back({ds, without(pred, ds), value_label(split.by_variables, values), key_of(ds)});
-      }
-      for (const auto& [values, ds] : failed) sp.fitsets.push_back({ds, {}, name_of(ds[0]), key_of(ds)});
+    case SplitSpec::By::variables:
+      sp.fitsets = fitsets_by_variables(part, split, data, fit, predict, where);
       break;
-    }
   }
 
-  for (int m = 0; m < static_cast<int>(part.models.size()); ++m) {
-    const ModelSpec& model = part.models[m];
-    if (!split.models.empty() && std::find(split.models.begin(), split.models.end(), model.name) == split.models.end())
-      continue;
-    for (int o = 0; o < static_cast<int>(part.optimizers.size()); ++o) {
-      const std::string& label = part.optimizers[o].label;
-      if (!split.optimizers.empty() && std::find(split.optimizers.begin(), split.optimizers.end(), label) == split.optimizers.end())
-        continue;
-      if (!model.optimizers.empty() && std::find(model.optimizers.begin(), model.optimizers.end(), label) == model.optimizers.end())
-        continue;
-      sp.pairs.emplace_back(m, o);
-    }
-  }
+  sp.pairs = split_pairs(part, split);
   if (sp.pairs.empty()) throw DataError(fmt::format("{}: no (model, optimizer) pair to identify", where));
   const long long metrics = static_cast<long long>(part.metrics.size());
   sp.groups = static_cast<long long>(sp.fitsets.size()) * static_cast<long long>(sp.pairs.size()) * metrics;

@@ -1,5 +1,6 @@
 #pragma once
-// Tables from a sweep's store (DESIGN.md, "Outputs users expect"), in Markdown, CSV, LaTeX or JSON.
+// Tables from a sweep's store, in Markdown, CSV, LaTeX or JSON; one file per kind in tables/, named in
+// tables/registry.cpp.
 //
 // A series is every group of one (split, model, optimizer, optimized metric); its rows are the split's fit
 // sets (conditions). Kinds:
@@ -30,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/common/table.hpp"
 #include "engine/model/model.hpp"
 #include "engine/model/parameter_law.hpp"
 #include "engine/sweep/analysis.hpp"
@@ -40,20 +42,6 @@ namespace dampbench::sweep {
 
 /// The table kinds a sweep file may ask for (`sweep` is only for the command line).
 std::vector<std::string> table_kinds();
-
-struct Cell {
-  std::string text;
-  std::optional<double> value;  ///< the number behind the text (JSON output keeps full precision)
-};
-
-struct Report {
-  std::string id;      ///< file stem
-  std::string title;
-  std::string paper;   ///< the paper's table it reproduces ("" when beyond the papers)
-  std::string note;    ///< one line under the table
-  std::vector<std::string> columns;
-  std::vector<std::vector<Cell>> rows;
-};
 
 /// Everything tables need, read once from a store: its header, groups (with runs and their best-so-far
 /// traces, which the convergence marks and the runtime tables read), the
@@ -93,17 +81,14 @@ std::vector<RegressionResult> law_regressions(const StoreResults& results, int p
 
 /// The tables of one kind for one part, filtered by `request` (kind, split, models, optimizers, metric,
 /// role, where, target_rel; paper and title label them).
-std::vector<Report> make_tables(const StoreResults& results, int part, const TableSpec& request);
+std::vector<Table> make_tables(const StoreResults& results, int part, const TableSpec& request);
 
 /// Every table a part's sweep file asks for (its `tables`), regression and failures included when present.
-std::vector<Report> sweep_tables(const StoreResults& results, int part);
+std::vector<Table> sweep_tables(const StoreResults& results, int part);
 
-/// Output formats. `to_json` gives {"tables": [{id, title, paper, note, columns, rows}]}, numbers as numbers.
-std::string to_markdown(const Report& r);
-std::string to_csv(const Report& r);
-std::string to_latex(const Report& r);
-std::string to_json(const std::vector<Report>& reports);
-/// All reports in one format ("md", "csv", "latex", "json"); InputError for another format.
-std::string format_reports(const std::vector<Report>& reports, const std::string& format);
+/// Every table in one format ("md", "csv", "latex", "json"); InputError for another format. JSON is
+/// {"tables": [{id, title, paper, note, columns, rows}]} with the numbers of the cells as numbers.
+std::string format_tables(const std::vector<Table>& tables, const std::string& format);
+std::string tables_to_json(const std::vector<Table>& tables);
 
 }  // namespace dampbench::sweep

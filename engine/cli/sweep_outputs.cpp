@@ -1,4 +1,4 @@
-#include "engine/cli/fvd_tables.hpp"
+#include "engine/cli/sweep_outputs.hpp"
 
 #include <fstream>
 #include <map>
@@ -32,7 +32,7 @@ PartFigures figures(const sweep::StoreResults& results, int part) {
   return f;
 }
 
-std::string part_summary(const sweep::StoreResults& results, int part, const std::vector<sweep::Report>& tables,
+std::string part_summary(const sweep::StoreResults& results, int part, const std::vector<Table>& tables,
                          const OutputInfo& info) {
   const auto& p = results.header.parts[static_cast<std::size_t>(part)];
   const PartFigures f = figures(results, part);
@@ -93,12 +93,12 @@ std::vector<std::string> write_sweep_outputs(const sweep::StoreResults& results,
     const fs::path sub = parts > 1 ? fs::path(part.name) : fs::path();
     const fs::path dir = out_dir / sub;
     fs::create_directories(dir);
-    const std::vector<sweep::Report> tables = sweep::sweep_tables(results, p);
+    const std::vector<Table> tables = sweep::sweep_tables(results, p);
     std::string md = "# " + part.title + "\n\n";
     for (const auto& t : tables) {
-      md += sweep::to_markdown(t) + "\n";
-      write_output(sub / (t.id + ".csv"), sweep::to_csv(t));
-      if (print && parts == 1) *print << sweep::to_markdown(t) << "\n";
+      md += t.to_markdown() + "\n";
+      write_output(sub / (t.id + ".csv"), t.to_csv());
+      if (print && parts == 1) *print << t.to_markdown() << "\n";
     }
     write_output(sub / "tables.md", md);
     write_output(sub / "summary.md", part_summary(results, p, tables, info));

@@ -1,0 +1,85 @@
+// Models: ids, law fixtures or [[models]] tables, with the [bounds] table; every model is built once here so
+// that a bad law, bound or name is reported before anything runs.
+#include "engine/sweep/spec/reader.hpp"
+#include "models/fixtures.hpp"
+#include "models/registry.hpp"
+
+namespace dampbench::sweep::spec_file {
+
+namespace {
+
+ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& key) {
+  ModelSpec m;
+  if (n.is_string()) {
+    const std::string id(*n.value<std::string>());
+    // A registered model, else a law fixture; the message lists the models.
+    try {
+      find_model(id);
+      m.model = id;
+    } catch (const InputError& e) {
+      try {
+        find_fixture(id);
+        m.fixture = id;
+      } catch (const InputError&) {
+        r.fail(&n, key, e.what());
+      }
+    }
+    m.name = id;
+    return m;
+  }
+  if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers }");
+  const toml::table& t = *n.as_table();
+  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers"});
+  m.model = r.string(t, "model", key).value_or("");
+  m.fixture = r.string(t, "fixture", key).value_or("");
+  if (m.model.empty() == m.fixture.empty()) r.fail(&n, key, "expected exactly one of 'model' and 'fixture'");
+  if (!m.model.empty()) r.check(t.get("model"), Reader::join(key, "model"), [&] { return &find_model(m.model); });
+  if (!m.fixture.empty()) r.check(t.get("fixture"), Reader::join(key, "fixture"), [&] { return &find_fixture(m.fixture); });
+  m.laws = r.string(t, "laws", key).value_or("");
+  m.bounds = r.string(t, "bounds", key).value_or("");
+  m.name = r.string(t, "name", key).value_or(m.model.empty() ? m.fixture : m.model);
+  m.optimizers = r.strings(t, "optimizers", key);
+  return m;
+}
+
+
+}  // namespace
+
+void read_models(const Reader& r, const toml::table& root, PartSpec& part) {
+  const toml::node* models = root.get("models");
+  if (!models || !models->is_array() || models->as_array()->empty())
+    r.fail(models, "models", "expected a non-empty array of model ids or model tables");
+  const auto& a = *models->as_array();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const toml::node& n = *a.get(i);
+    const std::string key = n.is_string() ? "models" : fmt::format("models[{}]", i);
+    ModelSpec m = read_model(r, n, key);
+    if (part.model_index(m.name) >= 0) r.fail(&n, key, fmt::format("model name '{}' is used twice", m.name));
+    part.models.push_back(std::move(m));
+  }
+  if (const toml::node* b = root.get("bounds")) {
+    if (!b->is_table()) r.fail(b, "bounds", "expected a table [bounds] of model = \"name=lo:hi,...\"");
+    for (const auto& [k, v] : *b->as_table()) {
+      const std::string id(k.str());
+      if (!v.is_string()) r.fail(&v, id, "expected a string \"name=lo:hi,...\"");
+      const int m = part.model_index(id);
+      if (m < 0) r.fail(&v, id, fmt::format("no model named '{}' in 'models'", id));
+      auto& bounds = part.models[m].bounds;
+      if (!bounds.empty()) bounds += ',';
+      bounds += *v.value<std::string>();
+    }
+  }
+  // Build every model once: laws, bounds and names are checked here, before anything runs.
+  for (std::size_t i = 0; i < part.models.size(); ++i) {
+    const ModelSpec& m = part.models[i];
+    const toml::node* n = a.get(i);
+    std::string key = n->is_string() ? "models" : fmt::format("models[{}]", i);
+    if (const toml::node* b = root.get("bounds"); b && b->as_table()->get(m.name)) {
+      n = b->as_table()->get(m.name);
+      key = m.name;
+    }
+    r.check(n, key, [&] { return resolve_model(m); });
+  }
+}
+
+}  // namespace dampbench::sweep::spec_file

@@ -1,0 +1,134 @@
+// A sweep file: one part, or a file of parts (`include`); each part read by the readers of its kinds, and the
+// spec hash over the parts' canonical forms.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/common/random.hpp"
+#include "engine/sweep/spec/reader.hpp"
+
+namespace dampbench::sweep {
+namespace spec_file {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Canonical JSON of the keys that decide results (not titles, labels, tables or regressions).
+std::string canonical(const toml::table& root) {
+  toml::table copy = root;
+  for (const char* k : {"title", "tables", "regressions"}) copy.erase(k);
+  if (auto* d = copy.get("datasets"); d && d->is_array()) {
+    for (auto& e : *d->as_array())
+      if (e.is_table()) e.as_table()->erase("label");
+  }
+  std::ostringstream out;
+  out << toml::json_formatter{copy};
+  return out.str();
+}
+
+PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOptions& options,
+                         std::vector<std::string>& notes) {
+  PartSpec part;
+  r.only_keys(root, "", {"name", "title", "seed", "runs", "metric", "metrics", "models", "bounds", "optimizer",
+                         "optimizers", "datasets", "splits", "tables", "regressions"});
+  part.path = r.path();
+  part.name = r.required_string(root, "name", "");
+  part.title = r.string(root, "title", "").value_or(part.name);
+  part.seed = static_cast<std::uint64_t>(r.integer(root, "seed", "", 1, 0));
+  part.runs = static_cast<int>(r.integer(root, "runs", "", 50, 1));
+  read_metrics(r, root, part);
+  read_models(r, root, part);
+  read_optimizers(r, root, part);
+  // Tables and splits name datasets entries: read entry names first, files last (a bad bound is
+  // reported before a missing file).
+  const toml::node* datasets = root.get("datasets");
+  if (!datasets || !datasets->is_array_of_tables() || datasets->as_array()->empty())
+    r.fail(datasets, "datasets", "expected one or more [[datasets]] tables");
+  for (const toml::node& d : *datasets->as_array()) {
+    const toml::node* n = d.as_table()->get("name");
+    if (n && n->is_string()) part.collections.emplace_back(*n->value<std::string>());
+  }
+  read_splits(r, root, part);
+  read_tables(r, root, part);
+  read_regressions(r, root, part);
+  part.collections.clear();
+  read_datasets(r, root, options, part, notes);
+  part.canonical = canonical(root);
+  return part;
+}
+
+std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
+
+}  // namespace
+
+PartSpec read_part(std::string_view text, const std::string& path, const SpecOptions& options,
+                   std::vector<std::string>& notes) {
+  const toml::table root = parse_toml(text, path);
+  const Reader r(path);
+  std::vector<std::string> part_notes;
+  PartSpec part = read_part_table(r, root, options, part_notes);
+  part.source = std::string(text);
+  notes.insert(notes.end(), part_notes.begin(), part_notes.end());
+  return part;
+}
+
+std::string read_text(const std::string& path, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("cannot open {} '{}'", what, path));
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+namespace {
+
+SweepSpec parse_sweep_text(std::string_view text, const std::string& path, const SpecOptions& options) {
+  SweepSpec spec;
+  spec.path = path;
+  std::vector<std::string> notes;
+  const toml::table root = parse_toml(text, path);
+  if (const toml::node* inc = root.get("include")) {
+    const Reader r(path);
+    r.only_keys(root, "", {"name", "title", "include", "include_optional"});
+    spec.name = r.required_string(root, "name", "");
+    spec.title = r.string(root, "title", "").value_or(spec.name);
+    auto files = r.strings(*inc, "include");
+    const auto optional = r.strings(root, "include_optional", "");
+    files.insert(files.end(), optional.begin(), optional.end());
+    if (files.empty()) r.fail(inc, "include", "expected one or more sweep files");
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const std::string p = resolve_path(files[i], fs::path(path).parent_path().string());
+      const std::string t = r.check(inc, "include", [&] { return read_text(p, "included sweep file"); });
+      SpecOptions part_options = options;
+      part_options.datasets_optional |= i + optional.size() >= files.size();
+      spec.parts.push_back(read_part(t, p, part_options, notes));
+      for (std::size_t k = 0; k + 1 < spec.parts.size(); ++k)
+        if (spec.parts[k].name == spec.parts.back().name)
+          r.fail(inc, "include", fmt::format("two included files are named '{}'", spec.parts.back().name));
+    }
+  } else {
+    spec.parts.push_back(read_part(text, path, options, notes));
+    spec.name = spec.parts[0].name;
+    spec.title = spec.parts[0].title;
+  }
+  std::uint64_t h = hash_name("dampbench-sweep-1");
+  for (const auto& p : spec.parts) h = hash_key({h, hash_name(p.name), hash_name(p.canonical)});
+  spec.hash = hex64(h);
+  spec.notes = std::move(notes);
+  return spec;
+}
+
+}  // namespace
+}  // namespace spec_file
+
+SweepSpec parse_sweep(std::string_view text, const std::string& path, const SpecOptions& options) {
+  return as_data_error([&] { return spec_file::parse_sweep_text(text, path, options); });
+}
+
+SweepSpec load_sweep(const std::string& path, const SpecOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw DataError(fmt::format("cannot open preset file '{}'", path));
+  return parse_sweep(spec_file::read_text(path, "preset file"), path, options);
+}
+
+}  // namespace dampbench::sweep

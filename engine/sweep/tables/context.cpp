@@ -1,0 +1,134 @@
+#include "engine/sweep/tables/context.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace dampbench::sweep::tables {
+
+std::string file_stem(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+  return s;
+}
+
+Context::Context(const StoreResults& results, int p, const TableSpec& request)
+    : R(results), part(p), t(request), spec(results.parts.at(static_cast<std::size_t>(p))) {
+  std::optional<Metric> metric;
+  if (!t.metric.empty()) {
+    const Metric m = parse_metric(t.metric);
+    if (std::find(spec.metrics.begin(), spec.metrics.end(), m) != spec.metrics.end()) metric = m;
+  }
+  std::set<int> models, optimizers, splits;
+  std::set<Metric> metrics;
+  for (const auto& g : R.groups) {
+    if (g.part != part || g.failed || g.run_results.empty()) continue;
+    if (!t.splits.empty() && std::find(t.splits.begin(), t.splits.end(), split_name(g.split)) == t.splits.end()) continue;
+    if (!t.models.empty() && std::find(t.models.begin(), t.models.end(), model_name(g.model)) == t.models.end()) continue;
+    if (!t.optimizers.empty() &&
+        std::find(t.optimizers.begin(), t.optimizers.end(), optimizer_label(g.optimizer)) == t.optimizers.end())
+      continue;
+    if (metric && g.metric != *metric) continue;
+    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors.
+    if (!t.where.everything() && t.kind != "errors") {
+      const auto& fs = fitset(g);
+      if (std::none_of(fs.fit.begin(), fs.fit.end(), [&](int d) { return matches(t.where, d); })) continue;
+    }
+    selected.push_back(&g);
+    models.insert(g.model);
+    optimizers.insert(g.optimizer);
+    splits.insert(g.split);
+    metrics.insert(g.metric);
+  }
+  many_models = models.size() > 1;
+  many_optimizers = optimizers.size() > 1;
+  many_metrics = metrics.size() > 1;
+  many_splits = splits.size() > 1;
+}
+
+std::vector<Series> Context::series() const {
+  std::map<std::tuple<int, int, int, int>, Series> by;
+  for (const GroupRecord* g : selected) {
+    Series& s = by[{g->split, g->model, g->optimizer, static_cast<int>(g->metric)}];
+    s.split = g->split;
+    s.model = g->model;
+    s.optimizer = g->optimizer;
+    s.metric = g->metric;
+    s.groups.push_back(g);
+  }
+  std::vector<Series> out;
+  for (auto& [k, s] : by) {
+    std::sort(s.groups.begin(), s.groups.end(), [](auto* a, auto* b) { return a->fitset < b->fitset; });
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::string Context::suffix(const Series& s, bool with_model) const {
+  std::string out = with_model ? "_" + model_name(s.model) : "";
+  if (many_optimizers) out += "_" + optimizer_label(s.optimizer);
+  if (many_metrics) out += "_" + std::string(metric_name(s.metric));
+  if (many_splits) out += "_" + split_name(s.split);
+  return file_stem(out);
+}
+
+std::string Context::describe(const Series& s, bool with_model) const {
+  std::string out = with_model ? model_name(s.model) : "";
+  auto add = [&](const std::string& x) { out += (out.empty() ? "" : ", ") + x; };
+  if (many_optimizers || !with_model) add(optimizer_label(s.optimizer));
+  if (many_metrics) add(std::string(metric_name(s.metric)));
+  if (many_splits && !split_name(s.split).empty()) add("split " + split_name(s.split));
+  return out;
+}
+
+Table Context::table(std::string id, std::string title_text, std::vector<std::string> columns) const {
+  Table r;
+  if (!t.name.empty() && id.starts_with(t.kind)) id = file_stem(t.name) + id.substr(t.kind.size());
+  r.id = std::move(id);
+  r.title = title(std::move(title_text));
+  r.paper = t.paper;
+  r.columns = std::move(columns);
+  return r;
+}
+
+std::vector<std::vector<double>> Context::paper_params(const GroupRecord& g) const {
+  std::vector<std::vector<double>> out;
+  for (const auto& r : g.run_results) out.push_back(model(g.model).to_paper_units(r.params));
+  return out;
+}
+
+std::vector<double> best_values(const GroupRecord& g) {
+  std::vector<double> v;
+  for (const auto& r : g.run_results) v.push_back(r.best_value);
+  return v;
+}
+
+Convergence group_convergence(const GroupRecord& g) {
+  std::vector<RunHistory> runs;
+  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
+  return assess_convergence(runs);
+}
+
+std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all) {
+  std::map<std::pair<int, int>, std::vector<Series>> out;
+  for (const auto& s : all) out[{s.split, static_cast<int>(s.metric)}].push_back(s);
+  return out;
+}
+
+std::string split_metric_suffix(const Context& c, int split, Metric metric) {
+  std::string out;
+  if (c.many_metrics) out += "_" + std::string(metric_name(metric));
+  if (c.many_splits) out += "_" + c.split_name(split);
+  return file_stem(out);
+}
+
+std::string series_column(const Context& c, const Series& s) {
+  return c.many_optimizers ? fmt::format("{} ({})", c.model_name(s.model), c.optimizer_label(s.optimizer))
+                           : c.model_name(s.model);
+}
+
+}  // namespace dampbench::sweep::tables

@@ -1,0 +1,89 @@
+#pragma once
+// What every table kind reads: the groups a table request selects from a store, cut into series (every group
+// of one split, model, optimizer and optimized metric, ordered by fit set), with the names, labels and file
+// stems that tell the series apart. Shared by the kinds (kinds.hpp); not part of the sweep's interface.
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/common/table.hpp"
+#include "engine/identification/convergence.hpp"
+#include "engine/sweep/tables.hpp"
+
+namespace dampbench::sweep::tables {
+
+inline Cell num(double v) { return number_cell(v); }
+inline Cell txt(std::string s) { return {std::move(s), std::nullopt}; }
+inline Cell none() { return {"-", std::nullopt}; }
+
+/// `s` with every character a file name may not hold replaced by '_'.
+std::string file_stem(std::string s);
+
+/// Every group of one (split, model, optimizer, optimized metric), ordered by fit set.
+struct Series {
+  int split = 0, model = 0, optimizer = 0;
+  Metric metric = Metric::of_abs;
+  std::vector<const GroupRecord*> groups;
+};
+
+struct Context {
+  const StoreResults& R;
+  int part;
+  const TableSpec& t;
+  const PartSpec& spec;
+  std::vector<const GroupRecord*> selected;
+  bool many_models = false, many_optimizers = false, many_metrics = false, many_splits = false;
+
+  /// Selects the part's finished groups that the request's splits, models, optimizers, metric and `where` keep.
+  Context(const StoreResults& results, int p, const TableSpec& request);
+
+  [[nodiscard]] std::string model_name(int m) const {
+    return R.header.models.at(static_cast<std::size_t>(R.header.model(part, m))).name;
+  }
+  [[nodiscard]] std::string optimizer_label(int o) const {
+    return R.header.optimizers.at(static_cast<std::size_t>(R.header.optimizer(part, o))).label;
+  }
+  [[nodiscard]] std::string split_name(int s) const { return R.header.split_name(part, s); }
+  [[nodiscard]] const StoreFitSet& fitset(const GroupRecord& g) const {
+    return R.header.fitsets.at(static_cast<std::size_t>(R.header.fitset(part, g.split, g.fitset)));
+  }
+  [[nodiscard]] const StoreDataset& dataset(int d) const {
+    return R.header.datasets.at(static_cast<std::size_t>(R.header.dataset(part, d)));
+  }
+  [[nodiscard]] bool matches(const Selection& s, int d) const { return s.matches(dataset(d).name, dataset(d).variables); }
+  [[nodiscard]] const Model& model(int m) const { return R.model(part, m); }
+  [[nodiscard]] std::string label(const GroupRecord& g) const { return fitset(g).label; }
+  [[nodiscard]] std::string title(std::string fallback) const { return t.title.empty() ? fallback : t.title; }
+
+  [[nodiscard]] std::vector<Series> series() const;
+  /// "_model[_optimizer][_metric][_split]": the parts that tell this series from the others.
+  [[nodiscard]] std::string suffix(const Series& s, bool with_model = true) const;
+  [[nodiscard]] std::string describe(const Series& s, bool with_model = true) const;
+  /// A table; `id` starts with the kind, which the request's `name` replaces.
+  [[nodiscard]] Table table(std::string id, std::string title_text, std::vector<std::string> columns) const;
+  /// Parameter values in paper units of every run of a group.
+  [[nodiscard]] std::vector<std::vector<double>> paper_params(const GroupRecord& g) const;
+};
+
+std::vector<double> best_values(const GroupRecord& g);
+
+/// Whether a group's runs converged (engine/identification/convergence.hpp), from its stored runs and traces.
+Convergence group_convergence(const GroupRecord& g);
+
+inline constexpr const char* kUnconvergedMark = "†";
+inline constexpr const char* kUnconvergedNote =
+    "† not converged: the runs disagree (median run > 2 % above the best), a single run cannot show agreement, or "
+    "the best still improved by > 1 % in the last fifth of its budget (a hybrid whose local stage stopped at a local "
+    "optimum is not asked to stall); raise runs, population or iterations "
+    "before trusting it.";
+inline constexpr const char* kUndeterminedMark = "‡";
+inline constexpr const char* kAtBoundMark = "⊥";
+
+/// Series grouped by (split, metric) for tables with one column or row per model.
+std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all);
+std::string split_metric_suffix(const Context& c, int split, Metric metric);
+/// A series' column head: its model, and its optimizer when the table compares optimizers.
+std::string series_column(const Context& c, const Series& s);
+
+}  // namespace dampbench::sweep::tables

@@ -1,0 +1,43 @@
+// param-stats: each parameter's mean, max, min and std over the runs per condition, in paper units.
+#include <fmt/format.h>
+
+#include "engine/common/statistics.hpp"
+#include "engine/sweep/tables/kinds.hpp"
+
+namespace dampbench::sweep::tables {
+
+Table param_stats_table(const Context& c, const Series& s, std::string id, std::string title) {
+  std::vector<std::string> cols{"Parameter"};
+  for (const GroupRecord* g : s.groups) cols.push_back(c.label(*g));
+  Table r = c.table(std::move(id), std::move(title), cols);
+  const Model& model = c.model(s.model);
+  const auto params = model.parameters();
+  std::vector<std::vector<std::vector<double>>> values;  // group → run → parameter
+  for (const GroupRecord* g : s.groups) values.push_back(c.paper_params(*g));
+  for (int j = 0; j < model.dim(); ++j) {
+    std::vector<Summary> per;
+    for (const auto& runs : values) {
+      std::vector<double> v;
+      for (const auto& p : runs) v.push_back(p[static_cast<std::size_t>(j)]);
+      per.push_back(summarize(v));
+    }
+    const std::pair<const char*, double Summary::*> stats[] = {
+        {"mean", &Summary::mean}, {"max", &Summary::max}, {"min", &Summary::min}, {"std", &Summary::std}};
+    for (const auto& [name, field] : stats) {
+      std::vector<Cell> row{txt(fmt::format("{}({}) [{}]", params[j].name, name, params[j].paper_unit))};
+      for (const Summary& x : per) row.push_back(num(x.*field));
+      r.rows.push_back(std::move(row));
+    }
+  }
+  return r;
+}
+
+void param_stats_tables(const Context& c, std::vector<Table>& out) {
+  for (const Series& s : c.series()) {
+    const int runs = s.groups.empty() ? 0 : s.groups[0]->runs;
+    out.push_back(param_stats_table(c, s, "param-stats" + c.suffix(s),
+                                    fmt::format("Identified parameters over {} runs (paper units) — {}", runs, c.describe(s))));
+  }
+}
+
+}  // namespace dampbench::sweep::tables

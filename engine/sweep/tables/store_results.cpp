@@ -1,0 +1,30 @@
+// A store read once for its tables: header, groups with their traces, the parts' specs, the rebuilt models.
+#include "engine/sweep/tables.hpp"
+
+namespace dampbench::sweep {
+
+StoreResults::StoreResults(const Store& store) : header(store.header()) {
+  GroupQuery q;
+  q.traces = true;
+  groups = store.groups(q);
+  for (const auto& p : header.parts) {
+    SpecOptions o;
+    o.check_files = false;
+    parts.push_back(std::move(parse_sweep(p.source, p.path, o).parts.at(0)));
+  }
+  models_.resize(header.parts.size());
+  for (const auto& m : header.models) {
+    ModelSpec s;
+    s.name = m.name;
+    s.model = m.model_id;
+    s.fixture = m.fixture;
+    s.laws = m.laws;
+    models_[static_cast<std::size_t>(m.part)].push_back(resolve_model(s));
+  }
+}
+
+const Model& StoreResults::model(int part, int m) const {
+  return *models_.at(static_cast<std::size_t>(part)).at(static_cast<std::size_t>(m)).model;
+}
+
+}  // namespace dampbench::sweep
