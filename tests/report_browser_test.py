@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The HTML report in a real browser (issue 14).
+"""The HTML report in a real browser.
 
 Runs a small sweep (Bingham per current with PSO and DE, Bouc-Wen per current, a current-dependent Bingham law
 fitted at 0 and 1 A predicting 0.5 A, a regression of f_c on I) on records made by `dampbench simulate` with
@@ -11,7 +11,9 @@ known parameters, writes `dampbench report`, renders it in headless Chromium and
     (not from the report), at the drawn samples;
   - an empty store, a file that is not a store and a missing store are refused with a message and leave no file;
   - a report of 13 conditions starts with them collapsed (only the run distribution drawn) and draws each
-    condition's loops and convergence curve when it is opened.
+    condition's loops and convergence curve when it is opened;
+  - a run distribution whose runs agree to 1e-12 reads "all runs equal" with one short tick label, and one whose
+    runs agree to 1e-5 is drawn relative to the best run with short tick labels (no 12-digit labels).
 
 usage: report_browser_test.py DAMPBENCH WORK_DIR
 Exit 77 (ctest: skipped) when Chromium is not installed; scripts/install-deps.sh installs it, so CI runs it.
@@ -66,19 +68,24 @@ class Dom(html.parser.HTMLParser):
         super().__init__()
         self.figures, self.rendered, self.errors_shown, self.data_text = [], None, False, None
         self._depth, self._in_data, self._in_errors, self._errors_text = 0, False, False, ""
+        self._axis_depth, self._text = 0, None
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
         if tag == "body":
             self.rendered = a.get("data-rendered")
         if tag == "figure":
-            self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0})
+            self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0, "ticks": [], "texts": []})
         if self.figures and tag == "path" and "series" in (a.get("class") or ""):
             self.figures[-1]["paths"].append(a.get("d") or "")
         if self.figures and tag == "circle" and "point" in (a.get("class") or ""):
             self.figures[-1]["points"] += 1
         if tag == "script" and a.get("id") == "dampbench-data":
             self._in_data = True
+        if tag == "g" and self.figures:
+            self._axis_depth = self._axis_depth + 1 if self._axis_depth or "axis" in (a.get("class") or "") else 0
+        if tag in ("text", "figcaption") and self.figures:
+            self._text = {"tick": bool(self._axis_depth), "text": ""}
         if tag == "div" and a.get("id") == "report-errors":
             self.errors_shown = "none" not in (a.get("style") or "")
             self._in_errors = True
@@ -86,10 +93,17 @@ class Dom(html.parser.HTMLParser):
     def handle_endtag(self, tag):
         if tag == "script":
             self._in_data = False
+        if tag == "g" and self._axis_depth:
+            self._axis_depth -= 1
+        if tag in ("text", "figcaption") and self._text is not None:
+            self.figures[-1]["ticks" if self._text["tick"] else "texts"].append(self._text["text"])
+            self._text = None
         if tag == "div":
             self._in_errors = False
 
     def handle_data(self, text):
+        if self._text is not None:
+            self._text["text"] += text
         if self._in_data:
             self.data_text = (self.data_text or "") + text
         if self._in_errors:
@@ -183,6 +197,39 @@ def check_collapsed_conditions():
         check(sum(1 for d in f["paths"] if vertices(d) >= 2) + f["points"] > 0, f"opened figure {i} ({f['kind']}) is empty")
 
 
+def check_run_axis():
+    """Runs that agree to 1e-12 read as "all runs equal"; runs that agree to 1e-5 are drawn relative to the best.
+    The page of the test sweep is drawn again with its run distributions replaced by such runs."""
+    with open(os.path.join(WORK, "report.html")) as f:
+        page = f.read()
+    start = page.index('id="dampbench-data">') + len('id="dampbench-data">')
+    end = page.index("</script>", start)
+    data = json.loads(page[start:end])
+    best = 0.0123456789012345
+    equal = [[[best * (1 + k * 1e-12) for k in (0, 1, 2, -1)]]]
+    close = [[[best * (1 + k * 1e-5) for k in (0, 1, 2, 3)]]]
+    data["distributions"] = [
+        {"part": "", "split": "", "model": m, "metric": "of_abs", "conditions": ["5mm3Hz0x5A"], "optimizers": ["pso"],
+         "values": v} for m, v in (("equal", equal), ("close", close))]
+    text = json.dumps(data).replace("</", "<\\/")
+    with open(os.path.join(WORK, "run_axis.html"), "w") as f:
+        f.write(page[:start] + text + page[end:])
+    dom = render(os.path.join(WORK, "run_axis.html"))
+    runs = [f for f in dom.figures if f["kind"] == "runs"]
+    check(len(runs) == 2, f"{len(runs)} run distributions drawn, expected 2")
+    if len(runs) != 2:
+        return
+    for fig, name in zip(runs, ("equal", "close")):
+        # Tick labels of both axes: the condition name and the metric axis's labels.
+        labels = [t for t in fig["ticks"] if t != "5mm3Hz0x5A"]
+        check(labels and all(len(t) <= 8 for t in labels), f"{name} runs: tick labels {labels}, expected a few short ones")
+        check(fig["points"] == 4, f"{name} runs: {fig['points']} points drawn, expected 4")
+    check(len([t for t in runs[0]["ticks"] if t != "5mm3Hz0x5A"]) == 1, f"equal runs: ticks {runs[0]['ticks']}, expected one")
+    check(any("all 4 runs equal" in t for t in runs[0]["texts"]), f"equal runs: no 'all 4 runs equal' in {runs[0]['texts']}")
+    check(any("best − 1" in t for t in runs[1]["texts"]), f"close runs: the axis does not say 'best − 1': {runs[1]['texts']}")
+    check(not any("all 4 runs equal" in t for t in runs[1]["texts"]), "close runs read as equal")
+
+
 def main():
     if not CHROMIUM:
         print("SKIP: chromium is not installed (bash scripts/install-deps.sh installs it)")
@@ -262,6 +309,7 @@ def main():
               f"report {store}: exit {p.returncode}, stderr {p.stderr!r}")
         check(not os.path.exists(out), f"report {store} left {out}")
     check_collapsed_conditions()
+    check_run_axis()
     if failures:
         print(f"{len(failures)} failures")
         return 1

@@ -294,7 +294,7 @@ TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
   EXPECT_EQ(generous.output.find("†"), std::string::npos) << generous.output;
 }
 
-// Issue 13: identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
+// Identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
 // the stiffness (m·a = −mω²x: only K1 − mω² is determined), so both are marked ‡ in the params table and the
 // relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
 // keeps the evidence (read back equal to what the runner computed: the verify test compares it bit for bit).

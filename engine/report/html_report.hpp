@@ -1,5 +1,5 @@
 #pragma once
-// The HTML report (issue 14): one self-contained file that opens offline in any browser. The numbers are
+// The HTML report: one self-contained file that opens offline in any browser. The numbers are
 // computed here, in C++, and embedded as one JSON document; the page draws them with D3 (Debian's libjs-d3,
 // inlined at build time) into SVG:
 //   - per condition and record: force–displacement and force–velocity loops, measured against the best fit of

@@ -1,5 +1,5 @@
 #pragma once
-// What a stored result was computed with (DESIGN.md, "Reproducibility"): the dampbench version, the build
+// What a stored result was computed with (docs/design.md, reproducibility): the dampbench version, the build
 // flags, the sweep spec's hash and the hash of every dataset it used. A store only takes results from the
 // same version and flags, so resumed results are bit-identical to an uninterrupted run.
 #include <cstdint>

@@ -230,11 +230,27 @@
   if (data.distributions.length) {
     el(root, 'h2', 'Run distributions').attr('id', 'runs');
     el(root, 'p', 'Final metric of every run per condition: box from the 25 % to the 75 % quantile with the median, ' +
-      'whiskers to the best and worst run, one dot per run.', 'help');
+      'whiskers to the best and worst run, one dot per run. Runs that agree to better than 1e-3 are drawn relative to ' +
+      'the best run (axis: run / best − 1), runs that agree to 1e-9 as one line, "all runs equal".', 'help');
     data.distributions.forEach(function (d) {
       var slot = el(root, 'div', undefined, 'row');  // the figure's place, filled when its turn comes
       later(function () { distribution(slot, d); });
     });
+  }
+
+  // The run-distribution axis. Runs that agree to more digits than a tick label holds are drawn relative to the
+  // best run (the label says so, the caption gives the best), and runs that agree to rounding (1e-9 of the best)
+  // are drawn on one line read as "all runs equal": a linear axis over such a spread would label its ticks with
+  // a dozen digits that say nothing and do not fit beside the figure.
+  function runAxis(ext, count) {
+    var best = ext[0], size = Math.max(Math.abs(ext[0]), Math.abs(ext[1])), spread = ext[1] - ext[0];
+    var value = {mode: 'value', label: '', caption: '', shown: function (v) { return v; }};
+    if (!count || !(size > 0) || !isFinite(spread)) return value;
+    if (spread <= 1e-9 * size)
+      return {mode: 'equal', label: '', caption: 'all runs equal: ' + fmt(best), shown: function () { return 0; }};
+    if (spread >= 1e-3 * size || best === 0) return value;
+    return {mode: 'relative', label: ' / best − 1', caption: 'relative to the best run, ' + fmt(best),
+            shown: function (v) { return (v - best) / Math.abs(best); }};
   }
 
   function distribution(parent, d) {
@@ -248,19 +264,30 @@
     var all = [];
     d.values.forEach(function (row) { row.forEach(function (runs) { runs.forEach(function (v) { if (finite(v)) all.push(v); }); }); });
     var ext = all.length ? d3.extent(all) : [0, 1];
-    var log = ext[0] > 0 && ext[1] / ext[0] > 20;
-    var y = (log ? d3.scale.log() : d3.scale.linear()).domain(ext[0] === ext[1] ? [ext[0] * 0.9, ext[1] * 1.1 + 1e-300] : ext).range([h, 0]);
-    if (!log) y.nice();
+    var axis = runAxis(ext, all.length);
+    var shown = axis.shown;
+    var log = axis.mode === 'value' && ext[0] > 0 && ext[1] / ext[0] > 20;
+    var y = (log ? d3.scale.log() : d3.scale.linear()).range([h, 0]);
+    if (axis.mode === 'equal') y.domain([-1, 1]);
+    else if (axis.mode === 'relative') y.domain([0, shown(ext[1])]).nice();
+    else y.domain(ext[0] === ext[1] ? [ext[0] * 0.9, ext[1] * 1.1 + 1e-300] : ext);
+    if (axis.mode === 'value' && !log) y.nice();
+    if (axis.caption) fig.select('figcaption').text(title + ' — ' + axis.caption);
     var x = d3.scale.ordinal().domain(d3.range(d.conditions.length)).rangeBands([0, w], 0.2);
     var inner = d3.scale.ordinal().domain(d3.range(d.optimizers.length)).rangeBands([0, x.rangeBand()], 0.15);
     var svg = fig.append('svg').attr('width', W).attr('height', H);
     var g = svg.append('g').attr('transform', 'translate(' + m.left + ',' + m.top + ')');
-    g.append('g').attr('class', 'axis').call(d3.svg.axis().scale(y).orient('left').ticks(5, log ? '.1e' : undefined));
+    var yAxis = d3.svg.axis().scale(y).orient('left').ticks(5, log || axis.mode === 'relative' ? '.1e' : undefined);
+    if (axis.mode === 'equal') yAxis.tickValues([0]).tickFormat(function () { return fmt(ext[0]); });
+    g.append('g').attr('class', 'axis').call(yAxis);
+    if (axis.mode === 'equal')
+      g.append('text').attr('class', 'label equal-runs').attr('x', w / 2).attr('y', h / 4).attr('text-anchor', 'middle')
+        .text('all ' + all.length + ' runs equal (spread ≤ 1e-9 of the best)');
     g.append('g').attr('class', 'axis').attr('transform', 'translate(0,' + h + ')')
       .call(d3.svg.axis().scale(x).orient('bottom').tickFormat(function (i) { return d.conditions[i]; }))
       .selectAll('text').attr('transform', 'rotate(-35)').style('text-anchor', 'end');
     g.append('text').attr('class', 'label').attr('transform', 'rotate(-90)').attr('x', -h / 2).attr('y', -50)
-      .attr('text-anchor', 'middle').text('final ' + d.metric);
+      .attr('text-anchor', 'middle').text('final ' + d.metric + axis.label);
     d.optimizers.forEach(function (opt, oi) {
       var col = colorOf('opt:' + opt);
       d.conditions.forEach(function (cond, ci) {
@@ -268,15 +295,15 @@
         if (!v.length) return;
         var x0 = x(ci) + inner(oi), bw = inner.rangeBand(), mid = x0 + bw / 2;
         var q1 = d3.quantile(v, 0.25), q2 = d3.quantile(v, 0.5), q3 = d3.quantile(v, 0.75);
-        g.append('path').attr('class', 'series whisker').attr('d', 'M' + mid + ',' + y(v[0]) + 'V' + y(v[v.length - 1]))
+        g.append('path').attr('class', 'series whisker').attr('d', 'M' + mid + ',' + y(shown(v[0])) + 'V' + y(shown(v[v.length - 1])))
           .style('stroke', col);
-        g.append('rect').attr('class', 'box').attr('x', x0).attr('width', bw).attr('y', y(q3))
-          .attr('height', Math.max(1, y(q1) - y(q3))).style('stroke', col).style('fill', col).style('fill-opacity', 0.15);
-        g.append('path').attr('class', 'series median').attr('d', 'M' + x0 + ',' + y(q2) + 'H' + (x0 + bw)).style('stroke', col)
+        g.append('rect').attr('class', 'box').attr('x', x0).attr('width', bw).attr('y', y(shown(q3)))
+          .attr('height', Math.max(1, y(shown(q1)) - y(shown(q3)))).style('stroke', col).style('fill', col).style('fill-opacity', 0.15);
+        g.append('path').attr('class', 'series median').attr('d', 'M' + x0 + ',' + y(shown(q2)) + 'H' + (x0 + bw)).style('stroke', col)
           .style('stroke-width', 2);
         v.forEach(function (val, k) {  // deterministic spread across the box
           g.append('circle').attr('class', 'point').attr('r', 1.8)
-            .attr('cx', x0 + bw * (0.15 + 0.7 * ((k * 0.618034) % 1))).attr('cy', y(val)).style('fill', col).style('opacity', 0.6)
+            .attr('cx', x0 + bw * (0.15 + 0.7 * ((k * 0.618034) % 1))).attr('cy', y(shown(val))).style('fill', col).style('opacity', 0.6)
             .append('title').text(opt + ', ' + cond + ': ' + fmt(val));
         });
       });

@@ -15,7 +15,7 @@
 
 namespace dampbench::sweep {
 
-inline constexpr int kStoreFormat = 2;  ///< 2: identifiability table, runs.local_optimum
+inline constexpr int kStoreFormat = 2;  ///< the schema's version (store.hpp): Store::open refuses another
 
 struct StorePart {
   std::string name, title, path, source;
