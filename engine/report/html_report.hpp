@@ -7,7 +7,8 @@
 //     residual over time; records longer than `max_points` samples are drawn at every k-th sample;
 //   - per condition and model: best-so-far metric against evaluations, each run, and per optimizer the median
 //     and interquartile band over runs (sweep::convergence_band);
-//   - per model: the final metric of every run per condition and optimizer (box and points);
+//   - per model: the final metric of every run per condition and optimizer (box and points; relative to the
+//     best run when the runs agree to more digits than an axis label holds, one line when they agree to 1e-9);
 //   - fixed-target runtime ECDFs where a split compares optimizers (the `runtime` tables' numbers);
 //   - identified parameters against operating variables with the fitted law drawn through them;
 //   - the sweep's tables and the store's fingerprint.
