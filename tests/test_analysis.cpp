@@ -384,6 +384,27 @@ class TinyStore : public ::testing::Test {
   std::string store_path_;
 };
 
+TEST_F(TinyStore, EveryRegisteredKindMakesItsTablesAndNoOtherNameDoes) {
+  // The registry is the one list of kinds: each name it gives makes tables whose ids carry the kind's name (the
+  // fvd set numbers its tables instead), and a name it does not give is refused with the list.
+  const std::vector<std::string> kinds = table_kinds();
+  ASSERT_EQ(kinds.size(), 14u);
+  for (const std::string& kind : kinds) {
+    std::vector<Table> made;
+    EXPECT_NO_THROW(made = tables(kind)) << kind;
+    for (const Table& t : made)
+      EXPECT_TRUE(kind == "fvd" || t.id.starts_with(kind))
+          << kind << " made " << t.id;
+  }
+  try {
+    tables("plots");
+    ADD_FAILURE() << "an unregistered kind was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown table kind 'plots' (known: runs, param-stats,"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(TinyStore, RunStatisticsByHand) {
   const auto all = tables("runs", [](TableSpec& t) { t.splits = {"each"}; });
   // Model 0 with optimizer a: per dataset d the values {1, 2, 3} + d → mean 2 + d, max 3 + d, min 1 + d, std 1.
