@@ -3,7 +3,6 @@
 
 #include "engine/common/random.hpp"
 #include "engine/sweep/analysis.hpp"
-
 #include "engine/sweep/tables/kinds.hpp"
 
 namespace dampbench::sweep::tables {

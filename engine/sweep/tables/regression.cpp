@@ -8,7 +8,6 @@
 #include "engine/common/error.hpp"
 #include "engine/model/parameter_law.hpp"
 #include "engine/sweep/analysis.hpp"
-
 #include "engine/sweep/tables/kinds.hpp"
 
 namespace dampbench::sweep::tables {

@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include "engine/sweep/analysis.hpp"
-
 #include "engine/sweep/tables/kinds.hpp"
 
 namespace dampbench::sweep::tables {
