@@ -17,13 +17,14 @@ set(DAMPBENCH_LAYERS
   "optimizers"            7   # the algorithms and their registry
   "models/lssvm"          8   # LS-SVM tunes its hyperparameters with an optimizer of the registry
   "datasets"              9   # generators of the synthetic grids (the sweep generates them on first use)
-  "engine/sweep"          10  # sweep files, scheduling, the results store, tables from it
-  "engine/report"         11  # HTML reports from stores
-  "engine/distributed"    12  # MPI and shards
-  "engine/cli"            13  # the command line
-  "bench"                 14
-  "docs/extending"        14  # the examples of docs/extending.md
-  "tests"                 15
+  "engine/fit"            10  # one fit from request to outcome: model by name, records, bounds, runs, evidence
+  "engine/sweep"          11  # sweep files, scheduling, the results store, tables from it
+  "engine/report"         12  # HTML reports from stores
+  "engine/distributed"    13  # MPI and shards
+  "engine/cli"            14  # the command line
+  "bench"                 15
+  "docs/extending"        15  # the examples of docs/extending.md
+  "tests"                 16
 )
 
 # Sets ${out} to the layer number of a repository-relative path, or to "" when no prefix matches.
@@ -85,7 +86,7 @@ if(DEFINED SELF_TEST)
   file(WRITE "${SELF_TEST}/engine/stray.cpp" "int x;\n")
   check_tree("${SELF_TEST}" problems)
   list(LENGTH problems count)
-  string(FIND "${problems}" "engine/record/csv_loader.cpp (layer 1) includes \"engine/sweep/spec.hpp\" (layer 10)" upward)
+  string(FIND "${problems}" "engine/record/csv_loader.cpp (layer 1) includes \"engine/sweep/spec.hpp\" (layer 11)" upward)
   string(FIND "${problems}" "engine/stray.cpp: its folder has no layer" stray)
   if(NOT count EQUAL 2 OR upward EQUAL -1 OR stray EQUAL -1)
     message(FATAL_ERROR "self-test: expected exactly the upward include and the stray file, got ${count}:\n${problems}")

@@ -73,7 +73,7 @@ TEST(Cli, SimulateThenFitRecoversParameters) {
   EXPECT_LE(j.at("runs").at("best").get<double>(), j.at("runs").at("mean").get<double>());
 }
 
-// Issue 13: fit's defaults for a model with internal states find the optimum. A Spencer record simulated with
+// Fit's defaults for a model with internal states find the optimum. A Spencer record simulated with
 // parameters inside the default box (10 mm, 1 Hz, like the UTFSM tests) is fitted exactly by the defaults (ga-lm
 // 24 × 30, 4 runs, under 1 s): measured over seeds 1-10, the best run is exact every time and 29 of the 40 runs
 // are (the others end in local optima at nrmse 1e-4 to 0.09), so the runs agree at 6 of the 10 seeds; the old

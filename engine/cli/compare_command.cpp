@@ -14,13 +14,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/model/bounds.hpp"
+#include "engine/cli/cli_options.hpp"
 #include "engine/common/error.hpp"
-#include "engine/common/text_file.hpp"
 #include "engine/common/key_values.hpp"
-#include "engine/model/law_model.hpp"
+#include "engine/common/text_file.hpp"
+#include "engine/fit/fit_records.hpp"
+#include "engine/fit/resolve_model.hpp"
 #include "engine/model/metrics.hpp"
-#include "models/registry.hpp"
 #include "optimizers/comparison.hpp"
 
 namespace dampbench::cli {
@@ -29,12 +29,7 @@ void add_compare_options(CLI::App* cmd, CompareOptions& o) {
   cmd->add_option("--model", o.model, "model id (see `dampbench models`)")->required();
   cmd->add_option("--laws", o.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
   cmd->add_option("--data", o.paths, "test record (CSV); repeat for several conditions fitted at once")->required();
-  cmd->add_option("--units", o.data.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
-  cmd->add_option("--columns", o.data.columns, "column names of a file without header, e.g. t,x,v,F");
-  cmd->add_option("--transform", o.data.transform, "slider-crank or slider-crank-printed: crfd rig MTS record to angle and torque");
-  cmd->add_option("--average-cycles", o.data.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
-  cmd->add_option("--conditions", o.data.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
-  cmd->add_option("--set", o.data.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
+  add_data_options(cmd, o.data);
   cmd->add_option("--optimizer", o.optimizers,
                   "NAME[:population=N,iterations=N,key=value,...]; repeat, e.g. --optimizer pso --optimizer "
                   "ga:population=80 --optimizer ga-sqp:population=240,constraint=0.04")
@@ -51,10 +46,6 @@ void add_compare_options(CLI::App* cmd, CompareOptions& o) {
 }
 
 namespace {
-
-nlohmann::ordered_json json_number(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
 
 nlohmann::ordered_json to_json(const Comparison& c, const CompareOptions& o, const Model& model, double wall_s) {
   nlohmann::ordered_json j;
@@ -111,12 +102,9 @@ int compare_command(const CompareOptions& o) {
     throw InputError(fmt::format("--max-evaluations: expected a whole number >= 0, got {}", o.max_evaluations));
   if (o.optimizers.empty()) throw InputError("compare: give at least one --optimizer");
 
-  const Model* model = &find_model(o.model);
-  std::unique_ptr<LawModel> law_model;
-  if (!o.laws.empty()) {
-    law_model = std::make_unique<LawModel>(*model, parse_laws(o.laws, "--laws"));
-    model = law_model.get();
-  }
+  const ResolvedModel resolved =
+      resolve_model(command_line_model(o.model, o.laws, o.bounds));
+  const Model* model = resolved.model;
   ComparisonSettings settings;
   settings.identification.metric = parse_metric(o.metric);
   settings.identification.runs = o.runs;
@@ -127,18 +115,10 @@ int compare_command(const CompareOptions& o) {
   std::vector<ComparisonEntry> entries;
   for (const std::string& text : o.optimizers) entries.push_back({std::string(trim(text)), parse_optimizer_entry(text)});
 
-  std::vector<Signals> signals;
-  for (const std::string& path : o.paths) {
-    RecordOptions d = o.data;
-    d.path = path;
-    signals.push_back(prepare_signals(load_record(d, true)));
-    if (law_model) law_model->check_variables(signals.back());
-    settings.data_name += (settings.data_name.empty() ? "" : "+") + signals.back().name;
-  }
-  std::vector<const Signals*> data;
-  for (const Signals& s : signals) data.push_back(&s);
-  Bounds bounds = default_bounds(*model, data);
-  if (!o.bounds.empty()) override_bounds(bounds, *model, o.bounds);
+  const FitRecords records = load_fit_records(*model, o.paths, o.data);
+  settings.data_name = records.names;
+  const std::vector<const Signals*> data = records.pointers();
+  const Bounds bounds = resolved.bounds_for(data);
 
   const auto start = std::chrono::steady_clock::now();
   const Comparison c = compare_optimizers(*model, data, bounds, entries, settings);

@@ -1,11 +1,11 @@
 #pragma once
-// `dampbench compare`: several optimizers on the same (model, datasets), side by side (issue: optimizer
-// comparison): best, worst, mean, std of the metric, success rate, evaluations to a target, convergence.
+// `dampbench compare`: several optimizers on the same (model, datasets), side by side: best, worst, mean, std of
+// the metric, success rate, evaluations to a target, convergence.
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "engine/cli/commands.hpp"
+#include "engine/record/record_options.hpp"
 
 namespace CLI {
 class App;

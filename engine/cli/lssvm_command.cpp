@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
+#include "engine/cli/cli_options.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/table.hpp"
 #include "models/lssvm/lssvm.hpp"
@@ -19,16 +20,12 @@ namespace dampbench::cli {
 namespace {
 
 /// Without --max-train, at most this many training samples, evenly spaced over the records, with a note in the
-/// output (issue 13: tens of thousands of samples train without a flag). The kernel matrix is N² doubles and each
-/// decomposition O(N³): measured on the 2-core AMD EPYC, GA tuning (50 × 500) takes 29 s of CPU at 1 260 samples
-/// (the paper's) and 64 s wall at 2 000 (six UTFSM files, 47 367 samples available); 5 000 would take ~15 min.
+/// output, so that a command over many long records finishes without a flag. The kernel matrix is N² doubles and
+/// each decomposition O(N³): GA tuning (50 × 500) at 2 000 samples takes about a minute on two cores, at 5 000
+/// it would take some fifteen.
 constexpr int kDefaultMaxTrain = 2000;
 /// With --max-train 0 (all), more samples than this are refused: 20 000² doubles are 3.2 GB.
 constexpr int kMaxTrainAll = 20000;
-
-nlohmann::ordered_json json_number(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
 
 nlohmann::ordered_json metrics_json(const lssvm::ErrorMetrics& m) {
   return {{"mse", json_number(m.mse)},         {"mae", json_number(m.mae)},     {"max_abs", json_number(m.max_abs)},
@@ -77,28 +74,26 @@ void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
   add_data_options(cmd, o.data);
 }
 
-int lssvm_command(const LssvmOptions& o) {
-  if (o.format != "md" && o.format != "json")
-    throw InputError(fmt::format("--format: expected md or json, got '{}'", o.format));
-  const lssvm::Lags lags = lssvm::parse_lags(o.lags);
+namespace {
+
+/// The GA (or, for the free-run fitness, PSO) settings the options ask for.
+lssvm::TuneSettings tune_settings(const LssvmOptions& o) {
   lssvm::TuneSettings settings;
   settings.fitness = lssvm::parse_fitness(o.fitness);
   settings.validation_fraction = o.validation;
   // A free-run candidate costs a kernel matrix and a Cholesky solve (~0.2 s at 2 000 rows), where the validation
-  // fitness shares eigendecompositions: PSO 16 × 16 = 256 evaluations (models/lssvm/tuning.cpp, README's LS-SVM section).
+  // fitness shares eigendecompositions: PSO 16 × 16 = 256 evaluations (models/lssvm/tuning.cpp).
   const bool tune_free_run = settings.fitness == lssvm::Fitness::free_run;
   settings.population = o.population.value_or(tune_free_run ? 16 : 50);
   settings.generations = o.generations.value_or(tune_free_run ? 16 : 500);
   settings.seed = o.seed;
-  const bool fixed = !std::isnan(o.c) || !std::isnan(o.sigma);
-  if (fixed && (std::isnan(o.c) || std::isnan(o.sigma)))
-    throw InputError("lssvm: give both --c and --sigma (fixed hyperparameters) or neither (GA tuning)");
-  if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
-  if (o.test.empty()) throw InputError("lssvm: no --test records");
+  return settings;
+}
 
-  const std::vector<Dataset> train = load_records(o.train, o.data);
-  const std::vector<Dataset> test = load_records(o.test, o.data);
-  // The current is a regressor input; a record without one is taken as 0 A (lssvm.hpp), and the output says so.
+/// The records the current is missing from (taken as 0 A, lssvm.hpp); InputError or DataError for test records
+/// that cannot be predicted.
+std::vector<std::string> check_records(const std::vector<Dataset>& train, const std::vector<Dataset>& test,
+                                       const lssvm::Lags& lags) {
   std::vector<std::string> without_current;
   for (const auto* records : {&train, &test})
     for (const Dataset& r : *records)
@@ -112,18 +107,179 @@ int lssvm_command(const LssvmOptions& o) {
     if (r.size() < static_cast<std::size_t>(lags.first()) + 1)
       throw InputError(fmt::format("lssvm: test record '{}' has {} samples; lags {} need at least {}", r.name, r.size(),
                                    lssvm::format_lags(lags), lags.first() + 1));
+  return without_current;
+}
+
+/// The training rows, at most --max-train of them (the default cap without it), and the note that says so.
+lssvm::TrainingRows training_rows(const std::vector<Dataset>& train, const lssvm::Lags& lags, const LssvmOptions& o,
+                                  std::string& subsampled) {
   const int cap = o.max_train.value_or(kDefaultMaxTrain);  // build_rows rejects a negative one
-  const lssvm::TrainingRows rows = lssvm::build_rows(train, lags, cap);
+  lssvm::TrainingRows rows = lssvm::build_rows(train, lags, cap);
   if (cap == 0 && rows.size() > kMaxTrainAll)
     throw InputError(fmt::format("lssvm: {} training samples; the kernel matrix would take {:.1f} GB and each "
                                  "solve O(N³): pass --max-train N (the paper used 1260; default {})",
                                  rows.size(), 8.0 * rows.size() * rows.size() / 1e9, kDefaultMaxTrain));
   // Said in the output whenever rows were dropped.
-  const std::string subsampled =
+  subsampled =
       rows.size() < rows.available
           ? fmt::format(" of {} (evenly spaced: {}; --max-train N to change, 0 for all)", rows.available,
                         o.max_train ? "--max-train" : fmt::format("the default cap of {} without --max-train", kDefaultMaxTrain))
           : "";
+  return rows;
+}
+
+struct TestResults {
+  std::vector<RecordResult> records;
+  lssvm::ErrorMetrics one_step, free_run;  ///< pooled over every test record
+};
+
+/// One-step and free-run predictions of every test record, in parallel; metrics pooled afterwards in record order
+/// (same bits for any thread count).
+TestResults test_model(const lssvm::Model& model, const std::vector<Dataset>& test, const lssvm::Lags& lags) {
+  const std::size_t from = static_cast<std::size_t>(lags.first());
+  std::vector<std::vector<double>> one_pred(test.size()), free_pred(test.size());
+  tbb::parallel_for(std::size_t{0}, test.size(), [&](std::size_t k) {
+    one_pred[k] = model.predict_one_step(test[k]);
+    free_pred[k] = model.simulate(test[k]);
+  });
+  TestResults out;
+  lssvm::MetricAccumulator all_one, all_free;
+  for (std::size_t k = 0; k < test.size(); ++k) {
+    lssvm::MetricAccumulator one, free;
+    one.add(test[k].F_N, one_pred[k], from);
+    free.add(test[k].F_N, free_pred[k], from);
+    out.records.push_back({test[k].name, one.finish(), free.finish()});
+    all_one.add(test[k].F_N, one_pred[k], from);
+    all_free.add(test[k].F_N, free_pred[k], from);
+  }
+  out.one_step = all_one.finish();
+  out.free_run = all_free.finish();
+  return out;
+}
+
+/// Everything the output shows besides the test metrics.
+struct LssvmRun {
+  const lssvm::TuneSettings& settings;
+  const lssvm::TuneResult& tuned;
+  bool fixed = false;
+  double seconds = 0;
+  const lssvm::Lags& lags;
+  const lssvm::TrainingRows& rows;
+  std::size_t train_records = 0, test_records = 0;
+  const std::vector<std::string>& without_current;
+  const std::string& subsampled;
+};
+
+void print_json(const LssvmRun& run, const TestResults& results) {
+  const lssvm::TuneResult& tuned = run.tuned;
+  nlohmann::ordered_json j;
+  j["c"] = tuned.c;
+  j["sigma"] = tuned.sigma;
+  j["tuned"] = !run.fixed;
+  j["fitness"] = std::string(lssvm::fitness_name(run.settings.fitness));
+  if (!run.fixed) {
+    j["objective"] = json_number(tuned.objective);
+    if (run.settings.fitness == lssvm::Fitness::paper) j["paper_fitness"] = json_number(1.0 / (tuned.objective + 1e-6));
+    j["factorizations"] = tuned.factorizations;
+    j["evaluations"] = tuned.evaluations;
+    j["fit_samples"] = tuned.fit_rows;
+    j["validation_samples"] = tuned.validation_rows;
+    if (run.settings.fitness == lssvm::Fitness::free_run) j["free_run_samples"] = tuned.free_run_samples;
+  }
+  j["lags"] = {{"d", run.lags.d}, {"v", run.lags.v}, {"y", run.lags.y}};
+  j["train_samples"] = run.rows.size();
+  j["train_samples_available"] = run.rows.available;
+  j["records_without_current"] = run.without_current;
+  j["one_step"] = metrics_json(results.one_step);
+  j["free_run"] = metrics_json(results.free_run);
+  nlohmann::ordered_json recs = nlohmann::ordered_json::array();
+  for (const RecordResult& r : results.records)
+    recs.push_back({{"name", r.name}, {"one_step", metrics_json(r.one_step)}, {"free_run", metrics_json(r.free_run)}});
+  j["records"] = recs;
+  std::cout << j.dump(2) << "\n";
+}
+
+/// The tuning's lines of the Markdown output: fitness, search and its cost.
+void print_tuning(const LssvmRun& run) {
+  const lssvm::TuneSettings& settings = run.settings;
+  const lssvm::TuneResult& tuned = run.tuned;
+  const bool tune_free_run = settings.fitness == lssvm::Fitness::free_run;
+  if (settings.fitness == lssvm::Fitness::validation)
+    std::cout << fmt::format("- fitness: validation, one-step MSE on the last {:g} % of each training record "
+                             "({} fitted + {} held out)\n",
+                             100 * settings.validation_fraction, tuned.fit_rows, tuned.validation_rows);
+  else if (tune_free_run)
+    std::cout << fmt::format("- fitness: free run, MSE of the model's own simulation of the last {:g} % of each "
+                             "training record ({} fitted rows; {} samples simulated from each record's first "
+                             "held-out sample)\n",
+                             100 * settings.validation_fraction, tuned.fit_rows, tuned.free_run_samples);
+  else
+    std::cout << fmt::format("- fitness: paper eq. 8, 1/(training SSE + 1e-6) = {} on {} samples\n",
+                             format_number(1.0 / (tuned.objective + 1e-6)), tuned.fit_rows);
+  if (tune_free_run)
+    std::cout << fmt::format(
+        "- PSO over log10 c and log10 sigma: {} particles, {} iterations; c in [{:g}, {:g}], sigma in [{:g}, {:g}] "
+        "(grid of {} per decade); {} evaluations (one Cholesky solve each), {:.1f} s\n",
+        settings.population, settings.generations, settings.c_min, settings.c_max, settings.sigma_min,
+        settings.sigma_max, settings.sigma_per_decade, tuned.evaluations, run.seconds);
+  else
+    std::cout << fmt::format(
+        "- GA: population {}, {} generations, pc {:g}, pm {:g}; c in [{:g}, {:g}], sigma in [{:g}, {:g}] "
+        "(grid of {} per decade); {} evaluations, {} eigendecompositions, {:.1f} s\n",
+        settings.population, settings.generations, settings.pc, settings.pm, settings.c_min, settings.c_max,
+        settings.sigma_min, settings.sigma_max, settings.sigma_per_decade, tuned.evaluations, tuned.factorizations,
+        run.seconds);
+}
+
+void print_markdown(const LssvmRun& run, const TestResults& results) {
+  std::cout << "# LS-SVM damper model (lssvm paper)\n\n";
+  std::cout << fmt::format("- training: {} records, {} samples{}; lags {} ({} inputs)\n", run.train_records,
+                           run.rows.size(), run.subsampled, lssvm::format_lags(run.lags), run.lags.dim());
+  if (!run.without_current.empty()) {
+    std::string names;
+    for (const std::string& n : run.without_current) names += (names.empty() ? "" : ", ") + n;
+    std::cout << fmt::format("- current: {} of {} records have no operating variable I and are taken as 0 A (give it "
+                             "with --set I=..., --conditions utfsm, a column or a '# operating:' line): {}\n",
+                             run.without_current.size(), run.train_records + run.test_records, names);
+  }
+  if (run.fixed) std::cout << "- hyperparameters given (no GA)\n";
+  else print_tuning(run);
+  std::cout << fmt::format("- c = {}, sigma = {}{}\n\n", format_number(run.tuned.c), format_number(run.tuned.sigma),
+                           run.fixed ? "" : fmt::format(" (objective {} N²)", format_number(run.tuned.objective)));
+  Table t{"lssvm_test", "Test metrics: one-step-ahead | free run (e = F_measured − F_model; max rel = max abs / max abs F)",
+          {"record", "samples", "1-step MSE [N²]", "MAE [N]", "max abs [N]", "max rel", "nrmse", "free MSE [N²]",
+           "MAE [N]", "max abs [N]", "max rel", "nrmse"},
+          {}};
+  auto row = [&](const std::string& name, const lssvm::ErrorMetrics& a, const lssvm::ErrorMetrics& b) {
+    std::vector<Cell> cells{name, std::to_string(a.samples)};
+    for (auto& c : metric_cells(a)) cells.push_back(c);
+    for (auto& c : metric_cells(b)) cells.push_back(c);
+    t.rows.push_back(cells);
+  };
+  for (const RecordResult& r : results.records) row(r.name, r.one_step, r.free_run);
+  if (results.records.size() > 1) row("all", results.one_step, results.free_run);
+  std::cout << t.to_markdown() << "\n";
+}
+
+}  // namespace
+
+int lssvm_command(const LssvmOptions& o) {
+  if (o.format != "md" && o.format != "json")
+    throw InputError(fmt::format("--format: expected md or json, got '{}'", o.format));
+  const lssvm::Lags lags = lssvm::parse_lags(o.lags);
+  const lssvm::TuneSettings settings = tune_settings(o);
+  const bool fixed = !std::isnan(o.c) || !std::isnan(o.sigma);
+  if (fixed && (std::isnan(o.c) || std::isnan(o.sigma)))
+    throw InputError("lssvm: give both --c and --sigma (fixed hyperparameters) or neither (GA tuning)");
+  if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
+  if (o.test.empty()) throw InputError("lssvm: no --test records");
+
+  const std::vector<Dataset> train = load_records(o.train, o.data);
+  const std::vector<Dataset> test = load_records(o.test, o.data);
+  // The current is a regressor input; a record without one is taken as 0 A (lssvm.hpp), and the output says so.
+  const std::vector<std::string> without_current = check_records(train, test, lags);
+  std::string subsampled;
+  const lssvm::TrainingRows rows = training_rows(train, lags, o, subsampled);
 
   lssvm::TuneResult tuned;
   double seconds = 0;
@@ -136,109 +292,10 @@ int lssvm_command(const LssvmOptions& o) {
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   const lssvm::Model model = lssvm::Model::train(rows, lags, tuned.c, tuned.sigma);
-
-  // Records predicted in parallel; metrics pooled afterwards in record order (same bits for any thread count).
-  const std::size_t from = static_cast<std::size_t>(lags.first());
-  std::vector<std::vector<double>> one_pred(test.size()), free_pred(test.size());
-  tbb::parallel_for(std::size_t{0}, test.size(), [&](std::size_t k) {
-    one_pred[k] = model.predict_one_step(test[k]);
-    free_pred[k] = model.simulate(test[k]);
-  });
-  std::vector<RecordResult> results;
-  lssvm::MetricAccumulator all_one, all_free;
-  for (std::size_t k = 0; k < test.size(); ++k) {
-    lssvm::MetricAccumulator one, free;
-    one.add(test[k].F_N, one_pred[k], from);
-    free.add(test[k].F_N, free_pred[k], from);
-    results.push_back({test[k].name, one.finish(), free.finish()});
-    all_one.add(test[k].F_N, one_pred[k], from);
-    all_free.add(test[k].F_N, free_pred[k], from);
-  }
-  const lssvm::ErrorMetrics one_step = all_one.finish(), free_run = all_free.finish();
-
-  if (o.format == "json") {
-    nlohmann::ordered_json j;
-    j["c"] = tuned.c;
-    j["sigma"] = tuned.sigma;
-    j["tuned"] = !fixed;
-    j["fitness"] = std::string(lssvm::fitness_name(settings.fitness));
-    if (!fixed) {
-      j["objective"] = json_number(tuned.objective);
-      if (settings.fitness == lssvm::Fitness::paper) j["paper_fitness"] = json_number(1.0 / (tuned.objective + 1e-6));
-      j["factorizations"] = tuned.factorizations;
-      j["evaluations"] = tuned.evaluations;
-      j["fit_samples"] = tuned.fit_rows;
-      j["validation_samples"] = tuned.validation_rows;
-      if (tune_free_run) j["free_run_samples"] = tuned.free_run_samples;
-    }
-    j["lags"] = {{"d", lags.d}, {"v", lags.v}, {"y", lags.y}};
-    j["train_samples"] = rows.size();
-    j["train_samples_available"] = rows.available;
-    j["records_without_current"] = without_current;
-    j["one_step"] = metrics_json(one_step);
-    j["free_run"] = metrics_json(free_run);
-    nlohmann::ordered_json recs = nlohmann::ordered_json::array();
-    for (const RecordResult& r : results)
-      recs.push_back({{"name", r.name}, {"one_step", metrics_json(r.one_step)}, {"free_run", metrics_json(r.free_run)}});
-    j["records"] = recs;
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-
-  std::cout << "# LS-SVM damper model (lssvm paper)\n\n";
-  std::cout << fmt::format("- training: {} records, {} samples{}; lags {} ({} inputs)\n", train.size(), rows.size(),
-                           subsampled, lssvm::format_lags(lags), lags.dim());
-  if (!without_current.empty()) {
-    std::string names;
-    for (const std::string& n : without_current) names += (names.empty() ? "" : ", ") + n;
-    std::cout << fmt::format("- current: {} of {} records have no operating variable I and are taken as 0 A (give it "
-                             "with --set I=..., --conditions utfsm, a column or a '# operating:' line): {}\n",
-                             without_current.size(), train.size() + test.size(), names);
-  }
-  if (fixed) {
-    std::cout << "- hyperparameters given (no GA)\n";
-  } else {
-    if (settings.fitness == lssvm::Fitness::validation)
-      std::cout << fmt::format("- fitness: validation, one-step MSE on the last {:g} % of each training record "
-                               "({} fitted + {} held out)\n",
-                               100 * settings.validation_fraction, tuned.fit_rows, tuned.validation_rows);
-    else if (tune_free_run)
-      std::cout << fmt::format("- fitness: free run, MSE of the model's own simulation of the last {:g} % of each "
-                               "training record ({} fitted rows; {} samples simulated from each record's first "
-                               "held-out sample)\n",
-                               100 * settings.validation_fraction, tuned.fit_rows, tuned.free_run_samples);
-    else
-      std::cout << fmt::format("- fitness: paper eq. 8, 1/(training SSE + 1e-6) = {} on {} samples\n",
-                               format_number(1.0 / (tuned.objective + 1e-6)), tuned.fit_rows);
-    if (tune_free_run)
-      std::cout << fmt::format(
-          "- PSO over log10 c and log10 sigma: {} particles, {} iterations; c in [{:g}, {:g}], sigma in [{:g}, {:g}] "
-          "(grid of {} per decade); {} evaluations (one Cholesky solve each), {:.1f} s\n",
-          settings.population, settings.generations, settings.c_min, settings.c_max, settings.sigma_min,
-          settings.sigma_max, settings.sigma_per_decade, tuned.evaluations, seconds);
-    else
-      std::cout << fmt::format(
-          "- GA: population {}, {} generations, pc {:g}, pm {:g}; c in [{:g}, {:g}], sigma in [{:g}, {:g}] "
-          "(grid of {} per decade); {} evaluations, {} eigendecompositions, {:.1f} s\n",
-          settings.population, settings.generations, settings.pc, settings.pm, settings.c_min, settings.c_max,
-          settings.sigma_min, settings.sigma_max, settings.sigma_per_decade, tuned.evaluations, tuned.factorizations,
-          seconds);
-  }
-  std::cout << fmt::format("- c = {}, sigma = {}{}\n\n", format_number(tuned.c), format_number(tuned.sigma),
-                           fixed ? "" : fmt::format(" (objective {} N²)", format_number(tuned.objective)));
-  Table t{"lssvm_test", "Test metrics: one-step-ahead | free run (e = F_measured − F_model; max rel = max abs / max abs F)",
-          {"record", "samples", "1-step MSE [N²]", "MAE [N]", "max abs [N]", "max rel", "nrmse", "free MSE [N²]",
-           "MAE [N]", "max abs [N]", "max rel", "nrmse"},
-          {}};
-  auto row = [&](const std::string& name, const lssvm::ErrorMetrics& a, const lssvm::ErrorMetrics& b) {
-    std::vector<Cell> cells{name, std::to_string(a.samples)};
-    for (auto& c : metric_cells(a)) cells.push_back(c);
-    for (auto& c : metric_cells(b)) cells.push_back(c);
-    t.rows.push_back(cells);
-  };
-  for (const RecordResult& r : results) row(r.name, r.one_step, r.free_run);
-  if (results.size() > 1) row("all", one_step, free_run);
-  std::cout << t.to_markdown() << "\n";
+  const TestResults results = test_model(model, test, lags);
+  const LssvmRun run{settings, tuned, fixed, seconds, lags, rows, train.size(), test.size(), without_current, subsampled};
+  if (o.format == "json") print_json(run, results);
+  else print_markdown(run, results);
   return 0;
 }
 

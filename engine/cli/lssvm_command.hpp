@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/cli/commands.hpp"
+#include "engine/record/record_options.hpp"
 
 namespace CLI {
 class App;

@@ -6,7 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "engine/cli/preset.hpp"
+#include "engine/cli/run_command.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/report/store_report.hpp"

@@ -179,6 +179,27 @@ void check_result(const sweep::Plan& plan, const sweep::GroupRecord& r, int from
     throw StoreError(fmt::format("MPI: rank {} sent task group {} with another identity than this plan's", from, r.index));
 }
 
+/// A worker's hello, "host\nthreads cores\nfingerprint" (work()): counts its threads, notes once that a launcher
+/// confines workers to fewer threads than their node has cores, and refuses a worker that computes differently.
+void check_hello(const std::string& bytes, int from, const std::string& fingerprint, long long& worker_threads,
+                 int& confined) {
+  const auto first = bytes.find('\n'), second = bytes.find('\n', first + 1);
+  const std::string host = bytes.substr(0, first), theirs = bytes.substr(second == std::string::npos ? 0 : second + 1);
+  int threads = 0, cores = 0;
+  std::sscanf(bytes.substr(first + 1, second - first - 1).c_str(), "%d %d", &threads, &cores);
+  worker_threads += threads;
+  if (threads < cores && ++confined == 1)
+    std::cerr << fmt::format("note: rank {} runs {} thread(s) on host {}, which has {} cores: the launcher confines "
+                             "it (mpirun binds ranks to cores by default); with one rank per node, give mpirun "
+                             "--bind-to none\n",
+                             from, threads, host, cores);
+  if (theirs != fingerprint)
+    throw InputError(fmt::format(
+        "rank {} (host {}) is not running the same computation as rank 0 (host {}): it has\n  {}\nrank 0 has\n"
+        "  {}\n(identical results need the same binary, CPU type, sweep file and data on every node)",
+        from, host, host_name(), theirs, fingerprint));
+}
+
 }  // namespace
 
 MpiJob::MpiJob() {
@@ -235,25 +256,9 @@ sweep::RunnerSummary coordinate(const MpiJob& job, const sweep::Plan& plan, swee
     ++messages;
     message_bytes += static_cast<double>(bytes.size());
     switch (status.MPI_TAG) {
-      case kHello: {
-        // "host\nthreads cores\nfingerprint" (work())
-        const auto first = bytes.find('\n'), second = bytes.find('\n', first + 1);
-        const std::string host = bytes.substr(0, first), theirs = bytes.substr(second == std::string::npos ? 0 : second + 1);
-        int threads = 0, cores = 0;
-        std::sscanf(bytes.substr(first + 1, second - first - 1).c_str(), "%d %d", &threads, &cores);
-        worker_threads += threads;
-        if (threads < cores && ++confined == 1)
-          std::cerr << fmt::format("note: rank {} runs {} thread(s) on host {}, which has {} cores: the launcher confines "
-                                   "it (mpirun binds ranks to cores by default); with one rank per node, give mpirun "
-                                   "--bind-to none\n",
-                                   from, threads, host, cores);
-        if (theirs != fingerprint)
-          throw InputError(fmt::format(
-              "rank {} (host {}) is not running the same computation as rank 0 (host {}): it has\n  {}\nrank 0 has\n"
-              "  {}\n(identical results need the same binary, CPU type, sweep file and data on every node)",
-              from, host, host_name(), theirs, fingerprint));
+      case kHello:
+        check_hello(bytes, from, fingerprint, worker_threads, confined);
         break;
-      }
       case kRequest: {
         long long group = kNoMoreGroups;
         if (next < todo.size() && !(options.stop && options.stop->load())) {

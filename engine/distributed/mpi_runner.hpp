@@ -1,5 +1,5 @@
 #pragma once
-// `mpirun -np K dampbench run SWEEP`: one sweep across the ranks of an MPI job (OpenMPI's C API; DESIGN.md,
+// `mpirun -np K dampbench run SWEEP`: one sweep across the ranks of an MPI job (OpenMPI's C API; docs/design.md,
 // "Results store and scale").
 //
 // Every rank reads the sweep file and its datasets (a cluster's shared file system) and builds the same plan.

@@ -1,5 +1,5 @@
 #pragma once
-// Convergence evidence of repeated identification runs (DESIGN.md "Evidence with every result"): do the
+// Convergence evidence of repeated identification runs (docs/design.md, "Evidence with every result"): do the
 // runs agree, and had the best one stopped improving? Printed by `fit`, stored and marked by sweeps.
 //
 //   runs agree  ⇔  median(best values) − best ≤ agree_rel·|best| + abs_tol

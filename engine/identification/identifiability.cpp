@@ -42,11 +42,14 @@ std::string Identifiability::summary(const Model& model) const {
   return out.empty() ? "ok" : out;
 }
 
-Identifiability assess_identifiability(const Model& model, std::span<const Signals* const> data, const Bounds& bounds,
-                                       std::span<const double> best_params) {
+namespace {
+
+/// The Jacobian of the scaled residuals at the best parameters by central differences, with a step relative to the
+/// value, or to the box where the value is 0; a step that would leave the box is taken one-sided. The best point
+/// and the 2p steps are simulated in one batch. `ssr` is the best point's sum of squared residuals.
+Eigen::MatrixXd residual_jacobian(const Model& model, std::span<const Signals* const> data, const Bounds& bounds,
+                                  std::span<const double> best_params, double& ssr) {
   const int p = model.dim();
-  // Central differences with a step relative to the value, or to the box where the value is 0; a step that
-  // would leave the box is taken one-sided. The best point and the 2p steps are simulated in one batch.
   std::vector<std::vector<double>> points{std::vector<double>(best_params.begin(), best_params.end())};
   std::vector<double> up(p), down(p);
   for (int j = 0; j < p; ++j) {
@@ -67,8 +70,37 @@ Identifiability assess_identifiability(const Model& model, std::span<const Signa
     const std::vector<double>&ru = residuals[static_cast<std::size_t>(1 + 2 * j)], &rd = residuals[static_cast<std::size_t>(2 + 2 * j)];
     for (Eigen::Index k = 0; k < n; ++k) J(k, j) = up[j] > down[j] ? (ru[k] - rd[k]) / (up[j] - down[j]) : 0.0;
   }
-  double ssr = 0;
+  ssr = 0;
   for (double v : r0) ssr += v * v;
+  return J;
+}
+
+/// The flags of every estimated parameter (identifiability.hpp): not identifiable, correlated, at bound.
+void flag_parameters(const Model& model, const Bounds& bounds, std::span<const double> best_params,
+                     const std::vector<bool>& fixed, Identifiability& out) {
+  const int p = model.dim();
+  const auto params = model.parameters();
+  for (int j = 0; j < p; ++j) {
+    if (fixed[j]) continue;
+    if (!(out.relative_error[j] <= kMaxRelativeError)) out.flags[j].emplace_back(kNotIdentifiable);
+    for (int i = 0; i < p; ++i)
+      if (i != j && std::abs(out.correlation[i][j]) > kMaxCorrelation)
+        out.flags[j].push_back(fmt::format("{} with {} ({:+.3f})", kCorrelated, params[i].name, out.correlation[i][j]));
+    const double width = bounds.upper[j] - bounds.lower[j];
+    if (width > 0 && (best_params[j] - bounds.lower[j] <= kBoundTolerance * width ||
+                      bounds.upper[j] - best_params[j] <= kBoundTolerance * width))
+      out.flags[j].emplace_back(kAtBound);
+  }
+}
+
+}  // namespace
+
+Identifiability assess_identifiability(const Model& model, std::span<const Signals* const> data, const Bounds& bounds,
+                                       std::span<const double> best_params) {
+  const int p = model.dim();
+  double ssr = 0;
+  const Eigen::MatrixXd J = residual_jacobian(model, data, bounds, best_params, ssr);
+  const Eigen::Index n = J.rows();
   const double s2 = ssr / std::max<Eigen::Index>(n - p, 1);
 
   // cov = s²·V Σ⁻² Vᵀ over the resolved directions; a direction with a (near) zero singular value is
@@ -114,18 +146,7 @@ Identifiability assess_identifiability(const Model& model, std::span<const Signa
       else c = 0.0;
       out.correlation[i][j] = c;
     }
-  const auto params = model.parameters();
-  for (int j = 0; j < p; ++j) {
-    if (fixed[j]) continue;
-    if (!(out.relative_error[j] <= kMaxRelativeError)) out.flags[j].emplace_back(kNotIdentifiable);
-    for (int i = 0; i < p; ++i)
-      if (i != j && std::abs(out.correlation[i][j]) > kMaxCorrelation)
-        out.flags[j].push_back(fmt::format("{} with {} ({:+.3f})", kCorrelated, params[i].name, out.correlation[i][j]));
-    const double width = bounds.upper[j] - bounds.lower[j];
-    if (width > 0 && (best_params[j] - bounds.lower[j] <= kBoundTolerance * width ||
-                      bounds.upper[j] - best_params[j] <= kBoundTolerance * width))
-      out.flags[j].emplace_back(kAtBound);
-  }
+  flag_parameters(model, bounds, best_params, fixed, out);
   return out;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Identifiability evidence at a best fit (DESIGN.md "Evidence with every result"): standard errors and
+// Identifiability evidence at a best fit (docs/design.md, "Evidence with every result"): standard errors and
 // correlations of the parameters from the residual Jacobian, the classical nonlinear least-squares
 // covariance (Bates & Watts 1988, §2.3): cov = s²·(JᵀJ)⁻¹, s² = ‖r‖²/(N − p), with J = ∂r/∂p by central
 // differences at the best parameters and r the scaled residuals of identification.hpp (the scaling cancels).

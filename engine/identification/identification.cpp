@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include <tbb/parallel_for.h>
 #include <string>
@@ -104,34 +105,24 @@ class RunProblem final : public LocalProblem {
 
 }  // namespace
 
-Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
-                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
-  if (settings.runs < 1) throw InputError(fmt::format("runs must be at least 1, got {}", settings.runs));
-  if (data.empty()) throw InputError("identification needs at least one dataset");
-  for (const Signals* d : data)
-    if (!d->has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d->name));
-  validate_bounds(bounds, model);
-  const auto start = std::chrono::steady_clock::now();
+namespace {
 
+using Clock = std::chrono::steady_clock;
+using Runs = std::vector<std::unique_ptr<Optimizer>>;
+
+/// The population phase in lockstep: every unfinished run asks, one batch is evaluated, every run is told its
+/// slice, until each run's optimizer or budget stops it. Returns the evaluations spent.
+long long lockstep(const Model& model, const BatchEvaluator& evaluator, Runs& runs, Identification& result,
+                   const IdentificationSettings& settings, Clock::time_point start) {
   const int R = settings.runs;
-  std::vector<std::unique_ptr<Optimizer>> runs;
-  std::vector<int> offset(R + 1, 0);
-  for (int r = 0; r < R; ++r) {
-    runs.push_back(make_optimizer(bounds, hash_key({settings.seed, settings.task_key, static_cast<std::uint64_t>(r)})));
-    offset[r + 1] = offset[r] + runs[r]->batch_size();
-  }
-
-  Identification result;
-  result.runs.resize(R);
-  const BatchEvaluator evaluator(model, data, settings.grain_blocks);
-  CandidateBatch batch(model.dim(), offset[R]);
-  std::vector<double> values(offset[R]);
+  int capacity = 0;
+  for (const auto& run : runs) capacity += run->batch_size();
+  CandidateBatch batch(model.dim(), capacity);
+  std::vector<double> values(capacity);
   std::vector<int> active, first_row;  // unfinished runs and the first row of each one's candidates
   std::vector<int> stalled(R, 0);
   long long evaluations = 0;
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-
-  // Lockstep: every unfinished run asks, one batch is evaluated, every run is told its slice.
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   for (;;) {
     active.clear();
     first_row.clear();
@@ -146,10 +137,10 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
       first_row.push_back(rows);
       rows += runs[r]->batch_size();
     }
-    if (active.empty()) break;
+    if (active.empty()) return evaluations;
     if (rows != batch.count()) batch.resize(model.dim(), rows);
     // Each run's ask and tell touch only that run's state and rows, so the runs go across cores (the
-    // serial share of a generation, issue 16); a run's arithmetic is the same on any thread: same bits.
+    // serial share of a generation); a run's arithmetic is the same on any thread: same bits.
     const int A = static_cast<int>(active.size());
     tbb::parallel_for(0, A, [&](int i) { runs[active[i]]->ask(batch, first_row[i]); });
     evaluator.evaluate(batch, settings.metric, std::span(values.data(), rows));
@@ -165,6 +156,28 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
       run.trace_evaluations.push_back(run.evaluations);
     });
   }
+}
+
+}  // namespace
+
+Identification identify(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+                        const OptimizerFactory& make_optimizer, const IdentificationSettings& settings) {
+  if (settings.runs < 1) throw InputError(fmt::format("runs must be at least 1, got {}", settings.runs));
+  if (data.empty()) throw InputError("identification needs at least one dataset");
+  for (const Signals* d : data)
+    if (!d->has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d->name));
+  validate_bounds(bounds, model);
+  const auto start = Clock::now();
+
+  const int R = settings.runs;
+  Runs runs;
+  for (int r = 0; r < R; ++r)
+    runs.push_back(make_optimizer(bounds, hash_key({settings.seed, settings.task_key, static_cast<std::uint64_t>(r)})));
+
+  Identification result;
+  result.runs.resize(R);
+  const BatchEvaluator evaluator(model, data, settings.grain_blocks);
+  const long long evaluations = lockstep(model, evaluator, runs, result, settings, start);
 
   // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
   tbb::parallel_for(0, R, [&](int r) {
@@ -180,7 +193,7 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
   std::vector<MetricRow> metrics(R);
   evaluator.evaluate_all(best, metrics);
 
-  result.wall_time_s = elapsed();
+  result.wall_time_s = std::chrono::duration<double>(Clock::now() - start).count();
   result.candidate_samples = static_cast<double>(evaluations) * evaluator.samples();
   const int metric_index = static_cast<int>(settings.metric);
   for (int r = 0; r < R; ++r) {

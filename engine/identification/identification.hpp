@@ -1,6 +1,6 @@
 #pragma once
 // Repeated identification runs of one (model, dataset): R independent optimizer runs advance in
-// lockstep, each iteration's R·N candidates evaluated as one batch across cores (DESIGN.md, data flow).
+// lockstep, each iteration's R·N candidates evaluated as one batch across cores (docs/design.md, data flow).
 #include <array>
 #include <string>
 #include <cstdint>

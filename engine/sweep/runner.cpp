@@ -8,6 +8,9 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/parallel_pipeline.h>
@@ -15,14 +18,79 @@
 
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/common/error.hpp"
-#include "engine/model/law_model.hpp"
 #include "engine/evaluation/sensitivity.hpp"
-#include "engine/identification/convergence.hpp"
-#include "engine/identification/identifiability.hpp"
+#include "engine/fit/fit.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
 
 namespace dampbench::sweep {
+
+namespace {
+
+/// The records of a group, each loaded and checked against the model: the fit datasets, then the predicted ones.
+std::vector<const Signals*> group_records(const PartPlan& part, const FitSet& fs, const Model& model) {
+  auto checked = [&](int d) -> const Signals& {
+    const LoadedDataset& ld = part.datasets[d];
+    if (!ld.ok()) throw InputError(fmt::format("dataset '{}': {}", ld.signals.name, ld.error));
+    check_record(model, ld.signals);
+    return ld.signals;
+  };
+  std::vector<const Signals*> fit;
+  for (int d : fs.fit) fit.push_back(&checked(d));
+  for (int d : fs.predict) (void)checked(d);
+  return fit;
+}
+
+/// Every metric of each run's best parameters on each fit dataset of a joint fit, and on each predicted dataset.
+void dataset_metrics(const PartPlan& part, const FitSet& fs, const Model& model, const Identification& id,
+                     GroupRecord& rec) {
+  const int runs = static_cast<int>(id.runs.size());
+  CandidateBatch best(model.dim(), runs);
+  for (int r = 0; r < runs; ++r) best.set_candidate(r, id.runs[r].best_params);
+  std::vector<std::pair<int, bool>> singles;
+  if (fs.fit.size() > 1)
+    for (int d : fs.fit) singles.emplace_back(d, false);
+  for (int d : fs.predict) singles.emplace_back(d, true);
+  std::vector<MetricRow> rows(runs);
+  for (const auto& [d, predicted] : singles) {
+    BatchEvaluator(model, part.datasets[d].signals).evaluate_all(best, rows);
+    for (int r = 0; r < runs; ++r) rec.dataset_metrics.push_back({r, d, predicted, rows[r]});
+  }
+  sort_dataset_metrics(rec.dataset_metrics);
+}
+
+/// The split's differential sensitivity at the best run, when it asks for one on this (single) fit dataset.
+std::optional<SensitivityRecord> group_sensitivity(const PartPlan& part, const GroupRef& g, const FitSet& fs,
+                                                   const Model& model, const FitOutcome& fit) {
+  const SensitivitySpec& sens = part.spec->splits[g.split].sensitivity;
+  if (!sens.enabled || fs.fit.size() != 1) return std::nullopt;
+  const Signals& record = part.datasets[fs.fit[0]].signals;
+  if (!sens.where.matches(record.name, record.law_variables)) return std::nullopt;
+  SensitivitySettings ss;
+  ss.points = sens.points;
+  ss.range = sens.range;
+  ss.normalized = sens.normalized;
+  if (sens.objective != "rms") ss.metric = parse_metric(sens.objective);
+  const Sensitivity s = differential_sensitivity(model, fit.best().best_params, record, ss);
+  return SensitivityRecord{fs.fit[0], s.S, s.SP};
+}
+
+/// The fit of a group (engine/fit): its model, fit datasets, optimizer and budget, keyed by the group's task key.
+FitOutcome fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records) {
+  const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
+  FitRequest request;
+  request.model = &part.models[g.model];
+  request.records = records;
+  request.optimizer = &part.factories[g.optimizer];
+  request.settings.runs = g.runs;
+  request.settings.seed = part.spec->seed;
+  request.settings.task_key = g.task_key;
+  request.settings.metric = g.metric;
+  request.settings.budget = opt.budget;
+  return run_fit(request);
+}
+
+}  // namespace
 
 GroupRecord run_group(const Plan& plan, long long index) {
   const GroupRef g = plan.group(index);
@@ -35,66 +103,19 @@ GroupRecord run_group(const Plan& plan, long long index) {
   rec.spec_hash = plan.spec().hash;
   rec.dataset_hash = plan.group_dataset_hash(g);
   try {
-    const ResolvedModel& resolved = part.models[g.model];
-    const Model& model = *resolved.model;
-    const auto* law = dynamic_cast<const LawModel*>(&model);
-    auto signals_of = [&](int d) -> const Signals& {
-      const LoadedDataset& ld = part.datasets[d];
-      if (!ld.ok()) throw InputError(fmt::format("dataset '{}': {}", ld.signals.name, ld.error));
-      if (law) law->check_variables(ld.signals);
-      return ld.signals;
-    };
-    std::vector<const Signals*> data;
-    for (int d : fs.fit) data.push_back(&signals_of(d));
-    for (int d : fs.predict) (void)signals_of(d);
-
-    const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
-    IdentificationSettings settings;
-    settings.runs = g.runs;
-    settings.seed = part.spec->seed;
-    settings.task_key = g.task_key;
-    settings.metric = g.metric;
-    settings.budget = opt.budget;
-    const Bounds bounds = resolved.bounds_for(data);
-    const Identification id = identify(model, data, bounds, part.factories[g.optimizer], settings);
-
+    const Model& model = *part.models[g.model].model;
+    const FitOutcome fit = fit_group(part, g, group_records(part, fs, model));
+    const Identification& id = fit.identification;
     rec.wall_time_s = id.wall_time_s;
     rec.candidate_samples = id.candidate_samples;
-    CandidateBatch best(model.dim(), g.runs);
     for (int r = 0; r < g.runs; ++r) {
-      const RunResult& run = id.runs[r];
-      rec.evaluations += run.evaluations;
-      rec.run_results.push_back(run_record(r, run));
-      best.set_candidate(r, run.best_params);
+      rec.evaluations += id.runs[r].evaluations;
+      rec.run_results.push_back(run_record(r, id.runs[r]));
     }
-
-    // Each fit dataset of a joint fit, and each predicted dataset, on its own.
-    std::vector<std::pair<int, bool>> singles;
-    if (fs.fit.size() > 1)
-      for (int d : fs.fit) singles.emplace_back(d, false);
-    for (int d : fs.predict) singles.emplace_back(d, true);
-    std::vector<MetricRow> rows(g.runs);
-    for (const auto& [d, predicted] : singles) {
-      BatchEvaluator(model, part.datasets[d].signals).evaluate_all(best, rows);
-      for (int r = 0; r < g.runs; ++r) rec.dataset_metrics.push_back({r, d, predicted, rows[r]});
-    }
-    sort_dataset_metrics(rec.dataset_metrics);
-
+    dataset_metrics(part, fs, model, id, rec);
     // Standard errors, correlations and flags at the best run (what the params and regression tables mark).
-    const RunResult& best_run = id.runs[id.best_run()];
-    if (std::isfinite(best_run.best_value)) rec.identifiability = assess_identifiability(model, data, bounds, best_run.best_params);
-
-    const SensitivitySpec& sens = part.spec->splits[g.split].sensitivity;
-    if (sens.enabled && fs.fit.size() == 1 &&
-        sens.where.matches(part.datasets[fs.fit[0]].signals.name, part.datasets[fs.fit[0]].signals.law_variables)) {
-      SensitivitySettings ss;
-      ss.points = sens.points;
-      ss.range = sens.range;
-      ss.normalized = sens.normalized;
-      if (sens.objective != "rms") ss.metric = parse_metric(sens.objective);
-      const Sensitivity s = differential_sensitivity(model, id.runs[id.best_run()].best_params, *data[0], ss);
-      rec.sensitivity = SensitivityRecord{fs.fit[0], s.S, s.SP};
-    }
+    rec.identifiability = fit.identifiability;
+    rec.sensitivity = group_sensitivity(part, g, fs, model, fit);
   } catch (const std::exception& e) {
     rec.failed = true;
     rec.message = e.what();

@@ -21,8 +21,9 @@
 
 namespace dampbench::sweep {
 
-/// Identifies one group (every run, per-dataset metrics of joint fits and predictions, sensitivity).
-/// Never throws for bad data or a model error: the record is marked failed with the message.
+/// Identifies one group: the fit of engine/fit (run_fit, keyed by the group's task key), then what a sweep adds
+/// to it (per-dataset metrics of joint fits and predictions, sensitivity). Never throws for bad data or a model
+/// error: the record is marked failed with the message.
 GroupRecord run_group(const Plan& plan, long long index);
 
 /// The store header (plan, datasets, fingerprint) of a plan.

@@ -108,36 +108,4 @@ std::string resolve_path(std::string_view text, const std::string& folder) {
   return (fs::path(folder) / p).lexically_normal().string();
 }
 
-ResolvedModel resolve_model(const ModelSpec& spec) {
-  ResolvedModel r;
-  if (!spec.fixture.empty()) {
-    FixtureModel fx = make_fixture_model(find_fixture(spec.fixture));
-    r.keep.push_back(std::shared_ptr<const Model>(std::move(fx.model)));
-    r.model = r.keep.back().get();
-  } else {
-    r.model = &find_model(spec.model);
-  }
-  if (!spec.laws.empty()) {
-    // LawModel::base_block keeps its scratch batch in one thread_local shared by every law model, so a law
-    // model over a law model overwrites its own input (every candidate ends +inf). Refuse until it is fixed.
-    if (dynamic_cast<const LawModel*>(r.model))
-      throw InputError(fmt::format("laws on {}, itself a law model, are not supported: write every law on its base "
-                                   "model {}",
-                                   r.model->id(), dynamic_cast<const LawModel*>(r.model)->base().id()));
-    r.keep.push_back(std::make_shared<LawModel>(*r.model, parse_laws(spec.laws, "laws"), spec.name));
-    r.model = r.keep.back().get();
-  }
-  r.bounds = default_bounds(*r.model);
-  r.bounds_override = spec.bounds;
-  if (!spec.bounds.empty()) override_bounds(r.bounds, *r.model, spec.bounds, "bounds");
-  validate_bounds(r.bounds, *r.model, "bounds");
-  return r;
-}
-
-Bounds ResolvedModel::bounds_for(std::span<const Signals* const> records) const {
-  Bounds b = default_bounds(*model, records);
-  if (!bounds_override.empty()) override_bounds(b, *model, bounds_override, "bounds");
-  return b;
-}
-
 }  // namespace dampbench::sweep

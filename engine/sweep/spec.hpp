@@ -40,6 +40,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/fit/resolve_model.hpp"
 #include "engine/model/bounds.hpp"
 #include "engine/identification/identification.hpp"
 #include "engine/model/metrics.hpp"
@@ -56,13 +57,9 @@ struct DatasetSpec {
   RecordOptions load;
 };
 
-/// A model to identify: a registered model or a published law fixture, optionally with parameter laws.
-struct ModelSpec {
-  std::string name;     ///< label, unique in the part (default: the model id)
-  std::string model;    ///< registered model id (models/registry.hpp) ...
-  std::string fixture;  ///< ... or a law fixture (models/fixtures.hpp)
-  std::string laws;     ///< parse_laws text on the model's parameters
-  std::string bounds;   ///< "name=lo:hi,..." overrides (SI)
+/// A model to identify (engine/fit/resolve_model.hpp); its name is its label, unique in the part (default: the
+/// model id).
+struct ModelSpec : ModelChoice {
   std::vector<std::string> optimizers;  ///< optimizer labels this model is identified with (empty: all)
 };
 
@@ -191,19 +188,5 @@ std::string generator_identity();
 /// For a path "@generated/<grid>/...": makes sure the grid exists in generated_dir() as this build makes it
 /// (datasets/synthetic/grids.hpp), adding a note when it had to generate it; other paths are left alone.
 void ensure_generated(std::string_view text, std::vector<std::string>& notes);
-
-/// A model of a sweep made ready to identify: the model object (owned when it is a law model) and its bounds.
-struct ResolvedModel {
-  std::vector<std::shared_ptr<const Model>> keep;  ///< law models (and a fixture under them) owned here
-  const Model* model = nullptr;
-  Bounds bounds;                ///< fixed defaults with the entry's overrides (checked when the file is read)
-  std::string bounds_override;  ///< the entry's `bounds`
-
-  /// The box for fitting these records: the record-scaled defaults (Model::record_bounds_rules) with the
-  /// entry's overrides.
-  [[nodiscard]] Bounds bounds_for(std::span<const Signals* const> records) const;
-};
-/// Builds the model of a spec entry; InputError for unknown names, bad laws or bounds.
-ResolvedModel resolve_model(const ModelSpec& spec);
 
 }  // namespace dampbench::sweep

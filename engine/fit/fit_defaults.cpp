@@ -1,11 +1,11 @@
-// Default optimizer, budget and runs of `fit` per model class (engine/cli/fit_defaults.hpp).
-#include "engine/cli/fit_defaults.hpp"
+// Default optimizer, budget and runs of `fit` per model class (fit_defaults.hpp).
+#include "engine/fit/fit_defaults.hpp"
 
 #include <fmt/format.h>
 
 #include "engine/model/model.hpp"
 
-namespace dampbench::cli {
+namespace dampbench {
 namespace {
 
 /// Algebraic models: the fvd paper's PSO and run count. A candidate costs one pass over the record, and 50 runs
@@ -13,12 +13,10 @@ namespace {
 const FitPlan kAlgebraic{"pso", 50, 100, 50, ""};
 
 /// Models with internal states (and law models built on them): a short GA finds the basin, Levenberg–Marquardt
-/// the optimum within it (the mfm paper's method; the utfsm preset's ga-lm-ode settings, whose bests lie within
-/// 0.08 % of a 10× budget's on all 30 UTFSM files, scripts/utfsm_budget_check.py, 2026-11-25). Four runs, so that their
-/// agreement means something. Measured on the 2-core AMD EPYC (Zen 5), UTFSM 10mm1Hz1A (11 854 samples, nrmse):
-/// Spencer 4.6 s, best 0.04209 with all 4 runs within 2e-8 %, where the earlier default for every model (pso
-/// 50 × 100, 50 runs) took 127 s for a best 3 % worse (0.04344) and runs 5-51 % apart. The joint current-law
-/// Spencer fit of issue 13 (12 files) takes 36 s.
+/// the optimum within it (the mfm paper's method, and the utfsm preset's ga-lm-ode settings, whose bests lie within
+/// 0.08 % of a 10× budget's on every UTFSM file: scripts/utfsm_budget_check.py). Four runs, so that their agreement
+/// means something. PSO with the algebraic defaults takes some thirty times longer on a UTFSM record for a worse
+/// best and runs that disagree.
 const FitPlan kStates{"ga-lm", 24, 30, 4, ""};
 
 }  // namespace
@@ -41,4 +39,4 @@ FitPlan fit_plan(const Model& model, const std::optional<std::string>& optimizer
   return plan;
 }
 
-}  // namespace dampbench::cli
+}  // namespace dampbench

@@ -1,14 +1,12 @@
 #pragma once
-// What `fit` runs when the command line names no optimizer, budget or run count (issue 13: defaults per model
-// class that converge on real data). Values measured, not guessed: see fit_defaults.cpp.
+// What `fit` runs when the command line names no optimizer, budget or run count: defaults per model class that
+// converge on real data (fit_defaults.cpp says why each value).
 #include <optional>
 #include <string>
 
 namespace dampbench {
-class Model;
-}
 
-namespace dampbench::cli {
+class Model;
 
 struct FitPlan {
   std::string optimizer;
@@ -24,4 +22,4 @@ struct FitPlan {
 FitPlan fit_plan(const Model& model, const std::optional<std::string>& optimizer, std::optional<int> population,
                  std::optional<int> iterations, std::optional<int> runs);
 
-}  // namespace dampbench::cli
+}  // namespace dampbench

@@ -1,0 +1,36 @@
+#pragma once
+// What several commands share: the loader options of their records, the output formats they accept, and numbers
+// in JSON output.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/fit/resolve_model.hpp"
+#include "engine/model/model.hpp"
+#include "engine/record/record_options.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+/// Declares the loader options (--units, --columns, --transform, --average-cycles, --conditions, --set) on a
+/// subcommand.
+void add_data_options(CLI::App* cmd, RecordOptions& data);
+
+/// A model named by the options --model (or --fixture), --laws and --bounds: messages name the options.
+ModelChoice command_line_model(const std::string& model, const std::string& laws = "", const std::string& bounds = "",
+                               const std::string& fixture = "");
+
+/// Every parameter of the model from "name=value,..." (SI); all required unless `defaults` gives them.
+std::vector<double> parse_params(const Model& model, const std::string& text, const std::vector<double>& defaults = {});
+
+/// InputError unless `format` is md or json.
+void check_format(const std::string& format);
+
+/// A JSON number that stays valid JSON: non-finite values become null.
+nlohmann::ordered_json json_number(double v);
+
+}  // namespace dampbench::cli

@@ -1,0 +1,30 @@
+#pragma once
+// `dampbench simulate`: the force of a model with given parameters under a displacement (a record or a sine),
+// optionally with Gaussian noise, as CSV.
+#include <cstdint>
+#include <string>
+
+#include "engine/record/record_options.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+struct SimulateOptions {
+  std::string model;
+  std::string fixture;  ///< a published law fixture instead of --model (models/fixtures.hpp)
+  std::string laws;     ///< "c0=poly(I,1);..." laws on the model's parameters
+  std::string params;   ///< "name=value,..." in SI (the fixture's values by default)
+  RecordOptions input;   ///< used when sine is empty
+  std::string sine;    ///< "amp=...,freq=...,cycles=...,fs=..."
+  double noise_rel = 0;
+  std::uint64_t seed = 1;
+  std::string output;  ///< CSV path; stdout when empty
+};
+
+void add_simulate_options(CLI::App* cmd, SimulateOptions& options);
+int simulate_command(const SimulateOptions& options);
+
+}  // namespace dampbench::cli

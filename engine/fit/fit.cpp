@@ -1,0 +1,28 @@
+#include "engine/fit/fit.hpp"
+
+#include <cmath>
+
+#include "engine/common/error.hpp"
+#include "engine/model/law_model.hpp"
+
+namespace dampbench {
+
+void check_record(const Model& model, const Signals& record) {
+  if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(record);
+}
+
+FitOutcome run_fit(const FitRequest& request) {
+  if (!request.model || !request.optimizer) throw InputError("fit: a request needs a model and an optimizer");
+  const Model& model = *request.model->model;
+  for (const Signals* r : request.records) check_record(model, *r);
+  FitOutcome out;
+  out.bounds = request.model->bounds_for(request.records);
+  out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
+  out.convergence = assess_convergence(out.identification);
+  const RunResult& best = out.best();
+  if (request.assess_failed_fit || std::isfinite(best.best_value))
+    out.identifiability = assess_identifiability(model, request.records, out.bounds, best.best_params);
+  return out;
+}
+
+}  // namespace dampbench

@@ -1,0 +1,49 @@
+#pragma once
+// One fit: a model identified on one or more records by repeated optimizer runs, with the evidence that goes
+// with every result (the runs' agreement and stalling, the parameters' standard errors and correlations).
+// `dampbench fit`, every sweep group and so every MPI worker run this one sequence, so that the same request
+// gives the same bits whichever entry point asks for it.
+//
+// The random streams of the runs are keyed (seed, task key, run): the task key is part of the request, because
+// the entry points name a task differently (a fit by model id, record names and optimizer; a sweep group also by
+// its labels, metric and split), and a request that names the same key gets the same streams.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/fit/resolve_model.hpp"
+#include "engine/identification/convergence.hpp"
+#include "engine/identification/identifiability.hpp"
+#include "engine/identification/identification.hpp"
+#include "engine/identification/optimizer.hpp"
+
+namespace dampbench {
+
+struct FitRequest {
+  const ResolvedModel* model = nullptr;
+  std::vector<const Signals*> records;  ///< fitted together: the metric is their mean
+  const OptimizerFactory* optimizer = nullptr;
+  IdentificationSettings settings;      ///< runs, seed, task key, metric, budget
+  /// Assess identifiability even when every run failed (no finite best value): `fit` prints it whatever the
+  /// outcome, a sweep stores it only for a fit that found something.
+  bool assess_failed_fit = false;
+};
+
+struct FitOutcome {
+  Bounds bounds;                                  ///< the box the runs searched
+  Identification identification;
+  Convergence convergence;                        ///< the verdict on the runs (convergence.hpp)
+  std::optional<Identifiability> identifiability; ///< at the best run's parameters
+
+  [[nodiscard]] const RunResult& best() const { return identification.runs[identification.best_run()]; }
+};
+
+/// Checks that a record has what the model needs (the operating variables of a law model's laws); InputError
+/// names what is missing.
+void check_record(const Model& model, const Signals& record);
+
+/// Runs the request: checks the records, works out the bounds for them, identifies, and assesses convergence
+/// and identifiability. Throws for bad input (InputError, DataError) and model errors.
+FitOutcome run_fit(const FitRequest& request);
+
+}  // namespace dampbench

@@ -1,0 +1,48 @@
+#pragma once
+// A fit named the way `dampbench fit` names it (model, laws, bounds, files, metric, optimizer, budget, runs,
+// seed), made into a request: the model resolved, the class defaults filled in (fit_defaults.hpp), the optimizer
+// built and the records loaded. The command only parses its options into a FitSpec and prints the outcome.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/fit/fit.hpp"
+#include "engine/fit/fit_defaults.hpp"
+#include "engine/fit/fit_records.hpp"
+#include "engine/fit/resolve_model.hpp"
+#include "engine/record/record_options.hpp"
+#include "optimizers/registry.hpp"
+
+namespace dampbench {
+
+struct FitSpec {
+  ModelChoice model;                ///< model id, laws (one set of coefficients for every record), bounds
+  std::vector<std::string> paths;   ///< one or more records (the metric is averaged over them)
+  RecordOptions data;               ///< loader options shared by every record (path unused)
+  std::string metric = "of_abs";
+  std::optional<std::string> optimizer;  ///< not given: by the model's class (fit_defaults.hpp)
+  std::string optimizer_settings;        ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
+  std::optional<int> population, iterations, runs;
+  std::uint64_t seed = 1;
+};
+
+/// Everything a FitSpec names, built and loaded; its request points into it.
+struct PreparedFit {
+  ResolvedModel model;
+  Metric metric = Metric::of_abs;
+  FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults
+  OptimizerSpec optimizer;  ///< the plan's with the settings given
+  OptimizerFactory factory;
+  FitRecords records;
+  std::uint64_t seed = 1;
+
+  /// The request of this fit; its task key names the model id, the records' names and the optimizer
+  /// (task_key), so that the same command line gives the same runs.
+  [[nodiscard]] FitRequest request() const;
+};
+
+/// InputError (and the loader's errors) for what the spec names wrongly, in the order the options are read.
+PreparedFit prepare_fit(const FitSpec& spec);
+
+}  // namespace dampbench
