@@ -14,7 +14,8 @@ The rules:
   comment-cpu     Such a comment names a CPU or a CPU family (Zen 3, EPYC, Xeon, Skylake, Graviton, Apple M1...):
                   measurements on a machine belong in docs/performance.md, the code says why.
   comment-ticket  Such a comment holds an issue, session or pull-request number ("issue 16", "session 12",
-                  "PR 7", "#33"): history belongs in the commit messages.
+                  "PR 7", "#33"): history belongs in the commit messages. Any "#" before a number counts, so
+                  a comment numbers other things without it ("lane 3", "step 2").
   outside-doc     A tracked file (code, CMake, Markdown, TOML, scripts) cites a document the repository does not
                   hold (the names in OUTSIDE_DOCS); cite docs/design.md or docs/models.md instead.
   file-size       A .cpp, .hpp or .h in engine/, models/ or optimizers/ has more than 600 lines.
@@ -47,7 +48,7 @@ FUNCTION_EXCEPTIONS = {}
 # ---------------------------------------------------------------- comment patterns
 _MONTHS = ("January|February|March|April|May|June|July|August|September|October|November|December|"
            "Jan|Feb|Mar|Apr|Jun|Jul|Aug|Sep|Sept|Oct|Nov|Dec")
-_MONTH = r"(?:%s)\.?" % _MONTHS
+_MONTH = r"(?:%s)\b\.?" % _MONTHS
 _DAY = r"(?:0?[1-9]|[12][0-9]|3[01])(?:st|nd|rd|th)?"
 _YEAR = r"(?:19|20)[0-9]{2}"
 DATE_PATTERNS = [
@@ -504,6 +505,7 @@ def self_test(scratch):
     plant("engine/CMakeLists.txt", "# Graviton 3 builds need this\nadd_library(x \"#1\")\n", ("comment-cpu", 1))
     plant("engine/a/fine.cpp",
           "// Spencer et al. 1997, eq. 15; the 1997 paper (section 3.2) may use 3 lanes; march on\n"
+          "// 3 Markov chains, 12 Decays, Nov. or June alone, version 1.10.3, 2019-2021, lane #a, step 2/3\n"
           "#include <cstdint>\n"
           "const char* s = \"2026-11-25 on Zen 3, issue 16\";  // a string is not a comment\n"
           "const char* r = R\"x(// Zen 3 }{ \")x\";\n"
