@@ -386,7 +386,9 @@ def functions(code):
             kind, first, text, inside = stack.pop()
             head = heads.pop()
             if kind in ("function", "lambda") and not inside:
-                m = re.search(r"(operator\s*\S+?|[\w:~]+)\s*\(\)[^()]*$", _collapse(text))
+                signature = re.sub(r"^\s*(?:(?:public|private|protected)\s*:(?!:)\s*)+", "", _collapse(text))
+                ctor = re.match(r"(.*?\))\s*(?:noexcept\s*(?:\(\))?\s*)?:(?!:)", signature)  # X(int a) : a_(a)
+                m = re.search(r"(operator\s*\S+?|[\w:~]+)\s*\(\)[^()]*$", ctor.group(1) if ctor else signature)
                 found.append((m.group(1) if m and kind == "function" else kind, first, line))
             if kind in ("other", "block", "lambda"):
                 head.append("{}")      # the statement goes on: T x{...}, f([] {...}), a_{a} {
