@@ -1,24 +1,14 @@
 #pragma once
 // Kernel for laws with internal states (Bouc–Wen, Spencer, generalized Maxwell, voltage filter): classical
 // Runge–Kutta (RK4) with fixed sub-steps between samples, vectorized over candidate lanes. A fixed scheme runs
-// the same instructions on every lane, so it vectorizes, and a lane's bits depend on its own parameters and the
-// record only, whatever its block-mates, batch split or thread count. SUNDIALS CVODE (BDF, rtol 1e-10) on the
-// same piecewise-linear inputs is the reference, so their difference is the integration error alone. States
-// start at zero at the first sample.
-//
-// Why each piece is there (docs/performance.md: "How the kernels work" for the design and its measurements,
-// "The ODE kernel's rules" for the exact rules and error bounds):
-//   - sub-steps follow the motion, not the clock, because hysteretic states change over a fraction of the
-//     stroke whatever the sampling rate (ode_substeps);
-//   - a stiff lane takes its own, larger count so that RK4 stays stable (h·λ ≤ kStiffStep), estimated from the
-//     record's peak |v| only: a count that followed the parameters interval by interval would make the
-//     objective jump wherever it changed, and a lane too stiff for kMaxSubsteps is masked so it cannot stall a
-//     batch;
-//   - |z|^n comes from a binomial series chained along the lane between exact anchors (kSeriesTerms,
-//     kChainSteps), because a vector log and exp at every RK4 stage dominated the time; the series is cut where
-//     its truncation is below the exact path's own rounding;
-//   - a lane that blows up (NaN, infinite, beyond 1e30) is marked failed (metric +inf) and reset to zero, so it
-//     never slows or poisons its neighbours.
+// the same instructions on every lane, so it vectorizes and a lane's bits depend on its own parameters and the
+// record only. SUNDIALS CVODE (BDF, rtol 1e-10) on the same piecewise-linear inputs is the reference, so their
+// difference is the integration error alone; states start at zero at the first sample. Sub-steps follow the
+// motion, not the clock (ode_substeps); a stiff lane takes more of them (kStiffStep); |z|^n comes from a series
+// chained along the lane (kSeriesTerms, kChainSteps), because a vector log and exp at every stage dominated the
+// time; a lane that blows up is masked and reset so it never slows or poisons its neighbours.
+// docs/performance.md has the design and its measurements ("How the kernels work") and the exact rules with
+// their error bounds ("The ODE kernel's rules").
 //
 // A Law provides:
 //   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
@@ -53,10 +43,13 @@ struct RecordScales {
 
 /// h·λ a stiff lane's sub-step may reach, unless the law sets its own `kStiffStep`: lane l takes
 /// max(n, ceil(dt·λ_l / kStiffStep)) sub-steps on an interval, inside RK4's stability interval (|h·λ| < 2.78 on
-/// the negative real axis) with room for accuracy. 1.0 keeps Bouc–Wen's worst relative L2 to CVODE over random
-/// candidates of its default box under the 1e-4 bound of tests/test_ode_stiff_lanes.cpp with margin. Spencer
-/// and the fdsp laws set larger ones that stay within Bouc–Wen's worst error, because stiff lanes are most of a
-/// real-data fit's time (docs/performance.md, "The ODE kernel's rules", has the errors of each choice).
+/// the negative real axis) with room for accuracy. λ_l comes from the record's peak |v| (RecordScales) for every
+/// interval, also for stroke-driven laws: a count that followed the parameters interval by interval would make
+/// the objective jump by the discretization error wherever it changed, and local optimizers stall on such
+/// steps. 1.0 keeps Bouc–Wen's worst relative L2 to CVODE over random candidates of its default box under the
+/// 1e-4 bound of tests/test_ode_stiff_lanes.cpp with margin. Spencer and the fdsp laws set larger ones that
+/// stay within Bouc–Wen's worst error, because stiff lanes are most of a real-data fit's time
+/// (docs/performance.md, "The ODE kernel's rules", has the errors of each choice).
 inline constexpr double kStiffStep = 1.0;
 /// Sub-steps per sample interval beyond which a lane is masked as too stiff.
 inline constexpr int kMaxSubsteps = 512;
