@@ -1,6 +1,6 @@
 // The optimizers' own cost per candidate (ask + tell, 1 thread), on an objective that costs next to nothing:
 // the shifted sphere Σ (x_j − 0.3)² over [0, 1]^dim (optimum 0 at x = 0.3). This is the serial work a fit adds on
-// top of the model's evaluation (issue 16: it is what keeps the `ga` fit on the fvd record below DE's rate).
+// top of the model's evaluation (it is what keeps the `ga` fit on the fvd record below DE's rate).
 // Population 50 and 100 generations as the fvd paper; dim 4 as fvd.gv_linear_elastic, 8 as a Spencer-sized model.
 // items_per_second is candidates per second (1e9 / it = ns per candidate). Run: ./build/bench/bench_optimizers
 #include <benchmark/benchmark.h>

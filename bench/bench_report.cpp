@@ -1,4 +1,4 @@
-// The HTML report of the fvd preset (issue 14: under 10 s on 2 cores and under 20 MB). Setup runs the fvd
+// The HTML report of the fvd preset (its targets: under 10 s on 2 cores and under 20 MB). Setup runs the fvd
 // preset once into a temporary store (about 5 s on 2 cores); the benchmark times `store_report_html` on it —
 // re-reading the four records, simulating each model's best run, the tables and the page — and reports the
 // document's size in bytes (counter "bytes").

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The tables of docs/performance.md from the files scripts/bench.sh writes (issue 6).
+"""The tables of docs/performance.md from the files scripts/bench.sh writes.
 
 Reads results/bench/bench_<variant>.json (`dampbench bench --format json`) and models_<variant>.json
 (Google Benchmark, for the vector-function probes) for the variants portable, native and native-sleef,
@@ -32,7 +32,7 @@ CALLS = {
     "crfd.maxwell": {"log": 9, "exp": 9},
     "mrd.magic_formula": {"atan": 2, "sin": 1},
     "mrd.bingham": {},
-    # since issue 16 one exact |z|^n per sub-step (first RK4 stage), the three later stages from the
+    # one exact |z|^n per sub-step (first RK4 stage), the three later stages from the
     # binomial series (engine/kernels/ode_kernel.hpp); the 2-4 % of stages that fall back are not counted
     "mrd.bouc_wen": {"log": 2, "exp": 2},
     "mrd.spencer": {"log": 2, "exp": 2},

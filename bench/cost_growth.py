@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cost growth tables and plot from the Google Benchmark suite (bench/bench_models.cpp, issue 6).
+"""Cost growth tables and plot from the Google Benchmark suite (bench/bench_models.cpp).
 
 Reads the JSON of `bench_models --benchmark_format=json` (benchmarks named
 evaluate/<model>/candidates:C/samples:S/threads:T/real_time) and prints, per model:

@@ -1,4 +1,4 @@
-// Controllable rotary fluid damper family (crfd paper, 000_54961175bc72b7db; MODELS.md §2). Rotary
+// Controllable rotary fluid damper family (crfd paper, 000_54961175bc72b7db; docs/models.md (crfd)). Rotary
 // records: x holds the rotation angle θ [rad], v = θ̇ [rad/s], a = θ̈ [rad/s²], F the torque T [N·m].
 //   crfd.gvnem           eq. 3.6   generalized viscous – nonlinear elastic model     algebraic
 //   crfd.gvnem_modified  eq. 4.4   GV–NEM with J, α, β, T_f, ξ fixed                  algebraic
@@ -104,7 +104,7 @@ struct Kwok {
 
 /// eqs. 7.3–7.4: spring k_r·sgn(θ_k)|θ_k|^β in series with dashpot c_r·sgn(θ̇_c)|θ̇_c|^α, θ = θ_c + θ_k.
 /// The state is the spring deflection θ_k: dθ_k/dt = θ̇ − sgn(T)(|T|/c_r)^(1/α), T = k_r·sgn(θ_k)|θ_k|^β.
-/// Stiff for small c_r or α (MODELS.md §6): more sub-steps per stroke than the MR models.
+/// Stiff for small c_r or α (docs/models.md (numerical traps)): more sub-steps per stroke than the MR models.
 struct Maxwell {
   static constexpr int kParams = 4, kStates = 1;
   static constexpr double kSubstepsPerStroke = 600;  // 2.1e-5 vs CVODE (tests/test_ode_models.cpp); 1/400: 6.7e-5

@@ -1,7 +1,7 @@
 #pragma once
 // The published parameter laws as named fixtures: a base model, its laws and the printed coefficients.
 //   crfd.table5     crfd eq. 5.1, Table 5: modified GV–NEM, cubic in φ
-//   crfd.table6     crfd eq. 7.2, Table 6: Kwok, cubic in φ (ξ as printed: explodes at 180°, MODELS.md §2)
+//   crfd.table6     crfd eq. 7.2, Table 6: Kwok, cubic in φ (ξ as printed: explodes at 180°, docs/models.md (crfd))
 //   crfd.table7     crfd eq. 7.5, Table 7: generalized Maxwell, cubic in φ
 //   mfm.eqs4_11     mfm eqs. 4–11: magic formula, linear in I; A and B products in I, amp, freq
 //   mfm.table3      mfm Table 3: Spencer model, linear in I

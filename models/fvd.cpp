@@ -1,5 +1,5 @@
 // Fluid viscous damper family (fvd paper, 003_c8ee1dc8d3676469: "Mechanical models", eqs. 1, 2, 5, 6;
-// MODELS.md §1). The paper writes the law as m·ÿ + (damper force) = p, the force p applied by the
+// docs/models.md (fvd)). The paper writes the law as m·ÿ + (damper force) = p, the force p applied by the
 // actuator; the model force is therefore F = m·a + C·sgn(v)|v|^α + K1·x + K2·x².
 //
 // Units: SI inside (kg, N/(m/s)^α, N/m, N/m²); the paper's tables use kN/(mm/s)^α, kN/mm and kN/mm²,

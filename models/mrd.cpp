@@ -1,4 +1,4 @@
-// Magnetorheological damper family (MODELS.md §3–§4):
+// Magnetorheological damper family (docs/models.md (mfm) and (fdsp)):
 //   mrd.magic_formula    mfm eq. 3 (nesting of eq. 2)                         algebraic
 //   mrd.bingham          Bingham plastic, cited by the MR papers              algebraic
 //   mrd.bouc_wen         classic Bouc–Wen, cited by all MR papers             ODE, 1 state
@@ -6,7 +6,7 @@
 //   mrd.spencer_voltage  fdsp eqs. 1–7 (one end fixed)                         ODE, 3 states
 //   mrd.spencer_freq     fdsp eqs. 1–7 with a_c0(ω), a_c1(ω) of eqs. 13–15     spencer_voltage with two laws
 // SI units throughout: x [m], v [m/s], F [N]. Hysteretic states z (Bouc–Wen, Spencer) and p (fdsp) are
-// in metres. z|z|^(n−1) is written sgn(z)|z|^n (MODELS.md §6: no 0·∞ at z = 0 when n < 1).
+// in metres. z|z|^(n−1) is written sgn(z)|z|^n (no 0·∞ at z = 0 when n < 1).
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -76,7 +76,7 @@ inline BoucWenStiffness bouc_wen_stiffness(double A, double beta, double gamma, 
   return {n * spread * u_max * std::pow(z_b, n - 1.0), z_b, std::fabs(A) + spread * std::pow(z_b, n)};
 }
 
-/// Record-scaled default bounds of the Bouc–Wen part (ODE kernel's stiffness, issue 13), with X the stroke
+/// Record-scaled default bounds of the Bouc–Wen part (they bound the ODE kernel's stiffness), with X the stroke
 /// amplitude, V the peak velocity and F the peak force of the record:
 ///   c0 ≤ 2F/V (viscous force up to twice the peak), k0 ≤ F/X, |x0| ≤ X, α ≤ 2F/X (α z ≤ 2F for z ≈ X);
 ///   A ≤ 300, −50/X^1.5 ≤ β ≤ 300/X^1.5, 0 ≤ γ ≤ 300/X^1.5, n in [1, 3]. γ (the |u| term) < 0 makes z grow
@@ -309,7 +309,7 @@ ParameterInfo fdsp_param(const char* name, const char* unit, double centre) {
   return {name, unit, 0.5 * centre, 1.5 * centre, unit};
 }
 
-/// spencer_voltage: K0, K1, a_c0, a_c1, b_c0, b_c1, a_alpha, b_alpha, A, beta, gamma, n, eta, Z0 (MODELS.md §4).
+/// spencer_voltage: K0, K1, a_c0, a_c1, b_c0, b_c1, a_alpha, b_alpha, A, beta, gamma, n, eta, Z0 (fdsp eqs. 1–7).
 struct VoltageLayout {
   static constexpr int kParams = 14;
   static constexpr int K0 = 0, K1 = 1, ac0 = 2, ac1 = 3, b_c0 = 4, b_c1 = 5, a_alpha = 6, b_alpha = 7, A = 8,
@@ -349,7 +349,7 @@ std::vector<std::unique_ptr<Model>> make_mrd_models() {
   models.push_back(std::make_unique<AlgebraicModel<mrd::Bingham>>());
   models.push_back(std::make_unique<OdeModel<mrd::SpencerVoltage>>());
   // fdsp eqs. 13–15: a_c0 and a_c1 as laws in ω, the record's own frequency estimate (variable w). The
-  // printed exponents of eq. 14 lack the minus sign (MODELS.md §4); gauss2 has it.
+  // printed exponents of eq. 14 lack the minus sign (docs/models.md (fdsp)); gauss2 has it.
   auto freq = std::make_unique<LawModel>(*models.back(),
                                          parse_laws("a_c0=power(w);a_c1=gauss2(w)", "mrd.spencer_freq"),
                                          "mrd.spencer_freq", "fdsp eqs. 1-7 with a_c0, a_c1 from eqs. 13-15");

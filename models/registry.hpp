@@ -1,5 +1,5 @@
 #pragma once
-// Every model dampbench knows, by id (MODELS.md names are the contract).
+// Every model dampbench knows, by id (the names of docs/models.md are the contract).
 #include <memory>
 #include <span>
 #include <string_view>
@@ -9,7 +9,7 @@
 
 namespace dampbench {
 
-/// All models, in a stable order (family by family, as in MODELS.md).
+/// All models, in a stable order (family by family, as in docs/models.md).
 std::span<const Model* const> all_models();
 
 /// The model with this id; throws InputError "unknown model 'x' (known: ...)".

@@ -1,6 +1,6 @@
 #pragma once
-// Several optimizers on the same (model, datasets), side by side (`dampbench compare`, DESIGN.md "Outputs":
-// convergence curves, fixed-target runtime). Each optimizer runs `runs` independent lockstep runs through
+// Several optimizers on the same (model, datasets), side by side (`dampbench compare`: its
+// convergence curves and fixed-target runtimes). Each optimizer runs `runs` independent lockstep runs through
 // identify() with its own task key (model id, data name, the optimizer's label), so adding or removing an
 // entry never changes another entry's results.
 //

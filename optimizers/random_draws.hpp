@@ -2,7 +2,8 @@
 // Many keyed random draws at once (engine/common/random.hpp): the same numbers RandomStream gives, computed as
 // vector loops at the active vector level (engine/kernels/isa.hpp). A draw is one SplitMix64 mix, two 64-bit
 // multiplies; an optimizer that knows in advance which streams and how many draws a generation needs gets them
-// several lanes at a time instead of one mix after the other (issue 16: the GAs' serial work per generation).
+// several lanes at a time instead of one mix after the other, because the draws are most of the GAs' serial
+// work per generation.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Builds the peer comparison tables (issue 6) from the JSON lines that run_peers.sh collected.
+"""Builds the peer comparison tables from the JSON lines that run_peers.sh collected.
 
 Input: a JSON-lines file; each line is one measurement:
   {"peer": "scipy"|"pagmo2", "problem", "algorithm", "candidate_samples_per_s", "rates", "cpu_rates",
@@ -15,7 +15,7 @@ import math
 import statistics
 import sys
 
-# dampbench optimizer matching each peer algorithm, and the issue's throughput target
+# dampbench optimizer matching each peer algorithm, and the throughput target dampbench is held to
 MATCH = {("scipy", "de"): ("de", 50.0), ("pagmo2", "de"): ("de", 10.0), ("pagmo2", "sga"): ("ga", 10.0),
          ("pagmo2", "pso_gen"): ("pso", 10.0)}
 # Metric ties: on fvd every algorithm reaches the same floor (0.0175908...) and differs in the 8th digit.

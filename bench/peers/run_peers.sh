@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Peer comparison of issue 6, side by side in one run: dampbench vs scipy's vectorized differential_evolution
+# Peer comparison, side by side in one run: dampbench vs scipy's vectorized differential_evolution
 # and vs pagmo2 (de, sga, pso_gen), on the same data, metric (of_abs), default bounds and budget
 # (population × generations × runs). Prints the table and writes it as Markdown (bench/peers/README.md).
 #
@@ -53,7 +53,7 @@ bash "$REPO/scripts/install-deps.sh" python3-numpy python3-scipy libpagmo-dev >&
 
 # ---------------------------------------------------------------- builds
 # NATIVE=1: dampbench with -DDAMPBENCH_NATIVE=ON (-march=native) in $BUILD_DIR/native, the pagmo2 program
-# with -march=native; the default is the portable x86-64 build of the issue.
+# with -march=native; the default is the portable x86-64 build.
 DB_BUILD="$BUILD_DIR" native_flags=() PAGMO_BUILD="$BUILD_DIR/pagmo-peer"
 if [[ "${NATIVE:-0}" == 1 ]]; then
   DB_BUILD="$BUILD_DIR/native" PAGMO_BUILD="$BUILD_DIR/pagmo-peer-native"

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""scipy peer of dampbench (issue 6): scipy.optimize.differential_evolution with a vectorized numpy objective.
+"""scipy peer of dampbench: scipy.optimize.differential_evolution with a vectorized numpy objective.
 
 Problems (same equations, metric and RK4 sub-step rule as dampbench; see README.md):
   fvd  fvd.gv_linear_elastic  F = m*a + C*sgn(v)*|v|^alpha + K1*x      (algebraic)

@@ -1,4 +1,4 @@
-// crfd test grid (MODELS.md §2): 7 motor angles × 6 MTS amplitudes × 5 frequencies, 10 cycles each, as
+// crfd test grid (docs/models.md (crfd)): 7 motor angles × 6 MTS amplitudes × 5 frequencies, 10 cycles each, as
 // MTS records (actuator displacement and force) that `--transform slider-crank` turns into angle and torque.
 //
 // Truth: the GV–NEM (eq. 3.6) with parameters interpolated between the paper's Table 2 (1 Hz–1 mm) and

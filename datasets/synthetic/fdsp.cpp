@@ -1,4 +1,4 @@
-// fdsp tests (MODELS.md §4): 6.35 mm at 1.5–5 Hz in 0.5 Hz steps, 0 V, 3 cycles each.
+// fdsp tests (docs/models.md (fdsp)): 6.35 mm at 1.5–5 Hz in 0.5 Hz steps, 0 V, 3 cycles each.
 // Truth: the frequency-dependent Spencer model with the fdsp eqs. 13–14 laws and Table 2 (fixture
 // fdsp.eqs13_14); 1 % force noise.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// mfm test grid (MODELS.md §3): 4 amplitudes × 4 frequencies × 7 currents, 3 cycles each.
+// mfm test grid (docs/models.md (mfm)): 4 amplitudes × 4 frequencies × 7 currents, 3 cycles each.
 // Truth: the Spencer model with the mfm Table 3 laws in I (fixture mfm.table3), so the magic formula
 // (and any other candidate) has a structural error; 1 % force noise.
 #include <algorithm>

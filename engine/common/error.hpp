@@ -1,6 +1,6 @@
 #pragma once
 // Errors raised at the boundary (files, sweep specs, command-line values, the results store). Hot loops never
-// throw: a failed candidate is a +inf metric, not an exception (DESIGN.md, "Performance principles").
+// throw: a failed candidate is a +inf metric, not an exception (docs/design.md, "Performance principles").
 // Each class has its exit code (engine/cli/main.cpp; README "Exit codes").
 #include <stdexcept>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Keyed random streams (DESIGN.md, "Reproducibility"): every random number is a pure function of
+// Keyed random streams (docs/design.md, "Reproducibility principles"): every random number is a pure function of
 // (seed, task, run, iteration, member, draw index). There is no global or thread-local generator, so the
 // numbers a particle draws do not depend on which thread asks, in which order, or how a batch is split.
 //

@@ -18,7 +18,7 @@ __attribute__((simd("notinbranch"))) double atan(double) noexcept;
 
 namespace dampbench {
 
-/// sgn(v) with sgn(0) = 0 (MODELS.md notation). Written with bool→double conversions: the int
+/// sgn(v) with sgn(0) = 0 (the papers' notation). Written with bool→double conversions: the int
 /// difference (v > 0) − (v < 0) stops GCC from vectorizing a lane loop ("no vectype").
 inline double sign(double v) { return static_cast<double>(v > 0.0) - static_cast<double>(v < 0.0); }
 
@@ -32,7 +32,7 @@ inline double log_abs_for_pow(double z) { return std::log(std::fabs(z) + 1e-100)
 /// |z|^n for 0 ≤ n ≤ 7, written exp(n·log(|z| + 1e−100)): one vector log and exp per lane.
 /// Why 1e−100 and not 1e−300: libmvec's vector exp leaves its fast path for the whole vector when one
 /// lane underflows (argument below −708) and calls scalar exp lane by lane; a state at exactly zero
-/// (the start of every ODE lane, a reset lane) gave n·log(1e−300) < −708 for n > 1.03, 10 % of
+/// (the start of every ODE lane, a reset lane) would give n·log(1e−300) < −708 for n > 1.03, 10 % of
 /// mrd.spencer's time in `dampbench bench`. The offset changes |z|^n only where |z| < 1e−90, a zero
 /// for any force. (Clamping the argument instead does not work: GCC folds exp(−708) and selects after
 /// the call, so the vector exp still sees the raw argument.)

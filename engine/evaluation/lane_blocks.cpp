@@ -35,11 +35,11 @@ std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_la
 }
 
 BlockTimes block_times() {
-  // 1-thread `bench` rates of Bouc–Wen and Spencer (a batch of equal-cost lanes) with all blocks of one width,
-  // Zen 5 at avx512, 2026-11-25: 32 lanes 1.62× and 1.67× a 16-lane block's time, 64 lanes 3.17× and 2.94×. At
-  // avx2 the same machine ran those models 1.11× faster in blocks of 64 than of 16 (two runs in turns), so a
-  // block of 64 takes 3.6× (and one of 32, not measured, about halfway: 1.8×). At sse2 (not measured) wider
-  // blocks are not used: a block of twice the lanes is taken to take twice the time.
+  // A block's time relative to a 16-lane block's, from the 1-thread `bench` rates of Bouc–Wen and Spencer (a
+  // batch of equal-cost lanes) with all blocks of one width (docs/performance.md, "Measurements behind code
+  // choices"). Wider blocks gain most at avx512 and a little at avx2, where a block of 32 is taken halfway
+  // between 16 and 64. At sse2 wider blocks are not used: a block of twice the lanes is taken to take twice the
+  // time, so the cut never prefers them.
   constexpr BlockTimes kAvx512{1.0, 1.67, 3.05}, kAvx2{1.0, 1.8, 3.6}, kNoGain{1.0, 2.0, 4.0};
   switch (active_isa()) {
     case Isa::avx512: return kAvx512;

@@ -5,7 +5,7 @@
 // S_z = sqrt(mean S_zi²) (eq. 4.2) and SP_z = S_z / Σ S × 100 % (eq. 4.3).
 //
 // The paper does not define f(z); by default f is the RMS of the model force (torque) over the record
-// (MODELS.md §2), or any metric against the record's measured force. As printed, S_z has the units of
+// (docs/models.md (crfd)), or any metric against the record's measured force. As printed, S_z has the units of
 // f per unit of z, so parameters with small values (J) look insensitive and large ones sensitive only
 // through their units; `normalized` multiplies S_z by |z| (an elasticity, f per relative change),
 // which compares parameters on one scale.

@@ -9,9 +9,8 @@
 //   template <class P> static double force_with_exp(const P& p, int lane, const Sample& s, double e);
 // with force = force_with_exp(..., exp(exp_argument(...))). The kernel then computes a chunk of samples in three
 // passes (arguments, exps, forces), so the libmvec calls run back to back: a call clobbers every vector
-// register, and in one pass the registers live across it were saved and restored around each call
-// (fvd.gv_linear_elastic 1.27e9 -> 1.52e9 candidate-samples/s, 1 thread, Zen 5). Same operations per lane,
-// same bits.
+// register, and in one pass the registers live across it are saved and restored around each call
+// (docs/performance.md has the gain). Same operations per lane, same bits.
 #include <stdexcept>
 
 #include "engine/kernels/lane_kernel.hpp"

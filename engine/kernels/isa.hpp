@@ -1,5 +1,5 @@
 #pragma once
-// Runtime choice of the vector instruction set the lane kernels run with (issue 16). One default build runs
+// Runtime choice of the vector instruction set the lane kernels run with. One default build runs
 // on any x86-64 CPU and uses the best level of the CPU it runs on:
 //   sse2    x86-64 baseline (SSE2): 2 doubles per vector, libmvec's _ZGVb variants
 //   avx2    x86-64-v3 (AVX2, FMA, BMI2): 4 doubles, _ZGVd variants
@@ -65,13 +65,11 @@ std::string isa_summary();
 
 // GCC 12's partial redundancy elimination (PRE, -ftree-pre), run over a whole flattened time loop, helps some
 // bodies and hurts others, so a Body chooses: with `static constexpr bool kWithoutTreePre = true` its clones
-// are compiled with gnu::optimize("no-tree-pre"). Measured (dampbench bench, 2 threads, Zen 5, 2026-11-25,
-// median of 3 interleaved runs; docs/performance.md): without PRE the algebraic kernels run faster
-// (mrd.magic_formula 1.07x, crfd.kwok 1.03x, the rest within 2 %), so AlgebraicKernel asks for it; with PRE the ODE
-// kernels do (crfd.maxwell 1.19x, the MR ODE models within 1 %; why was not analysed: perf shows the same
-// libmvec calls in both). The attribute was added for all clones when PRE left Maxwell's force loop and first
-// RK4 stage scalar (0.62x native); today's Maxwell code vectorizes either way. Either way the same
-// floating-point operations run, so the bits do not change. Clang has no optimize attribute and ignores the choice.
+// are compiled with gnu::optimize("no-tree-pre"). Without PRE the algebraic kernels run faster, so
+// AlgebraicKernel asks for it; with PRE the ODE kernels do (docs/performance.md, "Measurements behind code
+// choices", has the numbers; perf shows the same libmvec calls either way, so the cause is not known). Either
+// way the same floating-point operations run, so the bits do not change. Clang has no optimize attribute and
+// ignores the choice.
 template <class Body>
 inline constexpr bool clones_without_tree_pre = requires { requires Body::kWithoutTreePre; };
 

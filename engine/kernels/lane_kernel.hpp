@@ -1,5 +1,5 @@
 #pragma once
-// Candidate-lane kernels (DESIGN.md, "Performance principles"): the time loop is outside, the loop over
+// Candidate-lane kernels (docs/design.md, "Performance principles"): the time loop is outside, the loop over
 // kLanes candidates inside and vectorized (`#pragma omp simd`); quantities shared by all lanes at a
 // sample are prepared once; metric sums live in lane arrays; no force matrix is stored.
 //

@@ -1,65 +1,18 @@
 #pragma once
-// Kernel for laws with internal states (Bouc–Wen, Spencer, generalized Maxwell, voltage filter): a
-// fixed-step classical Runge–Kutta scheme (RK4) with sub-steps between samples, vectorized over candidate
-// lanes (DESIGN.md, "Performance principles"); SUNDIALS CVODE (BDF, rtol 1e-10) is the reference.
-//
-// Inputs between samples: x and v are interpolated linearly (the record is all we know); both this
-// kernel and the CVODE reference see the same piecewise-linear inputs, so their difference is the
-// integration error alone. States start at zero at the first sample (MODELS.md).
-//
-// Sub-step rule (from the record only, the same for every lane): on the interval [t_k, t_k+1] the
-// number of RK4 sub-steps is ceil(dt·V / (ΔZ / Law::kSubstepsPerStroke)), at least 1: a sub-step
-// never moves the piston more than 1/kSubstepsPerStroke of the peak-to-peak stroke ΔZ. Hysteretic
-// states change over a fraction of the stroke, whatever the sampling rate, so the rule ties the step
-// to the motion rather than to the clock. V is the record's peak |v|, or, for a law whose states are driven
-// by the motion (`Law::kStrokeDriven`: Bouc–Wen evolutions, dz/dt ∝ relative velocity), the larger |v| at
-// the interval's two ends (v is linear in between): the same bound on the stroke per sub-step, with fewer
-// sub-steps where the piston moves slowly (2/π as many on a sine; issue 16). A law with relaxation on the
-// clock (generalized Maxwell) keeps the peak |v|: its state keeps changing at a reversal.
-//
-// Stiff lanes (issue 13): a law may also give an upper estimate of its Jacobian's spectral radius λ [1/s]
-// from one lane's parameters and the record's scales (`Law::stiffness`, below). Lane l then takes
-// n_l = max(n, ceil(dt'·λ_l / kStiffStep)) sub-steps on the interval (dt' ≥ dt within a relative 2e-6: the
-// count is kept while the interval length stays, see stiff_substeps), so h·λ ≤ kStiffStep, inside RK4's
-// stability interval (|h·λ| < 2.78 on the negative real axis) with room for accuracy. The block runs
-// max_l n_l sub-steps; lane l is updated only in its first n_l of them, with the same arithmetic as if the
-// whole block took n_l steps, so a lane's result depends on its own parameters and the record only (any
-// batch split gives the same bits). A lane that would need more than kMaxSubsteps on some interval is
-// masked as too stiff (the share is what `bench` reports as masked), so no candidate can stall a batch.
-//
-// The estimate uses the record's peak |v| on every interval, also for stroke-driven laws: a sub-step count
-// that depended on a lane's parameters interval by interval (tried: λ interpolated by the interval's |v|, 1.3×
-// faster on the bench record) makes the objective jump by the discretization error (~1e-5) wherever a count
-// changes, and ga-lm no longer reached the noise-free optimum of Narrowing.RecoversSpencerParameters...
-// (9.7e-6 instead of < 1e-10).
-//
-// Powers of a state (issue 16): the Bouc–Wen evolution needs |z|^n, one vector log and exp per lane, and RK4
-// evaluates it at four stage points per sub-step. A law that names the state (`kPowerState`) and the lane-block
-// row of its exponent e (`kPowerExponentRow`) gets |s|^e as an argument of rhs, from the binomial series of
-// (1 + ε)^e to ε^kSeriesTerms wherever s = s0·(1 + ε) moved little from a point s0 whose power is known:
-//   - at the three later stages of a sub-step, from the sub-step's start;
-//   - at the start of a sub-step, from the start of the previous one (the power is chained along the lane),
-//     except where it is exact (abs_pow: log and exp): at an anchor (`anchored`: sub-steps K, 2K, ... of every
-//     sample interval and sub-step 0 of every K-th interval, K = kChainSteps), at a lane's first sub-step and
-//     after a reset (masking, below). The anchors a lane meets depend on the record and its own sub-step counts,
-//     never on its neighbours. A chain is at most K² − 1 series long: K − 1 sub-steps after an anchor in its
-//     interval, then at most K − 1 intervals of K sub-steps before the next anchor.
-// Each series needs |ε| ≤ kSeriesRadius, else that power is exact: truncation error below |C(e, 9)|·32^−9 < 4e-16
-// relative for 0 ≤ e ≤ 7, less than the rounding of the exact path's own log and exp (which amplifies log's by
-// e·|log s|: 2e-15 at s = 1e-3, e = 3). A stage's power, after up to 15 chained series and its own, is within
-// about 1e-14 relative of the exact one, nine orders under RK4's error against CVODE; the forces differ from
-// those with the exact power at every sub-step's start by under 1e-15 of the peak force
-// (tests/test_ode_power_chain.cpp). (Measured on `dampbench bench`, Zen 5: 8 terms to 1/32 ran 7 % faster than 10
-// to 1/16; chaining with kChainSteps = 4 made Spencer 1.4× faster at avx2, 1.25× at avx512.) Which of the two
-// a lane takes depends on its own ε and sub-steps only, so a lane's bits do not depend on its neighbours; the
-// vector log and exp run only when some lane of the block needs them.
-//
-// Masking: after every sample, a lane whose state is NaN, infinite or beyond 1e30 in magnitude is
-// marked failed (metric +inf) and its state reset to zero, so it never slows or poisons its neighbours.
+// Kernel for laws with internal states (Bouc–Wen, Spencer, generalized Maxwell, voltage filter): classical
+// Runge–Kutta (RK4) with fixed sub-steps between samples, vectorized over candidate lanes. A fixed scheme runs
+// the same instructions on every lane, so it vectorizes and a lane's bits depend on its own parameters and the
+// record only. SUNDIALS CVODE (BDF, rtol 1e-10) on the same piecewise-linear inputs is the reference, so their
+// difference is the integration error alone; states start at zero at the first sample. Sub-steps follow the
+// motion, not the clock (ode_substeps); a stiff lane takes more of them (kStiffStep); |z|^n comes from a series
+// chained along the lane (kSeriesTerms, kChainSteps), because a vector log and exp at every stage dominated the
+// time; a lane that blows up is masked and reset so it never slows or poisons its neighbours.
+// docs/performance.md has the design and its measurements ("How the kernels work") and the exact rules with
+// their error bounds ("The ODE kernel's rules").
 //
 // A Law provides:
 //   static constexpr int kParams, kStates; static constexpr double kSubstepsPerStroke;
-//   optional: static constexpr bool kStrokeDriven (see the sub-step rule; default false)
+//   optional: static constexpr bool kStrokeDriven (see ode_substeps; default false)
 //   optional: static constexpr double kStiffStep (h·λ of a stiff lane's sub-step; default ::kStiffStep below)
 //   static const ModelInfo& info();
 //   struct Context; static Context context(const Signals&);          per-record constants (V, ω, ...)
@@ -68,7 +21,7 @@
 //   template <class P, class Y> static double force(const P&, int lane, const Context&, double x, double v, const Y& y);
 //   optional: kLaneInvariants and lane_invariants(p), per-candidate constants (engine/kernels/lane_kernel.hpp)
 //   optional: template <class P> static double stiffness(const P&, int lane, const Context&, const RecordScales&)
-//   optional: static constexpr int kPowerState, kPowerExponentRow (see "Powers of a state" above); rhs then
+//   optional: static constexpr int kPowerState, kPowerExponentRow (see kSeriesTerms below); rhs then
 //             takes the power as an argument: rhs(p, lane, context, x, v, y, double y_power, dydt)
 // where y[j] and dydt[j] index the states (a LaneState view in the kernel, a plain pointer in CVODE).
 #include <algorithm>
@@ -88,16 +41,24 @@ struct RecordScales {
   double displacement_ptp = 0;  ///< max x − min x [m]
 };
 
-/// h·λ a stiff lane's sub-step may reach (see above), unless the law sets its own `kStiffStep`. Measured by
-/// tests/test_ode_stiff_lanes.cpp over 100 random candidates of each MR default box, worst relative L2 to
-/// CVODE: Bouc–Wen 3.2e-5 with 1.0 (5.4e-5 over 1000 candidates), 7.0e-5 with 1.25, 1.6e-4 with 1.5, 8.2e-4
-/// with 2.0, 1.9e-6 with 0.5 at twice the cost of stiff lanes. Spencer and the fdsp laws set their own (issue 16:
-/// the stiff lanes are most of a real-data fit's time), chosen to stay within Bouc–Wen's worst over 1000.
+/// h·λ a stiff lane's sub-step may reach, unless the law sets its own `kStiffStep`: lane l takes
+/// max(n, ceil(dt·λ_l / kStiffStep)) sub-steps on an interval, inside RK4's stability interval (|h·λ| < 2.78 on
+/// the negative real axis) with room for accuracy. λ_l comes from the record's peak |v| (RecordScales) for every
+/// interval, also for stroke-driven laws: a count that followed the parameters interval by interval would make
+/// the objective jump by the discretization error wherever it changed, and local optimizers stall on such
+/// steps. 1.0 keeps Bouc–Wen's worst relative L2 to CVODE over random candidates of its default box under the
+/// 1e-4 bound of tests/test_ode_stiff_lanes.cpp with margin. Spencer and the fdsp laws set larger ones that
+/// stay within Bouc–Wen's worst error, because stiff lanes are most of a real-data fit's time
+/// (docs/performance.md, "The ODE kernel's rules", has the errors of each choice).
 inline constexpr double kStiffStep = 1.0;
 /// Sub-steps per sample interval beyond which a lane is masked as too stiff.
 inline constexpr int kMaxSubsteps = 512;
 
-/// RK4 sub-steps on the sample interval [k−1, k] by the rule above (local: V from the interval's ends).
+/// RK4 sub-steps on the sample interval [k−1, k], the same for every lane: ceil(dt·V / (ΔZ / kSubstepsPerStroke)),
+/// at least 1, so a sub-step never moves the piston more than 1/kSubstepsPerStroke of the peak-to-peak stroke ΔZ.
+/// V is the record's peak |v|, or with `local` (a stroke-driven law, whose states move with the relative
+/// velocity) the larger |v| at the interval's two ends: the same bound on the stroke with fewer sub-steps where
+/// the piston moves slowly. A law that relaxes on the clock (generalized Maxwell) keeps the peak.
 inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_stroke, bool local) {
   const double dt = data.t_s[k] - data.t_s[k - 1];
   if (data.displacement_ptp <= 0) return 1;
@@ -121,7 +82,7 @@ class OdeKernel {
   using State = LaneState<W>;
   /// Also run as blocks of kWideLanes and kWidestLanes lanes (engine/model/batch.hpp, chosen per batch by
   /// engine/evaluation/lane_blocks.hpp): four dependent RK4 stages per sub-step leave the CPU waiting at kLanes
-  /// lanes (issue 16, Zen 5, `bench`: Bouc–Wen and Spencer 1.25–1.35× in blocks of 64).
+  /// lanes, and wider blocks give it independent work (docs/performance.md has the measurements).
   static constexpr bool kWideBlocks = true;
   static constexpr bool kStrokeDriven = [] {
     if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
@@ -132,11 +93,18 @@ class OdeKernel {
     if constexpr (requires { Law::kStiffStep; }) return Law::kStiffStep;
     else return kStiffStep;
   }();
-  /// Terms and radius of the binomial series of (1 + ε)^e ("Powers of a state").
+  /// Powers of a state: a law that names a state (`kPowerState`) and the lane-block row of its exponent e
+  /// (`kPowerExponentRow`) gets |s|^e as an argument of rhs, from the binomial series of (1 + ε)^e to
+  /// ε^kSeriesTerms wherever s = s0·(1 + ε) with |ε| ≤ kSeriesRadius from a point s0 whose power is known, else
+  /// exactly (log and exp). The truncation, below |C(e, 9)|·32^−9 < 4e-16 relative for 0 ≤ e ≤ 7, is less than
+  /// the exact path's own rounding; the terms and radius are the fastest pair found (docs/performance.md).
   static constexpr int kSeriesTerms = 8;
   static constexpr double kSeriesRadius = 1.0 / 32.0;
-  /// Anchor spacing of the chained power ("Powers of a state"); a law may set its own (tests: 1, the exact power
-  /// at every sub-step's start).
+  /// Anchor spacing of the chained power: a sub-step's start takes its power from the previous start's series
+  /// except at an anchor (anchored()), at a lane's first sub-step and after a reset, so a chain is at most
+  /// K² − 1 series long (K = kChainSteps) and a stage's power stays within about 1e-14 relative of the exact one
+  /// (tests/test_ode_power_chain.cpp). A law may set its own (tests: 1, the exact power at every sub-step's
+  /// start).
   static constexpr int kChainSteps = [] {
     if constexpr (requires { Law::kChainSteps; }) return Law::kChainSteps;
     else return 4;
@@ -290,7 +258,9 @@ class OdeKernel {
     }
   }
 
-  /// Whether sub-step i of interval k takes the exact power of the state at its start ("Powers of a state").
+  /// Whether sub-step i of interval k takes the exact power of the state at its start: sub-steps K, 2K, ... of
+  /// every interval and sub-step 0 of every K-th interval (K = kChainSteps). The anchors a lane meets depend on
+  /// the record and its own sub-step counts, never on its neighbours.
   static bool anchored(std::size_t k, int i) {
     return i % kChainSteps == 0 && (i > 0 || k % kChainSteps == 0);
   }
@@ -334,7 +304,7 @@ class OdeKernel {
         : i_(i), n_(n) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {  // multiplications by 1/n instead of four vector divisions per lane and
-        const double inv = inv_n[l];  // sub-step (issue 16: 2–3 % on Bouc–Wen and Spencer fits)
+        const double inv = inv_n[l];  // sub-step: divisions are slow and sit on the stage loop's path
         const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
         h_[l] = dt * inv;
         xa_[l] = x0 + a * dx, va_[l] = v0 + a * dv;
@@ -386,7 +356,7 @@ class OdeKernel {
       }
       if constexpr (kPower) {  // the power at the next sub-step's start, chained: s = s0·(1 + ε) there
         // (ε from the increment: (s − s0)/s0 of the state as stored would follow its rounding, e·2^−52 relative
-        // per series, but made Spencer fits 6 % slower)
+        // per series, but is slower; docs/performance.md)
         constexpr int ps = Law::kPowerState;
         const double eps = (in.h(l) / 6.0) * (k1[ps] + 2.0 * k2[ps] + 2.0 * k3[ps] + k4[ps]) * inv0_[l];
         const double chained = power0_[l] * series(eps, l);
@@ -399,10 +369,10 @@ class OdeKernel {
 
   /// power0_ at a sub-step's start: the chained power where the lane's last series was near and the sub-step is
   /// not an anchor (or the lane is past its own sub-steps, and keeps its state), else exact; the loop with the
-  /// vector log and exp runs only if some lane needs it ("Powers of a state").
+  /// vector log and exp runs only if some lane needs it (kSeriesTerms).
   template <class Inputs>
   void start_power(const Inputs& in, bool anchor) {
-    double all_near = anchor ? 0.0 : 1.0;  // (over every lane: skipping inactive ones made Spencer fits 1.5 % slower)
+    double all_near = anchor ? 0.0 : 1.0;  // (over every lane: skipping inactive ones is slower; docs/performance.md)
     if (!anchor) {
 #pragma omp simd reduction(min : all_near)
       for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
@@ -434,7 +404,7 @@ class OdeKernel {
   }
 
   /// 1 + C(e, 1)·ε + … + C(e, 8)·ε^8 of lane l by Estrin's scheme: pairs, then pairs of pairs, four dependent
-  /// multiply-adds deep instead of Horner's eight (the stage loop's critical path; issue 16).
+  /// multiply-adds deep instead of Horner's eight, because the series sits on the stage loop's critical path.
   [[nodiscard]] double series(double eps, int l) const {
     static_assert(kSeriesTerms == 8, "series() is written out for 8 terms");
     const auto c = [&](int i) { return series_[i][l]; };  // C(e, i + 1)
@@ -446,7 +416,7 @@ class OdeKernel {
   }
 
   /// stage() of a law with a power state: |t|^e from the series where |ε| ≤ kSeriesRadius, else exact; the loop
-  /// with the vector log and exp runs only if some lane needs them ("Powers of a state").
+  /// with the vector log and exp runs only if some lane needs them (kSeriesTerms).
   template <bool kEnd, class Inputs>
   void power_stage(const Inputs& in, double fraction, int from, int to) {
     constexpr int ps = Law::kPowerState;

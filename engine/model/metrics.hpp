@@ -44,7 +44,8 @@ struct MetricSums {
 };
 
 /// Which of the MetricSums an evaluation computes: every one, or the one sum a metric is finished from
-/// (an optimizer's objective needs one; fvd.gv_linear_elastic: 1.5× the rate of all five on 1 thread).
+/// (an optimizer's objective needs one, and for a cheap law such as fvd.gv_linear_elastic the unused sums are a
+/// large share of the block's arithmetic: docs/performance.md).
 /// The sums not computed are NaN, so a metric finished from them is +inf, never a wrong number.
 enum class SumSet { every, abs_weighted, sq_weighted, abs, sq, abs_magnitude };
 

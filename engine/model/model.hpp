@@ -1,5 +1,5 @@
 #pragma once
-// The model interface (DESIGN.md, data flow): a model names its parameters with SI units and default
+// The model interface (docs/design.md, "Data flow"): a model names its parameters with SI units and default
 // bounds, cites its paper and equation, and evaluates a block of candidates at once.
 #include <optional>
 #include <span>
@@ -14,14 +14,14 @@
 namespace dampbench {
 
 struct ParameterInfo {
-  std::string name;        ///< ASCII name from MODELS.md (the command-line contract)
+  std::string name;        ///< ASCII name as docs/models.md writes it (the command-line contract)
   std::string unit;        ///< SI unit of the value the engine uses
   double lower = 0;        ///< default bounds in SI
   double upper = 0;
   std::string paper_unit;  ///< unit of the paper's tables (see Model::to_paper_units)
 };
 
-/// A default bound that scales with the record (issue 13), so the box fits any damper size: parameter
+/// A default bound that scales with the record, so the box fits any damper size: parameter
 /// `name` in [lower, upper] × F^force · V^velocity · X^amplitude, where F = max |F| [N], V = max |v| [m/s] and
 /// X = half the peak-to-peak stroke [m] of the fitted records (the largest over several).
 struct RecordBoundsRule {

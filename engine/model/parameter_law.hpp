@@ -1,6 +1,7 @@
 #pragma once
 // Parameter laws: a base-model parameter written as a function of the dataset's operating variables
-// (I [A], V [V], phi [deg], amp [m], freq [Hz]) whose coefficients are the unknowns (MODELS.md §7 step 4):
+// (I [A], V [V], phi [deg], amp [m], freq [Hz]) whose coefficients are the unknowns (step 4 of the procedure
+// the five papers share, docs/models.md):
 //
 //   free                    p                                          1 coefficient, named p
 //   a number, e.g. 0.9929   fixed                                      no coefficient

@@ -12,7 +12,7 @@ namespace dampbench {
 struct SliderCrank {
   double H_m = 0.11489, L_AB_m = 0.080, L_BC_m = 0.140;
   /// The printed torque T0 = F_e·sin γ·L_AB·sin(θ + γ) instead of the two-force-rod statics
-  /// T0 = F_e·L_AB·sin(θ + γ)/sin γ (MODELS.md §2: the printed `· sin γ` is most likely a `/ sin γ`).
+  /// T0 = F_e·L_AB·sin(θ + γ)/sin γ (the printed `· sin γ` is most likely a `/ sin γ`: docs/models.md (crfd)).
   bool printed_torque = false;
 
   struct Pose {

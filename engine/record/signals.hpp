@@ -14,7 +14,8 @@ struct Signals : Dataset {
   std::vector<double> w_trapz_s;  ///< trapezoid-rule weights: ∫ g dt ≈ Σ w_k g_k
   /// Per-sample invariants of the power laws, computed once here instead of once per lane block:
   /// sgn(x), sgn(v) and log|x|, log|v| (clamped, engine/common/vector_math.hpp) so that |v|^α = exp(α·log|v|)
-  /// costs the lanes one vector exp. A scalar log per sample and block was 19 % of fvd.gv_linear_elastic.
+  /// costs the lanes one vector exp. A scalar log per sample and block would be 19 % of
+  /// fvd.gv_linear_elastic's time.
   std::vector<double> sgn_x, sgn_v, log_abs_x, log_abs_v;
   double duration_s = 0;          ///< t_end − t_start
   double force_std_N = 0;         ///< population standard deviation of the measured force, σ(p_m) of fvd eq. 7

@@ -1,6 +1,6 @@
 #pragma once
 // LS-SVM NARX damper model (lssvm paper: Qian, Yin & Ouyang 2021, Int. J. Aerospace Eng. 6648749;
-// MODELS.md §5): displacement, velocity, current and past forces in, force out.
+// docs/models.md (lssvm)): displacement, velocity, current and past forces in, force out.
 //
 // Regressor at sample i (eq. 1 with the past outputs of §4.2; lag orders are settings, Lags):
 //   x_i = [d_i, d_{i−1}, …, d_{i−nd},  v_{i−1}, …, v_{i−nv},  I,  y_{i−1}, …, y_{i−ny}]
@@ -10,7 +10,7 @@
 // centred. The output y_i is the force in N, not normalized (LS-SVM is equivariant to the scale of y).
 //
 // Model (eqs. 6–7): f(x) = Σ_j α_j K(x_j, x) + b,  K(x_j, x) = exp(−‖x_j − x‖²/σ²)  (σ in normalized units).
-// Training, regression form of eq. 5 (the printed y_i·y_j factors are the classification form; MODELS.md §5):
+// Training, regression form of eq. 5 (the printed y_i·y_j factors are the classification form; docs/models.md (lssvm)):
 //   [[0, 1ᵀ], [1, K + I/c]]·[b; α] = [0; y]
 // solved as two solves with H = K + I/c (SPD): η = H⁻¹1, ν = H⁻¹y, b = 1ᵀν / 1ᵀη, α = ν − b·η.
 // For one σ and many c, SpectralFactor reuses one eigendecomposition K = QΛQᵀ:
@@ -226,7 +226,7 @@ enum class Fitness {
   /// the scale of the distance between neighbouring samples (test_lssvm.cpp shows it), where the model
   /// reproduces its training forces and generalizes poorly. Kept for comparison with the paper.
   paper,
-  /// Free-run MSE on the held-out tails (what a controller uses, issue 13): the model is fitted on the same rows
+  /// Free-run MSE on the held-out tails (what a controller uses): the model is fitted on the same rows
   /// as `validation`, then simulates each training record at its full rate (the lags are in record samples)
   /// from its first held-out sample to its end, starting from the measured forces before it. A free run that
   /// diverges (|F| > 10 × the largest training force) scores +inf. Each candidate costs a kernel matrix and a

@@ -15,7 +15,7 @@ GaSettings GaSettings::lssvm() {
   s.population = 50;
   s.generations = 500;
   // Operators as the preset was measured with (tests/test_ga.cpp): with ga's own η_c = 2 and ⌈N/10⌉ elites
-  // the slow, mutation-poor paper GA converged 10× less far on the 5-D sphere (18th best 2.2e-6, was 2.2e-7).
+  // the slow, mutation-poor paper GA converges 10× less far on the 5-D sphere (18th best 2.2e-6 against 2.2e-7).
   s.eta_c = 15;
   s.elites = 1;
   return s;

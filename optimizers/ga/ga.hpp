@@ -16,14 +16,14 @@ namespace dampbench {
 
 struct GaSettings : GeneticSettings {
   /// `ga`'s own defaults over the shared ones: SBX η_c = 2, Deb & Agrawal's (1995) broad setting, and
-  /// ⌈N/10⌉ elites (5 of 50). Measured with 50 × 100 (tests/test_ga.cpp, seeds 7…): runs reaching 1.02 ×
-  /// the noise RMSE on a noisy Kwok record went from 6 of 40 (η_c 15, one elite) to 23 of 40 (8 and 30 of 40
-  /// with the code of 2026-11-25, before and after the GAs' vector pow alike), and on the
-  /// fvd test-3 record (gv_quadratic_elastic) within 2 % of the best from 20 to 29 of 40. The standard
-  /// functions (tests/test_optimizer_conformance.cpp) improved or held everywhere (e.g. 10-D Rastrigin's
-  /// 18th-best of 20 from 0.17 to 0.004, 10-D sphere 6e-4 to 4e-6) except 5-D Rosenbrock, whose runs
-  /// stop in the local minimum near 3.99 more often (18th best 4.0, was 2.1). Larger η_m (60) brought
-  /// Kwok to 33 of 40 but 2-D Rastrigin to 0.99 and was not taken.
+  /// ⌈N/10⌉ elites (5 of 50), because with 50 × 100 (tests/test_ga.cpp, seeds 7…) they bring far more runs
+  /// to 1.02 × the noise RMSE on a noisy Kwok record than η_c 15 with one elite (23 of 40 against 6 of 40), and
+  /// more within 2 % of the best on the fvd test-3 record (gv_quadratic_elastic: 29 of 40 against 20). The
+  /// standard functions (tests/test_optimizer_conformance.cpp) improve or hold everywhere (e.g. 10-D
+  /// Rastrigin's 18th-best of 20 0.004 against 0.17, 10-D sphere 4e-6 against 6e-4) except 5-D Rosenbrock,
+  /// whose runs stop in the local minimum near 3.99 more often (18th best 4.0 against 2.1). A larger η_m (60)
+  /// brings Kwok to 33 of 40 but 2-D Rastrigin to 0.99, so it is not taken. docs/performance.md has how the
+  /// Kwok counts vary with the code.
   GaSettings() {
     eta_c = 2;
     elite_share = 0.1;

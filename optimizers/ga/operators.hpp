@@ -7,7 +7,7 @@
 // variables it crosses or which genes it mutates and appends them to a structure of arrays; one vector loop per
 // generation (sbx_finish, mutate_all) then computes every crossed variable's or mutated gene's new value, its
 // powers through libmvec's vector pow at the active vector level (engine/kernels/isa.hpp). glibc's scalar pow
-// took 13 % of a `ga` fit on the fvd record. A variable's or gene's result depends on its own inputs and the vector
+// would take 13 % of a `ga` fit on the fvd record. A variable's or gene's result depends on its own inputs and the vector
 // level only, not on its place in the arrays or how many others there are; like the kernels' exp and log, the
 // last bits of pow differ between vector levels.
 #include <algorithm>

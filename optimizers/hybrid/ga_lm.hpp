@@ -50,8 +50,9 @@ namespace dampbench {
 struct GaLmSettings : GaSettings {
   /// Jacobians at most. 400: on the UTFSM records LM creeps along the Spencer and magic-formula valleys, and
   /// 100 left 5 Spencer and 10 magic-formula groups of the utfsm preset short of LM's own convergence test
-  /// (runs 0.02-0.2 % apart); 400 ends every Spencer group at it, with values 0-0.06 % lower, for 4 % more
-  /// preset time (Zen 5, 2026-11-25). LM stops earlier on its own tests, so an easy fit pays nothing for it.
+  /// (runs 0.02-0.2 % apart); 400 ends every Spencer group at it, with values 0-0.06 % lower, for a few %
+  /// more preset time (docs/performance.md). LM stops earlier on its own tests, so an easy fit pays nothing
+  /// for it.
   int lm_iterations = 400;
   double fd_step = 1e-7;    ///< forward-difference step, fraction of each parameter's box width
   double ftol = 1e-15;      ///< stop when an accepted step lowers ‖r‖² by less than ftol relative

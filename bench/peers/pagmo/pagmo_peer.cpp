@@ -1,4 +1,4 @@
-// pagmo2 peer of dampbench (issue 6): the problem written as a pagmo user would — a user-defined problem
+// pagmo2 peer of dampbench: the problem written as a pagmo user would — a user-defined problem
 // whose fitness() simulates ONE candidate with plain scalar C++ — and pagmo's `de`, `sga` and `pso_gen`.
 //
 // Problems (same equations, metric and RK4 sub-step rule as dampbench; bench/peers/README.md):
