@@ -57,10 +57,15 @@ bool isa_chosen_by_user();
 /// "avx512 (of sse2, avx2, avx512)": the active level and the supported ones, for --version and bench.
 std::string isa_summary();
 
+// A build may set DAMPBENCH_ISA_DISPATCH=0 (CMake option DAMPBENCH_ISA_DISPATCH=OFF): the kernels are then compiled
+// once, for the baseline, as the one level "generic". The sanitizer and fuzz builds do so, because one copy of each
+// kernel compiles in about a third of the time of three.
+#ifndef DAMPBENCH_ISA_DISPATCH
 #if defined(__x86_64__) && !defined(DAMPBENCH_NATIVE_BUILD)
 #define DAMPBENCH_ISA_DISPATCH 1
 #else
 #define DAMPBENCH_ISA_DISPATCH 0
+#endif
 #endif
 
 // GCC 12's partial redundancy elimination (PRE, -ftree-pre), run over a whole flattened time loop, helps some
