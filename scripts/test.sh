@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # The test command (CI runs it through .ci/run): installs dependencies, builds everything (library, command
-# line, tests, benchmarks) and runs the whole test suite through ctest; then the hardening stages of issue 17:
+# line, tests, benchmarks) and runs the whole test suite through ctest; then the hardening stages:
 #   - the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan), without the tests
 #     listed in SANITIZER_SKIP below (they re-run long optimizations that the release run already covers; mpi
 #     runs OpenMPI, whose own allocations LeakSanitizer would report);
 #   - every libFuzzer target for FUZZ_SECONDS (default 30 here, 60 when scripts/fuzz.sh runs alone) each
 #     (scripts/fuzz.sh, build-fuzz).
 # The sanitizer and fuzz builds compile the lane kernels once, at the baseline vector level (DAMPBENCH_ISA_DISPATCH
-# OFF; the release suite checks every level the CPU has), with line tables only (-g1): they are the two builds
-# that cost the most, and the fuzz build happens after the sanitizer suite has run.
+# OFF; the release suite runs every level the CPU has), with line tables only (-g1), and the sanitizer build
+# compiles the test files at -O1: compiling is where the time of this command goes. Tests that compare two levels
+# skip under the sanitizers, as in a native build.
 # DAMPBENCH_QUICK=1 stops after the release test suite. Tests that need ../shared/data skip with a message when
 # it is absent.
 set -euo pipefail

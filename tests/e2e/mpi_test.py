@@ -1,4 +1,4 @@
-"""Sweeps under MPI and as shards (issue 15), end to end through the dampbench executable.
+"""Sweeps under MPI and as shards, end to end through the dampbench executable.
 
 Compared with `dampbench run` in one process (2 threads), bit for bit (every stored number, read with SQLite
 itself, and every table file):

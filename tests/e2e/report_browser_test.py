@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The HTML report in a real browser (issue 14).
+"""The HTML report in a real browser.
 
 Runs a small sweep (Bingham per current with PSO and DE, Bouc-Wen per current, a current-dependent Bingham law
 fitted at 0 and 1 A predicting 0.5 A, a regression of f_c on I) on records made by `dampbench simulate` with

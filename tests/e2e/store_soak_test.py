@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Soak test of the results store (issue 17): a sweep killed with SIGKILL at N random moments in a row, resumed
+"""Soak test of the results store: a sweep killed with SIGKILL at N random moments in a row, resumed
 each time, ends bit-identical to an uninterrupted run of the same sweep.
 
 usage: store_soak_test.py DAMPBENCH WORK_DIR [KILLS (default 20)] [SEED (default 1)]
