@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the optimizer tests: standard test functions with known optima, the ask/tell loop that
 // runs one optimizer to the end (and its refine), seeded success rates, a retry helper that can fail, and
-// the checks of the conformance suite (tests/test_optimizer_conformance.cpp) that every optimizer passes.
+// the checks of the conformance suite (tests/unit/optimizers/test_optimizer_conformance.cpp) that every optimizer passes.
 #include <gtest/gtest.h>
 
 #include <cmath>
