@@ -107,7 +107,7 @@ struct Kwok {
 /// Stiff for small c_r or α (docs/models.md (numerical traps)): more sub-steps per stroke than the MR models.
 struct Maxwell {
   static constexpr int kParams = 4, kStates = 1;
-  static constexpr double kSubstepsPerStroke = 600;  // 2.1e-5 vs CVODE (tests/test_ode_models.cpp); 1/400: 6.7e-5
+  static constexpr double kSubstepsPerStroke = 600;  // 2.1e-5 vs CVODE (tests/unit/kernels/test_ode_models.cpp); 1/400: 6.7e-5
   struct Context {};
   static const ModelInfo& info() {
     static const ModelInfo i{"crfd.maxwell", "crfd eqs. 7.3-7.4 (generalized Maxwell model)",

@@ -116,7 +116,7 @@ struct NoContext {};
 /// Classic Bouc–Wen (Wen 1976): ż = −γ|v|·sgn(z)|z|^n − β·v·|z|^n + A·v; F = c0·v + k0(x − x0) + α·z.
 struct BoucWen {
   static constexpr int kParams = 8, kStates = 1;
-  static constexpr double kSubstepsPerStroke = 400;  // 2.4e-5 vs CVODE (tests/test_ode_models.cpp); 1/600: 6.6e-6
+  static constexpr double kSubstepsPerStroke = 400;  // 2.4e-5 vs CVODE (tests/unit/kernels/test_ode_models.cpp); 1/600: 6.6e-6
   static constexpr bool kStrokeDriven = true;        // sub-steps by the interval's |v| (engine/kernels/ode_kernel.hpp)
   static constexpr int kPowerState = 0, kPowerExponentRow = 7;  // |z|^n
   using Context = NoContext;

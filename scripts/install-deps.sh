@@ -8,9 +8,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev libsqlite3-dev libnlopt-cxx-dev
   libjs-d3            # D3, inlined into HTML reports (engine/report)
-  chromium python3    # the report test renders a report in headless Chromium (tests/report_browser_test.py)
+  chromium python3    # the report test renders a report in headless Chromium (tests/e2e/report_browser_test.py)
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (tests/fuzz)
-  libopenmpi-dev openmpi-bin  # mpirun -np K dampbench run (engine/distributed; tests/mpi_test.py)
+  libopenmpi-dev openmpi-bin  # mpirun -np K dampbench run (engine/distributed; tests/e2e/mpi_test.py)
   "$@"
 )
 missing=()

@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the optimizer tests: standard test functions with known optima, the ask/tell loop that
 // runs one optimizer to the end (and its refine), seeded success rates, a retry helper that can fail, and
-// the checks of the conformance suite (tests/test_optimizer_conformance.cpp) that every optimizer passes.
+// the checks of the conformance suite (tests/unit/optimizers/test_optimizer_conformance.cpp) that every optimizer passes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -321,7 +321,7 @@ inline ::testing::AssertionResult reaches_target(const SuccessCase& c, const std
 
 /// Retry for stochastic tests: runs trial(attempt) for attempt = 0, 1, … and stops at the first success, but
 /// the last allowed attempt is always asserted, so a trial that keeps failing fails the test (a retry
-/// loop whose guard swallows the last failure can never fail; STYLE.md). Each attempt should use
+/// loop whose guard swallows the last failure can never fail). Each attempt should use
 /// different seeds. Returns the number of attempts used.
 template <class Trial>
 int retry(int max_attempts, Trial&& trial) {

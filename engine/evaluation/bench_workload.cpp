@@ -12,7 +12,7 @@
 namespace dampbench {
 
 std::optional<std::string_view> bench_reference_point(const Model& model) {
-  // mfm Table 3 laws at I = 1 A (as in tests/test_ode_models.cpp): z saturates over millimetres of stroke.
+  // mfm Table 3 laws at I = 1 A (as in tests/unit/kernels/test_ode_models.cpp): z saturates over millimetres of stroke.
   if (model.id() == "mrd.spencer")
     return "c0=4110,c1=4.542e5,k0=42.83,k1=561.2,x0=-0.06678,alpha=166.01,beta=6079,gamma=10830,A=50210,n=0.9929";
   // The MR-damper-like truth of bench/peers (z saturates near 1 mm, hysteretic force ≈ 500 N).

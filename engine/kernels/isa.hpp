@@ -21,7 +21,7 @@
 // instructions on every CPU that has it (one
 // exception: libmvec's SSE2-level functions use SSE4.1 code where the CPU has it, as every x86-64 CPU since
 // 2008 does), and the same bits for any thread count or batch split. Levels differ from each other in the last bits of
-// vector exp/log/sin/... (libmvec's variants are different code; tests/test_isa.cpp measures by how much), so
+// vector exp/log/sin/... (libmvec's variants are different code; tests/unit/kernels/test_isa.cpp measures by how much), so
 // the level is part of build_flags() (engine/sweep/fingerprint.hpp): a store resumes, merges and runs across
 // MPI ranks on one level only, and `verify` re-runs at the store's level. (glibc's scalar libm, used outside
 // the kernels, picks its code by CPU features too; the MPI fingerprint compares those.)
@@ -57,10 +57,15 @@ bool isa_chosen_by_user();
 /// "avx512 (of sse2, avx2, avx512)": the active level and the supported ones, for --version and bench.
 std::string isa_summary();
 
+// A build may set DAMPBENCH_ISA_DISPATCH=0 (CMake option DAMPBENCH_ISA_DISPATCH=OFF): the kernels are then compiled
+// once, for the baseline, as the one level "generic". The sanitizer and fuzz builds do so: they check the kernels'
+// code, which is the same at every level, and one copy of each kernel compiles faster than three.
+#ifndef DAMPBENCH_ISA_DISPATCH
 #if defined(__x86_64__) && !defined(DAMPBENCH_NATIVE_BUILD)
 #define DAMPBENCH_ISA_DISPATCH 1
 #else
 #define DAMPBENCH_ISA_DISPATCH 0
+#endif
 #endif
 
 // GCC 12's partial redundancy elimination (PRE, -ftree-pre), run over a whole flattened time loop, helps some

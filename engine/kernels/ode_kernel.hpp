@@ -47,7 +47,7 @@ struct RecordScales {
 /// interval, also for stroke-driven laws: a count that followed the parameters interval by interval would make
 /// the objective jump by the discretization error wherever it changed, and local optimizers stall on such
 /// steps. 1.0 keeps Bouc–Wen's worst relative L2 to CVODE over random candidates of its default box under the
-/// 1e-4 bound of tests/test_ode_stiff_lanes.cpp with margin. Spencer and the fdsp laws set larger ones that
+/// 1e-4 bound of tests/unit/kernels/test_ode_stiff_lanes.cpp with margin. Spencer and the fdsp laws set larger ones that
 /// stay within Bouc–Wen's worst error, because stiff lanes are most of a real-data fit's time
 /// (docs/performance.md, "The ODE kernel's rules", has the errors of each choice).
 inline constexpr double kStiffStep = 1.0;
@@ -103,7 +103,7 @@ class OdeKernel {
   /// Anchor spacing of the chained power: a sub-step's start takes its power from the previous start's series
   /// except at an anchor (anchored()), at a lane's first sub-step and after a reset, so a chain is at most
   /// K² − 1 series long (K = kChainSteps) and a stage's power stays within about 1e-14 relative of the exact one
-  /// (tests/test_ode_power_chain.cpp). A law may set its own (tests: 1, the exact power at every sub-step's
+  /// (tests/unit/kernels/test_ode_power_chain.cpp). A law may set its own (tests: 1, the exact power at every sub-step's
   /// start).
   static constexpr int kChainSteps = [] {
     if constexpr (requires { Law::kChainSteps; }) return Law::kChainSteps;

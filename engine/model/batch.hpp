@@ -13,7 +13,7 @@ namespace dampbench {
 inline constexpr int kLanes = 16;
 /// Lanes of the wider blocks models with internal states also run (Model::max_block_lanes): their RK4 stages are
 /// chains of dependent operations, and a wider block gives the CPU more independent chains. A lane gets the same
-/// bits in a block of any width (tests/test_isa.cpp).
+/// bits in a block of any width (tests/unit/kernels/test_isa.cpp).
 inline constexpr int kWideLanes = 32, kWidestLanes = 64;
 
 class CandidateBatch {

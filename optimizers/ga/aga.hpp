@@ -13,7 +13,7 @@
 // so good solutions are protected (the best gets pc = 0 and pm = pm_min) and below-average ones are
 // disrupted. pm is per gene; S&P mutate a binary string per bit. Their floor ("default mutation rate")
 // of 0.005 is per bit, and applied per real-coded gene it lets a population of copies of the best
-// stagnate: measured with N = 30–50 on the five standard functions of tests/test_aga.cpp, 0.005 left
+// stagnate: measured with N = 30–50 on the five standard functions of tests/unit/optimizers/test_aga.cpp, 0.005 left
 // 2-D Ackley and Rastrigin no better than random sampling of the same budget. The default floor is
 // therefore 1/(2d) per gene (half the GA's 1/d rule), the best of 0.005, 0.05, 0.1, 0.2, 1/d and 1/(2d)
 // in 2, 5 and 10 dimensions; set pm_min = 0.005 for S&P's literal value. When every finite value equals f_min

@@ -14,7 +14,7 @@ GaSettings GaSettings::lssvm() {
   s.pm = 0.03;
   s.population = 50;
   s.generations = 500;
-  // Operators as the preset was measured with (tests/test_ga.cpp): with ga's own η_c = 2 and ⌈N/10⌉ elites
+  // Operators as the preset was measured with (tests/unit/optimizers/test_ga.cpp): with ga's own η_c = 2 and ⌈N/10⌉ elites
   // the slow, mutation-poor paper GA converges 10× less far on the 5-D sphere (18th best 2.2e-6 against 2.2e-7).
   s.eta_c = 15;
   s.elites = 1;

@@ -16,10 +16,10 @@ namespace dampbench {
 
 struct GaSettings : GeneticSettings {
   /// `ga`'s own defaults over the shared ones: SBX η_c = 2, Deb & Agrawal's (1995) broad setting, and
-  /// ⌈N/10⌉ elites (5 of 50), because with 50 × 100 (tests/test_ga.cpp, seeds 7…) they bring far more runs
+  /// ⌈N/10⌉ elites (5 of 50), because with 50 × 100 (tests/unit/optimizers/test_ga.cpp, seeds 7…) they bring far more runs
   /// to 1.02 × the noise RMSE on a noisy Kwok record than η_c 15 with one elite (23 of 40 against 6 of 40), and
   /// more within 2 % of the best on the fvd test-3 record (gv_quadratic_elastic: 29 of 40 against 20). The
-  /// standard functions (tests/test_optimizer_conformance.cpp) improve or hold everywhere (e.g. 10-D
+  /// standard functions (tests/unit/optimizers/test_optimizer_conformance.cpp) improve or hold everywhere (e.g. 10-D
   /// Rastrigin's 18th-best of 20 0.004 against 0.17, 10-D sphere 4e-6 against 6e-4) except 5-D Rosenbrock,
   /// whose runs stop in the local minimum near 3.99 more often (18th best 4.0 against 2.1). A larger η_m (60)
   /// brings Kwok to 33 of 40 but 2-D Rastrigin to 0.99, so it is not taken. docs/performance.md has how the
@@ -31,7 +31,7 @@ struct GaSettings : GeneticSettings {
   double pc = 0.9;  ///< crossover probability per pair (NSGA-II, Deb et al. 2002, with SBX)
   std::optional<double> pm;  ///< mutation probability per gene; unset: 1/d for d parameters, one gene per
                              ///< child on average (NSGA-II, Deb et al. 2002). A fixed 0.1 left the 2-D
-                             ///< Rosenbrock runs of tests/test_ga.cpp behind random sampling.
+                             ///< Rosenbrock runs of tests/unit/optimizers/test_ga.cpp behind random sampling.
 
   /// The lssvm paper's settings: pc 0.6, pm 0.03, population 50, 500 generations (η_c 15, one elite).
   static GaSettings lssvm();

@@ -30,7 +30,7 @@
 //   λ₀ = lambda0 (dimensionless: D carries the scale).
 //   A step into a region where the model fails (non-finite residuals) is rejected like a worse one. Against
 //   such an implicit wall LM converges slowly in the other parameters: λ grows, the step shrinks in every
-//   coordinate, and the run may stop on xtol before them (tests/test_ga_lm.cpp, BacksOffFromAFailureRegion).
+//   coordinate, and the run may stop on xtol before them (tests/unit/optimizers/test_ga_lm.cpp, BacksOffFromAFailureRegion).
 // Each Jacobian costs m residual evaluations, each trial step one (two with geodesic acceleration); all are
 // counted in the run's evaluations.
 //

@@ -6,7 +6,7 @@ import os
 import sqlite3
 import subprocess
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # 4 models x 4 records x 2 optimizers = 32 task groups of a few tens of milliseconds each (about 1 s in all on
 # 2 cores), so that faults land before, between and during group commits.

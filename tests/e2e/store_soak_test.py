@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Soak test of the results store (issue 17): a sweep killed with SIGKILL at N random moments in a row, resumed
+"""Soak test of the results store: a sweep killed with SIGKILL at N random moments in a row, resumed
 each time, ends bit-identical to an uninterrupted run of the same sweep.
 
 usage: store_soak_test.py DAMPBENCH WORK_DIR [KILLS (default 20)] [SEED (default 1)]
 The kill moments are drawn from a seeded generator (the test is the same every time); a longer soak is the same
-script with more kills, e.g. `tests/store_soak_test.py build/dampbench /tmp/soak 500 7`.
+script with more kills, e.g. `tests/e2e/store_soak_test.py build/dampbench /tmp/soak 500 7`.
 
 Compared: every stored number of every task group (runs: best value, metrics, parameters, evaluations, stop
 reason, best-so-far trace, local-optimum flag; per-dataset metrics; identifiability; the group's status and

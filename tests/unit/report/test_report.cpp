@@ -1,7 +1,7 @@
 // The numbers an HTML report draws (engine/report/html_report.hpp), on hand-built inputs: the loops are the
 // model's force for the best run over optimizers at every k-th sample, unavailable records are listed, run
 // distributions and law curves carry the given values, and text cannot end the page's script early.
-// tests/report_browser_test.py renders a real sweep's report in Chromium.
+// tests/e2e/report_browser_test.py renders a real sweep's report in Chromium.
 #include "engine/report/html_report.hpp"
 
 #include <gtest/gtest.h>

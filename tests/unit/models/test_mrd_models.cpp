@@ -85,7 +85,7 @@ TEST(MrdModels, SpencerFreqWithPublishedLawsEqualsSpencerVoltageAtTheLawValues) 
   const double w = 2.5;
   const double a_c0 = 1410.71 * std::pow(w, -0.102) - 0.6182;
   const double a_c1 = 7087 * std::exp(-std::pow((w - 4.282) / 1.197, 2)) + 18520 * std::exp(-std::pow((w - 1.783) / 3.25, 2));
-  EXPECT_NEAR(a_c1, 18400, 400);  // MODELS.md: ≈ 18 400 with the sign corrected
+  EXPECT_NEAR(a_c1, 18400, 400);  // docs/models.md §4: ≈ 18 400 with the sign corrected
   const Signals data = testing::sine_signals(0.00635, w, 2, 1000);
   const std::vector<double> common{3361.58, 420.0, 1803.0, 34622.0, 6515.13, 38430.0, 87.0, 307269.41, 182842.99, 2.0, 190.0, 0.01225};
   std::vector<double> volt = common;

@@ -32,7 +32,7 @@ double peak(const std::vector<double>& f) {
 TEST(Fixtures, CrfdTable5GivesCrNear1071At180Degrees) {
   const auto fx = make_fixture_model(find_fixture("crfd.table5"));
   const auto p = fx.model->base_parameters(fx.coefficients, sine(0.02, 1, {{"phi", 180.0}}));
-  // 1.270 + 0.104·180 − 6.937e-4·180² + 2.264e-6·180³ = 10.718 (MODELS.md: ≈ 10.71, Table 2 gives 11.398)
+  // 1.270 + 0.104·180 − 6.937e-4·180² + 2.264e-6·180³ = 10.718 (docs/models.md §2: ≈ 10.71, Table 2 gives 11.398)
   EXPECT_NEAR(p[0], 10.718, 0.001);
 }
 

@@ -99,7 +99,7 @@ TEST(OdeModels, MaxwellMatchesCvodeAtCrfdTable7At90Degrees) {
 }
 
 TEST(OdeModels, StartAtZeroWithExponentBelowOneIsFinite) {
-  // MODELS.md §6: z|z|^(n−1) at z = 0 with n < 1 must not give NaN.
+  // docs/models.md §6: z|z|^(n−1) at z = 0 with n < 1 must not give NaN.
   const Model& m = find_model("mrd.spencer");
   auto p = params(m, mfm_spencer_1A());
   p[m.parameter_index("n")] = 0.6;

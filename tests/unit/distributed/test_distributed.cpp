@@ -1,7 +1,7 @@
 // Sweeps beyond one process (engine/distributed, engine/sweep/schedule.hpp): a task group survives its trip as
 // bytes bit for bit, and truncated messages are refused; shards split the sweep into disjoint parts that cover
 // it, with balanced estimated cost; merging the shards' stores gives the store of one process, refuses parts of
-// another sweep and a group whose numbers differ. (Runs under mpirun: tests/mpi_test.py.)
+// another sweep and a group whose numbers differ. (Runs under mpirun: tests/e2e/mpi_test.py.)
 #include <gtest/gtest.h>
 
 #include <algorithm>

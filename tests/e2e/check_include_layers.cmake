@@ -1,7 +1,7 @@
 # Include layers: every source file may include project headers of its own layer or of a lower one only,
 # so that the tree reads as the data flow (engine/README.md). Run by ctest:
-#   cmake -DROOT=<source dir> -P tests/check_include_layers.cmake      checks the tree, fails on a violation
-#   cmake -DSELF_TEST=<scratch dir> -P tests/check_include_layers.cmake plants violations in a scratch tree
+#   cmake -DROOT=<source dir> -P tests/e2e/check_include_layers.cmake      checks the tree, fails on a violation
+#   cmake -DSELF_TEST=<scratch dir> -P tests/e2e/check_include_layers.cmake plants violations in a scratch tree
 #                                                                         and fails unless each is caught
 # A file in a folder that has no layer is an error too: a new folder must be given its place below.
 
@@ -58,7 +58,7 @@ function(check_tree root out)
     get_filename_component(dir "${src}" DIRECTORY)
     layer_of("${dir}" own)
     if(own STREQUAL "")
-      list(APPEND problems "${src}: its folder has no layer (add it to tests/check_include_layers.cmake)")
+      list(APPEND problems "${src}: its folder has no layer (add it to tests/e2e/check_include_layers.cmake)")
       continue()
     endif()
     file(STRINGS "${root}/${src}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"")

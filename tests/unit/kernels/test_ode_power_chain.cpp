@@ -5,7 +5,7 @@
 // takes the record's sub-steps (one set of inputs for all, chains across up to 4 intervals) and in a block with
 // stiff lanes (each lane its own count), and must not be identical (else the test would not exercise the chain).
 // That a lane's bits do not depend on its neighbours is tested for the real models at every vector level
-// (tests/test_isa.cpp).
+// (tests/unit/kernels/test_isa.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Batch evaluation is bit-identical whatever the thread count, the grain size, the candidate's position
-// in the batch, or the batch it shares (DESIGN.md, "Reproducibility").
+// in the batch, or the batch it shares (docs/design.md, "Reproducibility principles").
 #include "engine/evaluation/batch_evaluator.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The results store under faults (issue 17). For each fault: a clear `dampbench: error:` message and its exit
+"""The results store under faults. For each fault: a clear `dampbench: error:` message and its exit
 code, no finished task group lost, and a later run that resumes to the same bits as an uninterrupted run.
 
   - a store in use by another `dampbench run` (lock): refused at once (exit 4), the first run unharmed;
