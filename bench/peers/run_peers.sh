@@ -245,7 +245,7 @@ for prob in $PROBLEMS; do
 done
 
 cpu=$(sed -n 's/^model name\s*:\s*//p' /proc/cpuinfo | head -1)
-header="## dampbench vs peers (issue 6) — $(date -u +'%Y-%m-%d %H:%M UTC')
+header="## dampbench vs peers — $(date -u +'%Y-%m-%d %H:%M UTC')
 
 Budget: population $POP × $GENS generations (initial one included) × $RUNS runs (scipy on bw: $SCIPY_BW_RUNS runs); \
 metric of_abs; dampbench default bounds; DE rand/1/bin F = $F, CR = $CR. dampbench $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo "?") \

@@ -82,7 +82,7 @@ class Model {
   virtual void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const;
 
   /// True for models with internal states integrated between samples (Bouc–Wen, Spencer, Maxwell, ...), false
-  /// for algebraic ones. `fit` chooses its default optimizer and budget by it (engine/cli/fit_defaults.hpp).
+  /// for algebraic ones. `fit` chooses its default optimizer and budget by it (engine/fit/fit_defaults.hpp).
   [[nodiscard]] virtual bool has_internal_states() const { return false; }
 
   /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models

@@ -1,4 +1,4 @@
-// Stiff-safe ODE lanes (engine/kernels/ode_kernel.hpp, "Stiff lanes"; issue 13): over random candidates
+// Stiff-safe ODE lanes (engine/kernels/ode_kernel.hpp, "Stiff lanes"): over random candidates
 // drawn uniformly from each MR ODE model's default box on a UTFSM-like record (10 mm, 1 Hz, 1 kHz), fewer
 // than 5 % are masked, and every candidate that is not masked matches SUNDIALS CVODE (BDF, rtol 1e-10) to a
 // relative L2 difference below 1e-4. A lane's result does not depend on its block-mates.

@@ -253,7 +253,7 @@ TEST(LssvmTuning, PaperTrainingFitnessPicksDegenerateSmallSigma) {
   EXPECT_GT(mse_paper, 20 * mse_valid) << "paper choice " << mse_paper << ", validation choice " << mse_valid;
 }
 
-// ---- the free-run fitness (issue 13: what a controller uses) ---------------------------------------------------------------
+// ---- the free-run fitness (what a controller uses) ---------------------------------------------------------------
 
 // Its definition, computed here from the public pieces: fitted on the rows the validation fitness fits (each
 // record's first 80 % of rows), normalized with the statistics of all rows, then every record simulated from its
