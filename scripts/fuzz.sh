@@ -40,20 +40,39 @@ cp "$store_seed/store.sqlite" "$corpus/fuzz_store/quick.sqlite"
 # fuzz_group_message writes the store's groups, encoded as MPI messages, into its corpus when it starts.
 export DAMPBENCH_FUZZ_SEED_STORE="$PWD/$store_seed/store.sqlite" DAMPBENCH_FUZZ_SEED_DIR="$PWD/$corpus/fuzz_group_message"
 
-for t in "${targets[@]}"; do
+# One fuzzer per core at a time: each libFuzzer process is single-threaded, so the targets share the cores
+# instead of queueing, and each still gets its full FUZZ_SECONDS.
+fuzz_one() {
+  local t="$1"
   mkdir -p "build-fuzz/findings/$t"
-  dirs=("$corpus/$t")
+  local dirs=("$corpus/$t")
   [ -d "tests/fuzz/regressions/$t" ] && dirs+=("tests/fuzz/regressions/$t")
-  echo "== $t: ${seconds} s"
-  log="build-fuzz/findings/$t.log"
-  status=0
   ASAN_OPTIONS=detect_leaks=1 "./build-fuzz/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$t/" "${dirs[@]}" > "$log" 2>&1 || status=$?
-  grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)" "$log" || true
-  if [ "$status" -ne 0 ]; then
-    tail -40 "$log" >&2
-    echo "fuzz: $t failed (exit $status); the input is in build-fuzz/findings/$t/" >&2
-    exit 1
-  fi
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$t/" "${dirs[@]}" \
+    > "build-fuzz/findings/$t.log" 2>&1
+}
+jobs="${FUZZ_JOBS:-$(nproc)}"
+failed=0
+for ((first = 0; first < ${#targets[@]}; first += jobs)); do
+  batch=("${targets[@]:first:jobs}")
+  pids=()
+  for t in "${batch[@]}"; do
+    echo "== $t: ${seconds} s"
+    fuzz_one "$t" & pids+=($!)
+  done
+  for i in "${!batch[@]}"; do
+    t="${batch[$i]}"
+    status=0
+    wait "${pids[$i]}" || status=$?
+    log="build-fuzz/findings/$t.log"
+    echo "-- $t"
+    grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)" "$log" || true
+    if [ "$status" -ne 0 ]; then
+      tail -40 "$log" >&2
+      echo "fuzz: $t failed (exit $status); the input is in build-fuzz/findings/$t/" >&2
+      failed=1
+    fi
+  done
+  [ "$failed" -eq 0 ] || exit 1
 done
-echo "fuzz: ${#targets[@]} targets, ${seconds} s each, no crash"
+echo "fuzz: ${#targets[@]} targets, ${seconds} s each (${jobs} at a time), no crash"
