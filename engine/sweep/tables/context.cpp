@@ -101,6 +101,19 @@ std::vector<std::vector<double>> Context::paper_params(const GroupRecord& g) con
   return out;
 }
 
+std::vector<std::vector<Summary>> Context::parameter_summaries(const Series& s) const {
+  std::vector<std::vector<std::vector<double>>> values;  // group → run → parameter
+  for (const GroupRecord* g : s.groups) values.push_back(paper_params(*g));
+  std::vector<std::vector<Summary>> out(static_cast<std::size_t>(model(s.model).dim()));
+  for (std::size_t j = 0; j < out.size(); ++j)
+    for (const auto& runs : values) {
+      std::vector<double> v;
+      for (const auto& p : runs) v.push_back(p[j]);
+      out[j].push_back(summarize(v));
+    }
+  return out;
+}
+
 std::vector<double> best_values(const GroupRecord& g) {
   std::vector<double> v;
   for (const auto& r : g.run_results) v.push_back(r.best_value);

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/common/statistics.hpp"
 #include "engine/common/table.hpp"
 #include "engine/identification/convergence.hpp"
 #include "engine/sweep/tables.hpp"
@@ -64,6 +65,8 @@ struct Context {
   [[nodiscard]] Table table(std::string id, std::string title_text, std::vector<std::string> columns) const;
   /// Parameter values in paper units of every run of a group.
   [[nodiscard]] std::vector<std::vector<double>> paper_params(const GroupRecord& g) const;
+  /// Per parameter, per condition (group of the series): the summary over the runs, in paper units.
+  [[nodiscard]] std::vector<std::vector<Summary>> parameter_summaries(const Series& s) const;
 };
 
 std::vector<double> best_values(const GroupRecord& g);

@@ -12,15 +12,9 @@ Table param_stats_table(const Context& c, const Series& s, std::string id, std::
   Table r = c.table(std::move(id), std::move(title), cols);
   const Model& model = c.model(s.model);
   const auto params = model.parameters();
-  std::vector<std::vector<std::vector<double>>> values;  // group → run → parameter
-  for (const GroupRecord* g : s.groups) values.push_back(c.paper_params(*g));
+  const auto summaries = c.parameter_summaries(s);
   for (int j = 0; j < model.dim(); ++j) {
-    std::vector<Summary> per;
-    for (const auto& runs : values) {
-      std::vector<double> v;
-      for (const auto& p : runs) v.push_back(p[static_cast<std::size_t>(j)]);
-      per.push_back(summarize(v));
-    }
+    const std::vector<Summary>& per = summaries[static_cast<std::size_t>(j)];
     const std::pair<const char*, double Summary::*> stats[] = {
         {"mean", &Summary::mean}, {"max", &Summary::max}, {"min", &Summary::min}, {"std", &Summary::std}};
     for (const auto& [name, field] : stats) {

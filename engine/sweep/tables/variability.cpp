@@ -10,15 +10,10 @@ Table variability_table(const Context& c, const Series& s, std::string id, std::
   Table r = c.table(std::move(id), std::move(title), {"Parameter", "p_mean", "delta_p", "delta_p/p_mean"});
   const Model& model = c.model(s.model);
   const auto params = model.parameters();
-  std::vector<std::vector<std::vector<double>>> values;
-  for (const GroupRecord* g : s.groups) values.push_back(c.paper_params(*g));
+  const auto summaries = c.parameter_summaries(s);
   for (int j = 0; j < model.dim(); ++j) {
     std::vector<double> means;
-    for (const auto& runs : values) {
-      std::vector<double> v;
-      for (const auto& p : runs) v.push_back(p[static_cast<std::size_t>(j)]);
-      means.push_back(summarize(v).mean);
-    }
+    for (const Summary& x : summaries[static_cast<std::size_t>(j)]) means.push_back(x.mean);
     const Summary x = summarize(means);
     const double delta = x.max - x.min;
     r.rows.push_back({txt(fmt::format("{} [{}]", params[j].name, params[j].paper_unit)), num(x.mean), num(delta),
