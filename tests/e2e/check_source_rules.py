@@ -150,38 +150,28 @@ def lex_cpp(src):
             i = j
             token = ""
             continue
-        if c == '"':
-            if token in ("R", "u8R", "uR", "UR", "LR"):
-                m = re.match(r'"([^()\\\s]{0,16})\(', src[i:])
-                if m:
-                    end = src.find(")" + m.group(1) + '"', i + len(m.group(0)))
-                    j = n if end < 0 else end + len(m.group(1)) + 2
-                    text = src[i:j]
-                    out.append('"' + blank(text[1:-1]) + '"' if len(text) >= 2 else blank(text))
-                    line += text.count("\n")
-                    i = j
-                    token = ""
-                    at_line_start = False
-                    continue
-            j = i + 1
-            while j < n and src[j] != '"' and src[j] != "\n":
-                j += 2 if src[j] == "\\" else 1
-            j = min(j + 1, n)
-            out.append('"' + " " * (j - i - 2) + '"' if j - i >= 2 else " ")
-            i = j
-            token = ""
-            at_line_start = False
+        if c == "'" and token[:1].isdigit():   # a digit separator
+            out.append(c)
+            i += 1
             continue
-        if c == "'":
-            if token[:1].isdigit():   # a digit separator
-                out.append(c)
-                i += 1
+        if c == '"' and token in ("R", "u8R", "uR", "UR", "LR"):
+            m = re.match(r'"([^()\\\s]{0,16})\(', src[i:])
+            if m:
+                end = src.find(")" + m.group(1) + '"', i + len(m.group(0)))
+                j = n if end < 0 else end + len(m.group(1)) + 2
+                text = src[i:j]
+                out.append('"' + blank(text[1:-1]) + '"' if len(text) >= 2 else blank(text))
+                line += text.count("\n")
+                i = j
+                token = ""
+                at_line_start = False
                 continue
+        if c in "\"'":   # a string or character literal, blanked to its quotes
             j = i + 1
-            while j < n and src[j] != "'" and src[j] != "\n":
+            while j < n and src[j] != c and src[j] != "\n":
                 j += 2 if src[j] == "\\" else 1
             j = min(j + 1, n)
-            out.append("'" + " " * (j - i - 2) + "'" if j - i >= 2 else " ")
+            out.append(c + " " * (j - i - 2) + c if j - i >= 2 else " ")
             i = j
             token = ""
             at_line_start = False
