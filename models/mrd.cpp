@@ -93,6 +93,16 @@ std::vector<RecordBoundsRule> bouc_wen_rules(const char* k0) {
           {"n", 1, 3, 0, 0, 0}};
 }
 
+/// The gauge of the Bouc–Wen state z (engine/model/model.hpp, StateGauge): A = β + γ.
+/// With |z| ≤ 1, α·z ≤ 2F bounds α by twice the peak force, and z has no unit.
+StateGauge bouc_wen_gauge() {
+  return {"A",
+          {"beta", "gamma"},
+          "A = beta + gamma: |z| saturates at 1 and alpha is the hysteretic force [N]",
+          {{"alpha", 0, 2, 1, 0, 0}},
+          {{"alpha", "N"}, {"beta", "1/m"}, {"gamma", "1/m"}, {"A", "1/m"}}};
+}
+
 /// Bingham plastic: F = f_c·sgn(v) + c0·v + f0.
 struct Bingham {
   static constexpr int kParams = 3;
@@ -134,6 +144,7 @@ struct BoucWen {
     return i;
   }
   static Context context(const Signals&) { return {}; }
+  static StateGauge gauge() { return bouc_wen_gauge(); }
   static const std::vector<RecordBoundsRule>& record_bounds_rules() {
     static const std::vector<RecordBoundsRule> rules = [] {
       auto r = bouc_wen_rules("k0");
@@ -188,6 +199,7 @@ struct Spencer {
     return i;
   }
   static Context context(const Signals&) { return {}; }
+  static StateGauge gauge() { return bouc_wen_gauge(); }
   /// The Bouc–Wen rules (k0 the spring in series with c0), c1 ≤ 20F/V (the low-velocity damping exceeds
   /// c0: 3.7 F/V on 10 mm–1 Hz–1 A), k1 ≤ F/X, |x0| ≤ X.
   static const std::vector<RecordBoundsRule>& record_bounds_rules() {

@@ -181,7 +181,7 @@ struct LaneBlockRun {
 ///   const bool* failed() const;               lanes that blew up (or nullptr)
 ///   optional: static std::vector<double> reference(params, data)   (CVODE for ODE kernels)
 ///   optional: static constexpr bool kWithoutTreePre   its clones compiled without GCC's PRE (engine/kernels/isa.hpp)
-/// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants and lane_invariants.
+/// Law provides kParams, info() and optionally to_paper_units, kLaneInvariants, lane_invariants and gauge().
 /// evaluate_block, simulate and simulate_block run the same lane block at the active vector level, so they
 /// see the same bits; evaluate_scalar runs one lane (W = 1) of plain scalar code, the reference of `bench`.
 template <class Law, template <class, int> class KernelT>
@@ -198,6 +198,10 @@ class KernelModel final : public Model {
   [[nodiscard]] std::string_view citation() const override { return Law::info().citation; }
   [[nodiscard]] std::string_view law() const override { return Law::info().law; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return Law::info().parameters; }
+  [[nodiscard]] std::optional<StateGauge> state_gauge() const override {
+    if constexpr (requires { Law::gauge(); }) return Law::gauge();
+    return std::nullopt;
+  }
 
   [[nodiscard]] int max_block_lanes() const override { return kWide ? kWidestLanes : kLanes; }
   [[nodiscard]] bool has_internal_states() const override { return kStates; }

@@ -61,18 +61,43 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
 LawModel::LawModel(const Model& base, std::map<std::string, ParameterLaw> laws, std::string id, std::string citation)
     : base_(base), id_(std::move(id)), citation_(std::move(citation)) {
   for (const auto& [name, law] : laws) (void)base.parameter_index(name);  // unknown names throw
+  apply_gauge(base, laws);
   std::string law_list;
   for (const auto& p : base.parameters()) {
     const auto it = laws.find(p.name);
     const ParameterLaw law = it == laws.end() ? ParameterLaw{} : it->second;
     offsets_.push_back(static_cast<int>(coefficients_.size()));
-    for (auto& c : coefficient_infos(p, law)) coefficients_.push_back(std::move(c));
+    for (auto& c : coefficient_infos(gauged_info(p), law)) coefficients_.push_back(std::move(c));
     laws_.push_back(law);
-    if (it != laws.end()) law_list += fmt::format("{}{}={}", law_list.empty() ? "" : ";", p.name, law.text());
+    if (it != laws.end() && !(gauge_ && p.name == gauge_->tied)) law_list += fmt::format("{}{}={}", law_list.empty() ? "" : ";", p.name, law.text());
   }
   if (id_.empty()) id_ = fmt::format("{}[{}]", base.id(), law_list);
   if (citation_.empty()) citation_ = std::string(base.citation());
   law_text_ = fmt::format("{} with {}", base.law(), law_list);
+  if (gauge_) law_text_ += fmt::format(" (gauge {})", gauge_->meaning);
+}
+
+void LawModel::apply_gauge(const Model& base, std::map<std::string, ParameterLaw>& laws) {
+  const auto own_rules = base.record_bounds_rules();
+  bounds_rules_.assign(own_rules.begin(), own_rules.end());
+  auto gauge = base.state_gauge();
+  if (!gauge || laws.count(gauge->tied)) return;
+  gauge_tied_ = base.parameter_index(gauge->tied);
+  for (const auto& name : gauge->sum_of) gauge_sum_of_.push_back(base.parameter_index(name));
+  laws[gauge->tied].kind = ParameterLaw::Kind::fixed;  // no coefficient; base_values writes the sum
+  for (const auto& rule : gauge->bounds_rules) {
+    std::erase_if(bounds_rules_, [&](const RecordBoundsRule& r) { return r.name == rule.name; });
+    bounds_rules_.push_back(rule);
+  }
+  gauge_ = std::move(gauge);
+}
+
+ParameterInfo LawModel::gauged_info(const ParameterInfo& p) const {
+  ParameterInfo out = p;
+  if (gauge_)
+    for (const auto& [name, unit] : gauge_->units)
+      if (name == p.name) out.unit = out.paper_unit = unit;
+  return out;
 }
 
 void LawModel::set_default_bounds(std::string_view name, double lower, double upper) {
@@ -81,9 +106,17 @@ void LawModel::set_default_bounds(std::string_view name, double lower, double up
   coefficients_[j].upper = upper;
 }
 
+void LawModel::base_values(const double* c, const std::map<std::string, double>& v, double* p) const {
+  for (std::size_t j = 0; j < laws_.size(); ++j) p[j] = laws_[j].evaluate(c + offsets_[j], v);
+  if (gauge_tied_ < 0) return;
+  double sum = 0.0;
+  for (int j : gauge_sum_of_) sum += p[j];
+  p[gauge_tied_] = sum;
+}
+
 std::vector<double> LawModel::base_parameters(std::span<const double> c, const Signals& data) const {
   std::vector<double> p(laws_.size());
-  for (std::size_t j = 0; j < laws_.size(); ++j) p[j] = laws_[j].evaluate(c.data() + offsets_[j], data.law_variables);
+  base_values(c.data(), data.law_variables, p.data());
   return p;
 }
 
@@ -106,18 +139,20 @@ const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int firs
   // the base parameters of this block, grown once, never shrunk.
   struct Scratch {
     CandidateBatch batch;
-    std::vector<double> c;
+    std::vector<double> c, p;
   };
   thread_local std::unordered_map<const LawModel*, Scratch> scratches;
   Scratch& mine = scratches[this];
   CandidateBatch& scratch = mine.batch;
   std::vector<double>& c = mine.c;
   if (scratch.dim() != base_.dim() || scratch.count() != count) scratch.resize(base_.dim(), count);
+  std::vector<double>& p = mine.p;
   c.resize(coefficients_.size());
+  p.resize(laws_.size());
   for (int i = 0; i < count; ++i) {
     for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
-    for (std::size_t j = 0; j < laws_.size(); ++j)
-      scratch.at(i, static_cast<int>(j)) = laws_[j].evaluate(c.data() + offsets_[j], data.law_variables);
+    base_values(c.data(), data.law_variables, p.data());
+    for (std::size_t j = 0; j < p.size(); ++j) scratch.at(i, static_cast<int>(j)) = p[j];
   }
   return scratch;
 }

@@ -4,6 +4,7 @@
 // coefficients serves every condition (crfd §5, mfm eqs. 4–11, fdsp eqs. 13–14).
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,11 @@ class LawModel final : public Model {
   [[nodiscard]] std::string_view citation() const override { return citation_; }
   [[nodiscard]] std::string_view law() const override { return law_text_; }
   [[nodiscard]] std::span<const ParameterInfo> parameters() const override { return coefficients_; }
-  /// The base model's rules; those of parameters replaced by a law do not apply.
-  [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override {
-    return base().record_bounds_rules();
-  }
+  /// The base model's rules (those of the gauge replacing theirs); those of parameters replaced by a law do not
+  /// apply.
+  [[nodiscard]] std::span<const RecordBoundsRule> record_bounds_rules() const override { return bounds_rules_; }
+  /// The base model's gauge when this law model applies it (its laws do not name the tied parameter).
+  [[nodiscard]] const std::optional<StateGauge>& applied_gauge() const { return gauge_; }
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override;
@@ -51,6 +53,13 @@ class LawModel final : public Model {
   [[nodiscard]] const Model& base() const { return base_; }
 
  private:
+  /// Applies the base model's gauge unless `laws` name its tied parameter (then the user has chosen the states'
+  /// scale); the tied parameter gets a fixed law (no coefficient) whose value base_values overwrites.
+  void apply_gauge(const Model& base, std::map<std::string, ParameterLaw>& laws);
+  /// The base parameter's info with the gauge's unit.
+  [[nodiscard]] ParameterInfo gauged_info(const ParameterInfo& p) const;
+  /// The base parameters of one candidate's coefficients `c` under operating variables `v`, into p[0, base dim).
+  void base_values(const double* c, const std::map<std::string, double>& v, double* p) const;
   /// The base parameters of candidates [first, first + count) under the record's variables (thread scratch).
   const CandidateBatch& base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const;
 
@@ -58,6 +67,10 @@ class LawModel final : public Model {
   std::vector<ParameterLaw> laws_;   ///< one per base parameter
   std::vector<int> offsets_;         ///< first coefficient of each base parameter
   std::vector<ParameterInfo> coefficients_;
+  std::vector<RecordBoundsRule> bounds_rules_;
+  std::optional<StateGauge> gauge_;
+  int gauge_tied_ = -1;                 ///< base index of the gauge's tied parameter (−1: no gauge)
+  std::vector<int> gauge_sum_of_;       ///< base indices it is the sum of
   std::string id_, citation_, law_text_;
 };
 

@@ -5,6 +5,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/model/batch.hpp"
@@ -31,6 +32,20 @@ struct RecordBoundsRule {
 
   /// "0 … 2·F/V"-style text for `dampbench models`.
   [[nodiscard]] std::string describe() const;
+};
+
+/// A gauge that removes an exact scale symmetry of a model's internal states: parameter `tied` is set to the
+/// sum of the parameters `sum_of`. In Bouc–Wen and Spencer, z → s·z with A → s·A, α → α/s and
+/// β, γ → β·s^(1−n), γ·s^(1−n) leaves the force unchanged, so α, β, γ and A trade off exactly; A = β + γ fixes s
+/// so that |z| saturates at 1 ((A/(β+γ))^(1/n) = 1) and α becomes the hysteretic force in N.
+struct StateGauge {
+  std::string tied;
+  std::vector<std::string> sum_of;
+  std::string meaning;  ///< what the gauge makes of the states, for the tables
+  /// Record-scaled bounds that replace the model's own under the gauge (the scale of z changes theirs).
+  std::vector<RecordBoundsRule> bounds_rules;
+  /// SI units that change with the scale of the states: (parameter, unit).
+  std::vector<std::pair<std::string, std::string>> units;
 };
 
 class Model {
@@ -97,6 +112,10 @@ class Model {
   [[nodiscard]] virtual std::vector<double> to_paper_units(std::span<const double> params) const {
     return {params.begin(), params.end()};
   }
+
+  /// The gauge a law model applies (engine/model/law_model.hpp) unless its laws name the tied parameter;
+  /// nullopt for models without a scale symmetry.
+  [[nodiscard]] virtual std::optional<StateGauge> state_gauge() const { return std::nullopt; }
 
   /// Rules that replace the fixed default bounds of some parameters when a record is known (fit, sweeps).
   [[nodiscard]] virtual std::span<const RecordBoundsRule> record_bounds_rules() const { return {}; }
