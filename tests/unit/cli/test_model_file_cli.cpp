@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -119,6 +120,56 @@ TEST(ModelFileCli, ALawModelRoundTripsWithItsOperatingVariables) {
   r = run_dampbench("evaluate --model-file " + (dir / "model.json").string() + " --model mrd.spencer " + record);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("--model-file gives the model"), std::string::npos) << r.output;
+}
+
+// Fitted on two records: each record's metric in the file is what evaluate gives for it, bit for bit.
+TEST(ModelFileCli, EachFittedRecordsMetricIsWhatEvaluateGives) {
+  const auto dir = temp_dir();
+  std::string data;
+  for (const char* amp : {"0.01", "0.02"}) {
+    const auto csv = dir / (std::string("amp") + amp + ".csv");
+    const auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 --sine amp=" +
+                                 std::string(amp) + ",freq=1,cycles=2,fs=200 --noise-rel 0.05 -o " + csv.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    data += " --data " + csv.string();
+  }
+  const auto model = dir / "model.json";
+  auto r = run_dampbench("fit --model fvd.generalized_viscous --runs 2 --iters 20 --metric nrmse --threads 2" + data +
+                         " --save-model " + model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto file = nlohmann::json::parse(read(model));
+  r = run_dampbench("evaluate --model-file " + model.string() + data + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto eval = nlohmann::json::parse(r.output);
+  ASSERT_EQ(file.at("records").size(), 2u);
+  for (const auto& record : file.at("records")) {
+    const std::string path = record.at("path");
+    EXPECT_EQ(bits(eval.at(path).at("nrmse")), bits(record.at("metric_value"))) << path;
+  }
+  EXPECT_NE(bits(file.at("records")[0].at("metric_value")), bits(file.at("records")[1].at("metric_value")));
+}
+
+TEST(ModelFileCli, OptionsThatCannotGoTogetherAreRefused) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "r.csv";
+  auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 --sine amp=0.01,freq=1,fs=100 -o " +
+                         csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::pair<std::string, std::string> cases[] = {
+      {"fit --model fvd.linear_viscous --runs 1 --iters 1 --data " + csv.string() + " --save-model " +
+           (dir / "no" / "m.json").string(),
+       "--save-model: the folder of '" + (dir / "no" / "m.json").string() + "' does not exist"},
+      {"evaluate --data " + csv.string(), "evaluate: give --model and --params (or --model-file FILE)"},
+      {"evaluate --model-file m.json --params C=1 --data " + csv.string(), "evaluate: --model-file gives the model"},
+      {"simulate --model-file m.json --fixture mfm.table3 --sine amp=0.01,freq=1,fs=100",
+       "simulate: --model-file gives the model"},
+      {"evaluate --model-file " + (dir / "none.json").string() + " --data " + csv.string(),
+       "--model-file: cannot open '" + (dir / "none.json").string() + "'"}};
+  for (const auto& [args, message] : cases) {
+    r = run_dampbench(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
 }
 
 TEST(ModelFileCli, FitPrintsWhereEachOperatingVariableComesFrom) {

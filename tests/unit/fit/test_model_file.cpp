@@ -65,6 +65,24 @@ TEST(ModelFile, NumbersReadBackToTheSameBits) {
   EXPECT_EQ(loaded.params[loaded.model.model->parameter_index("C_I0")], 1.0 / 3.0);
 }
 
+// A file may name a published law fixture instead of a base model; its coefficients come back in order.
+TEST(ModelFile, AFixtureModelLoadsWithItsCoefficients) {
+  ModelChoice choice;
+  choice.fixture = "mfm.table3";
+  const ResolvedModel fixture = resolve_model(choice);
+  ModelFile f;
+  f.dampbench_version = "0.0.0";
+  f.vector_level = "sse2";
+  f.choice.fixture = "mfm.table3";
+  for (int i = fixture.model->dim() - 1; i >= 0; --i)  // any order: read by name
+    f.coefficients.emplace_back(fixture.model->parameters()[i].name, fixture.defaults[i]);
+  f.metric = "nrmse";
+  const LoadedModel loaded = load_model_file(write_temp("fixture", model_file_text(f)));
+  EXPECT_EQ(loaded.model.model->id(), fixture.model->id());
+  EXPECT_EQ(loaded.params, fixture.defaults);
+  EXPECT_TRUE(loaded.file.records.empty());
+}
+
 /// The error of loading `text` with `from` replaced by `to` (which must occur in it).
 std::string load_error(const std::string& name, std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
