@@ -11,14 +11,16 @@
 #include "engine/common/table.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/fit/fit_records.hpp"
+#include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 
 namespace dampbench::cli {
 
 void add_evaluate_options(CLI::App* c, EvaluateOptions& eval) {
-  c->add_option("--model", eval.model, "model id")->required();
+  c->add_option("--model", eval.model, "model id");
   c->add_option("--laws", eval.laws, "parameter laws (then --params gives their coefficients)");
-  c->add_option("--params", eval.params, "parameter values in SI, name=value,...")->required();
+  c->add_option("--params", eval.params, "parameter values in SI, name=value,...");
+  c->add_option("--model-file", eval.model_file, "a fitted model (fit --save-model) instead of --model, --laws, --params");
   c->add_option("--data", eval.paths, "record(s)")->required();
   add_data_options(c, eval.data);
   c->add_option("--format", eval.format, "md (default) or json");
@@ -26,9 +28,19 @@ void add_evaluate_options(CLI::App* c, EvaluateOptions& eval) {
 
 int evaluate_command(const EvaluateOptions& o) {
   check_format(o.format);
-  const ResolvedModel resolved = resolve_model(command_line_model(o.model, o.laws));
-  const Model& model = *resolved.model;
-  const std::vector<double> params = parse_params(model, o.params);
+  LoadedModel loaded;
+  if (!o.model_file.empty()) {
+    if (!o.model.empty() || !o.laws.empty() || !o.params.empty())
+      throw InputError("evaluate: --model-file gives the model, its laws and coefficients: drop --model, --laws and --params");
+    loaded = load_model_file(o.model_file);
+  } else {
+    if (o.model.empty() || o.params.empty())
+      throw InputError("evaluate: give --model and --params (or --model-file FILE)");
+    loaded.model = resolve_model(command_line_model(o.model, o.laws));
+    loaded.params = parse_params(*loaded.model.model, o.params);
+  }
+  const Model& model = *loaded.model.model;
+  const std::vector<double>& params = loaded.params;
   if (o.paths.empty()) throw InputError("evaluate: give at least one --data FILE");
   const FitRecords records = load_fit_records(model, o.paths, o.data);
   CandidateBatch batch(model.dim(), 1);

@@ -15,6 +15,7 @@ struct EvaluateOptions {
   std::string model;
   std::string laws;
   std::string params;
+  std::string model_file;  ///< a model file (fit --save-model) instead of model, laws and params
   std::vector<std::string> paths;
   RecordOptions data;
   std::string format = "md";

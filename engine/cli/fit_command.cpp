@@ -13,6 +13,7 @@
 #include "engine/common/statistics.hpp"
 #include "engine/common/table.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/model_file.hpp"
 
 namespace dampbench::cli {
 
@@ -34,6 +35,7 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");
+  c->add_option("--save-model", o.save_model, "also write the fitted model as JSON (for evaluate/simulate --model-file)");
 }
 
 namespace {
@@ -107,6 +109,27 @@ nlohmann::ordered_json identifiability_json(const Model& model, const Identifiab
   return {{"identifiable", ident.all_identifiable()}, {"parameters", per}, {"correlation", corr}};
 }
 
+/// Each record's operating variables with their sources: [{"record": name, "variables": operating_json}, ...].
+nlohmann::ordered_json operating_records_json(const FitRecords& records) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const Signals& s : records.signals) all.push_back({{"record", s.name}, {"variables", operating_json(s)}});
+  return all;
+}
+
+/// One line per record: "- name: I = 0.5 (--set), amp = 0.01 (record estimate (half peak-to-peak)), ...".
+void print_operating(const FitRecords& records) {
+  std::cout << "Operating variables (source):\n";
+  for (const Signals& s : records.signals) {
+    std::string line;
+    const nlohmann::ordered_json variables = operating_json(s);
+    for (const auto& [name, v] : variables.items())
+      line += fmt::format("{}{} = {} ({})", line.empty() ? "" : ", ", name, format_number(v["value"].get<double>()),
+                          v["source"].get<std::string>());
+    std::cout << fmt::format("- {}: {}\n", s.name, line);
+  }
+  std::cout << "\n";
+}
+
 void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t) {
   const Model& model = *p.model.model;
   const RunResult& best = fit.best();
@@ -137,6 +160,7 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   }
   j["history"] = history;
   j["identifiability"] = identifiability_json(model, *fit.identifiability);
+  j["operating"] = operating_records_json(p.records);
   j["evaluations"] = t.evaluations;
   j["wall_time_s"] = fit.identification.wall_time_s;
   j["candidate_samples_per_s"] = fit.identification.candidate_samples / fit.identification.wall_time_s;
@@ -148,6 +172,7 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
   const ConvergenceRule rule;
   if (!p.plan.why.empty()) std::cout << p.plan.why << "\n\n";
   std::cout << t.params.to_markdown() << "\n" << t.metrics.to_markdown() << "\n" << t.runs.to_markdown() << "\n";
+  print_operating(p.records);
   std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
                            "improved {:.3g} % over its last {:.0f} % of evaluations{}{}\n",
                            c.converged ? "Converged" : "NOT CONVERGED (" + c.verdict() + ")",
@@ -169,6 +194,8 @@ int fit_command(const FitOptions& o) {
     if (!std::filesystem::is_directory(folder))
       throw InputError(fmt::format("--report: the folder of '{}' does not exist", o.report));
   }
+  if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
+    throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
   const PreparedFit prepared = prepare_fit(o.fit);
   const FitRequest request = prepared.request();
   const FitOutcome fit = run_fit(request);
@@ -179,6 +206,8 @@ int fit_command(const FitOptions& o) {
                      request.records, &fit.identification, {tables.params, tables.metrics, tables.runs}};
     write_fit_report(o.report, report);
   }
+  if (!o.save_model.empty())
+    write_model_file(o.save_model, model_file_of_fit(o.fit, prepared, fit, DAMPBENCH_VERSION));
   if (o.format == "json") print_json(o, prepared, fit, tables);
   else print_markdown(prepared, fit, tables);
   return 0;

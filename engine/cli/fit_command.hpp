@@ -16,6 +16,7 @@ struct FitOptions {
   FitSpec fit;                ///< what to fit (the command line's --model, --data, --optimizer, ...)
   std::string format = "md";
   std::string report;         ///< HTML report file ("" = none)
+  std::string save_model;     ///< model file of the best run (engine/fit/model_file.hpp; "" = none)
 };
 
 void add_fit_options(CLI::App* cmd, FitOptions& options);

@@ -11,6 +11,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/record/excitation.hpp"
 #include "engine/record/record_options.hpp"
@@ -22,6 +23,7 @@ void add_simulate_options(CLI::App* c, SimulateOptions& sim) {
   c->add_option("--fixture", sim.fixture, "published law fixture instead of --model, e.g. mfm.table3");
   c->add_option("--laws", sim.laws, "parameter laws, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
   c->add_option("--params", sim.params, "parameter (or law coefficient) values in SI, name=value,...");
+  c->add_option("--model-file", sim.model_file, "a fitted model (fit --save-model) instead of --model/--fixture, --laws, --params");
   c->add_option("--input", sim.input.path, "displacement record (CSV); t and x are used");
   add_data_options(c, sim.input);
   c->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
@@ -41,19 +43,34 @@ void add_noise(std::vector<double>& force, double noise_rel, std::uint64_t seed)
   for (double& f : force) f += noise_std * rng.normal();
 }
 
+/// The model and its parameters from --model-file, or from --model/--fixture, --laws and --params.
+LoadedModel simulated_model(const SimulateOptions& o) {
+  LoadedModel m;
+  if (!o.model_file.empty()) {
+    if (!o.model.empty() || !o.fixture.empty() || !o.laws.empty() || !o.params.empty())
+      throw InputError("simulate: --model-file gives the model, its laws and coefficients: drop --model, --fixture, "
+                       "--laws and --params");
+    return load_model_file(o.model_file);
+  }
+  if (o.model.empty() == o.fixture.empty())
+    throw InputError("simulate: give exactly one of --model M or --fixture NAME (or --model-file FILE)");
+  // A fixture is a law model already: --laws applies to --model only.
+  m.model = resolve_model(o.fixture.empty() ? command_line_model(o.model, o.laws)
+                                            : command_line_model("", "", "", o.fixture));
+  m.params = parse_params(*m.model.model, o.params, m.model.defaults);
+  return m;
+}
+
 }  // namespace
 
 int simulate_command(const SimulateOptions& o) {
-  if (o.model.empty() == o.fixture.empty()) throw InputError("simulate: give exactly one of --model M or --fixture NAME");
   if (o.sine.empty() == o.input.path.empty())
     throw InputError("simulate: give exactly one of --input FILE or --sine amp=...,freq=...,cycles=...,fs=...");
   if (!(o.noise_rel >= 0) || !std::isfinite(o.noise_rel))
     throw InputError(fmt::format("--noise-rel: expected a number >= 0, got {}", o.noise_rel));
-  // A fixture is a law model already: --laws applies to --model only.
-  const ResolvedModel resolved = resolve_model(o.fixture.empty() ? command_line_model(o.model, o.laws)
-                                                                 : command_line_model("", "", "", o.fixture));
-  const Model& model = *resolved.model;
-  const std::vector<double> params = parse_params(model, o.params, resolved.defaults);
+  const LoadedModel loaded = simulated_model(o);
+  const Model& model = *loaded.model.model;
+  const std::vector<double>& params = loaded.params;
   Dataset data = o.sine.empty() ? load_record(o.input, false) : make_sine(parse_sine_option(o.sine));
   if (!o.sine.empty() && !o.input.set.empty()) set_operating(data, o.input.set);
   const Signals signals = prepare_signals(data);

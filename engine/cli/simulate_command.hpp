@@ -17,6 +17,7 @@ struct SimulateOptions {
   std::string fixture;  ///< a published law fixture instead of --model (models/fixtures.hpp)
   std::string laws;     ///< "c0=poly(I,1);..." laws on the model's parameters
   std::string params;   ///< "name=value,..." in SI (the fixture's values by default)
+  std::string model_file;  ///< a model file (fit --save-model) instead of model, fixture, laws and params
   RecordOptions input;   ///< used when sine is empty
   std::string sine;    ///< "amp=...,freq=...,cycles=...,fs=..."
   double noise_rel = 0;

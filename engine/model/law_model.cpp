@@ -126,11 +126,14 @@ void LawModel::check_variables(const Signals& data) const {
     std::vector<std::string> vars;
     for (const auto& f : laws_[j].factors) vars.push_back(f.first);
     if (!laws_[j].variable.empty()) vars.push_back(laws_[j].variable);
-    for (const auto& v : vars)
+    for (const auto& v : vars) {
+      if (const auto refused = data.operating_refused.find(v); refused != data.operating_refused.end())
+        throw InputError(fmt::format("{} (needed by the law of {})", refused->second, params[j].name));
       if (!data.law_variables.count(v))
         throw InputError(fmt::format("dataset '{}' has no operating variable '{}' (needed by the law of {}; give it "
                                      "with --set {}=... or in the dataset)",
                                      data.name, v, params[j].name, v));
+    }
   }
 }
 

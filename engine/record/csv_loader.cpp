@@ -84,6 +84,8 @@ void read_operating(const std::vector<Line>& comments, const std::string& source
       if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
         throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", where, name));
       data.operating[name] = parse_number(value, fmt::format("{} {}", where, name));
+      data.operating_source[name] = "file comment";
+      data.operating_refused.erase(name);  // the file states the constant its column could not give
     }
   }
 }
@@ -232,6 +234,28 @@ double mean(const std::vector<double>& values) {
   return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
+/// A column of I, V or phi gives one constant (its mean) only when it stays within measurement noise: its spread
+/// max − min at most kConstantSpreadRel of max(|mean|, kConstantFloor) (A, V or degrees; the floor keeps a 0 A
+/// test's noise from counting as variation). A column beyond that is a time-varying current, voltage or angle,
+/// which laws in one constant value cannot describe: the mean stays in `operating` (for tables), and
+/// `operating_refused` says why a law must not use it.
+constexpr double kConstantSpreadRel = 0.05;
+constexpr double kConstantFloor = 0.1;
+
+void read_operating_column(const char* name, const std::vector<double>& column, Dataset& data) {
+  const double m = mean(column);
+  const auto [lo, hi] = std::minmax_element(column.begin(), column.end());
+  const double spread = *hi - *lo, scale = std::max(std::fabs(m), kConstantFloor);
+  data.operating[name] = m;
+  data.operating_source[name] = "column mean";
+  if (!(spread <= kConstantSpreadRel * scale))
+    data.operating_refused[name] = fmt::format(
+        "{}: column {} varies over the test (min {:.6g}, max {:.6g}: spread {:.3g} is {:.3g} % of max(|mean|, {:g}), "
+        "more than the {:g} % a constant value may vary); a time-varying {} is out of scope: laws take one constant "
+        "value per record",
+        data.source, name, *lo, *hi, spread, 100 * spread / scale, kConstantFloor, 100 * kConstantSpreadRel, name);
+}
+
 /// Moves the parsed columns into a Dataset, computing v and a when the file lacks them.
 Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::vector<double>>& values,
                      const std::string& source) {
@@ -254,7 +278,7 @@ Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::ve
   else
     data.a_m_s2 = differentiate_3rd_order(data.t_s, data.v_m_s);
   for (const char* name : {"I", "V", "phi"})
-    if (const auto* operating = column(name)) data.operating[name] = mean(*operating);
+    if (const auto* operating = column(name)) read_operating_column(name, *operating, data);
   return data;
 }
 

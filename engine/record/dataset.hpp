@@ -18,6 +18,12 @@ struct Dataset {
   std::vector<double> F_N;     ///< measured force [N]; empty when only the input is known
   /// Operating variables of the test (I [A], V [V], phi [deg], amp [m], freq [Hz]).
   std::map<std::string, double> operating;
+  /// Where each operating variable comes from: "file comment", "column mean", "file name", "--set", "sine
+  /// excitation" (none for a dataset built in code). The output and the model file show it beside the value.
+  std::map<std::string, std::string> operating_source;
+  /// Operating variables the record holds but cannot give as one constant, with why (a column that varies over
+  /// the test): a law that needs one refuses the record with this text rather than use the column's mean.
+  std::map<std::string, std::string> operating_refused;
 
   [[nodiscard]] std::size_t size() const { return t_s.size(); }
   [[nodiscard]] bool has_force() const { return !F_N.empty(); }

@@ -109,6 +109,7 @@ Dataset make_sine(const SineSpec& spec) {
   }
   data.operating["amp"] = amp;
   data.operating["freq"] = freq;
+  data.operating_source["amp"] = data.operating_source["freq"] = "sine excitation";
   return data;
 }
 

@@ -17,6 +17,8 @@ void set_operating(Dataset& data, const std::string& text, std::string_view opti
     if (name != "I" && name != "V" && name != "phi" && name != "amp" && name != "freq")
       throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", option, name));
     data.operating[name] = parse_number(value, fmt::format("{} {}", option, name));
+    data.operating_source[name] = std::string(option);
+    data.operating_refused.erase(name);  // a stated constant replaces what the record could not give
   }
 }
 
@@ -51,7 +53,11 @@ static Dataset load_record_as_given(const RecordOptions& options, bool require_f
     data = average_cycles(data, cycles, drop);
   }
   if (options.conditions == "utfsm") {
-    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) data.operating[k] = v;
+    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) {
+      data.operating[k] = v;
+      data.operating_source[k] = "file name";
+      data.operating_refused.erase(k);
+    }
   } else if (!options.conditions.empty()) {
     throw InputError(fmt::format("--conditions: expected utfsm, got '{}'", options.conditions));
   }

@@ -79,6 +79,8 @@ Dataset average_cycles(const Dataset& r, int cycles, int drop) {
   out.name = r.name;
   out.source = r.source + fmt::format(" (cycles {}-{} of {} averaged)", drop + 1, cycles - drop, cycles);
   out.operating = r.operating;
+  out.operating_source = r.operating_source;
+  out.operating_refused = r.operating_refused;
   auto average = [&](const std::vector<double>& y, std::vector<double>& dest) {
     if (y.empty()) return;
     for (double g : grid) {

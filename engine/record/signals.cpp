@@ -36,9 +36,16 @@ Signals prepare_signals(const Dataset& data) {
     s.excitation_freq_hz = s.displacement_ptp > 0 ? s.velocity_max_abs / (std::numbers::pi * s.displacement_ptp) : 0.0;
   }
   s.law_variables = s.operating;
-  s.law_variables.try_emplace("amp", 0.5 * s.displacement_ptp);
-  s.law_variables.try_emplace("freq", s.excitation_freq_hz);
+  for (const auto& [name, value] : s.operating) {
+    const auto source = s.operating_source.find(name);
+    s.law_variable_source[name] = source != s.operating_source.end() ? source->second : "dataset";
+  }
+  if (s.law_variables.try_emplace("amp", 0.5 * s.displacement_ptp).second)
+    s.law_variable_source["amp"] = "record estimate (half peak-to-peak)";
+  if (s.law_variables.try_emplace("freq", s.excitation_freq_hz).second)
+    s.law_variable_source["freq"] = "record estimate (fdsp eq. 15)";
   s.law_variables["w"] = s.excitation_freq_hz;
+  s.law_variable_source["w"] = "record estimate (fdsp eq. 15)";
   if (!s.F_N.empty()) {
     double mean = 0;
     for (double f : s.F_N) mean += f;

@@ -28,6 +28,9 @@ struct Signals : Dataset {
   /// Variables parameter laws may use (engine/model/parameter_law.hpp): `operating`, plus amp (ΔZ/2) and freq
   /// (eq. 15 estimate) from the signals when the dataset does not state them.
   std::map<std::string, double> law_variables;
+  /// Where each law variable comes from: `operating_source`, "record estimate (half peak-to-peak)" for amp and
+  /// "record estimate (fdsp eq. 15)" for freq and w when they are estimated here, "dataset" when unrecorded.
+  std::map<std::string, std::string> law_variable_source;
 };
 
 /// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).

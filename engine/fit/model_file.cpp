@@ -1,0 +1,266 @@
+#include "engine/fit/model_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/common/text_file.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/kernels/isa.hpp"
+
+namespace dampbench {
+
+using Json = nlohmann::ordered_json;
+
+nlohmann::ordered_json operating_json(const Signals& record) {
+  Json j = Json::object();
+  for (const auto& [name, value] : record.law_variables) {
+    const auto source = record.law_variable_source.find(name);
+    j[name] = {{"value", value}, {"source", source != record.law_variable_source.end() ? source->second : "dataset"}};
+  }
+  return j;
+}
+
+ModelFile model_file_of_fit(const FitSpec& spec, const PreparedFit& prepared, const FitOutcome& fit,
+                            const std::string& dampbench_version) {
+  const Model& model = *prepared.model.model;
+  const RunResult& best = fit.best();
+  const auto metric_at = static_cast<std::size_t>(
+      std::find(kAllMetrics.begin(), kAllMetrics.end(), prepared.metric) - kAllMetrics.begin());
+  ModelFile f;
+  f.dampbench_version = dampbench_version;
+  f.vector_level = std::string(isa_name(active_isa()));
+  f.choice = spec.model;
+  f.choice.bounds.clear();  // the box searched is not part of the model
+  f.model_id = std::string(model.id());
+  for (int i = 0; i < model.dim(); ++i) f.coefficients.emplace_back(model.parameters()[i].name, best.best_params[i]);
+  f.metric = std::string(metric_name(prepared.metric));
+  f.fitted_value = best.best_metrics[metric_at];
+  CandidateBatch batch(model.dim(), 1);
+  batch.set_candidate(0, best.best_params);
+  for (std::size_t r = 0; r < prepared.records.signals.size(); ++r) {
+    const Signals& s = prepared.records.signals[r];
+    std::vector<MetricRow> row(1);
+    BatchEvaluator(model, s).evaluate_all(batch, row);  // as `evaluate` does, so that it reproduces these bits
+    f.records.push_back({s.name, spec.paths.at(r), row[0][metric_at], operating_json(s)});
+  }
+  return f;
+}
+
+namespace {
+
+/// JSON text with every floating-point number as %.17g (nlohmann writes the shortest form that reads back, which
+/// is the same number, but the file promises 17 digits to readers in other languages too); non-finite as null.
+void write_json(std::ostringstream& out, const Json& j, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent + 2), ' '), close(static_cast<std::size_t>(indent), ' ');
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    out << (std::isfinite(v) ? fmt::format("{:.17g}", v) : "null");
+  } else if (j.is_object() && !j.empty()) {
+    out << "{\n";
+    bool first = true;
+    for (const auto& [key, value] : j.items()) {
+      out << (first ? "" : ",\n") << pad << Json(key).dump() << ": ";
+      write_json(out, value, indent + 2);
+      first = false;
+    }
+    out << "\n" << close << "}";
+  } else if (j.is_array() && !j.empty()) {
+    out << "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out << (i ? ",\n" : "") << pad;
+      write_json(out, j[i], indent + 2);
+    }
+    out << "\n" << close << "]";
+  } else {
+    out << j.dump();
+  }
+}
+
+}  // namespace
+
+std::string model_file_text(const ModelFile& f) {
+  Json j;
+  j["format"] = kModelFileFormat;
+  j["format_version"] = kModelFileVersion;
+  j["dampbench_version"] = f.dampbench_version;
+  j["vector_level"] = f.vector_level;
+  j["model"] = {{"id", f.model_id}, {"base", f.choice.model}, {"laws", f.choice.laws}, {"fixture", f.choice.fixture}};
+  Json coefficients = Json::object();
+  for (const auto& [name, value] : f.coefficients) coefficients[name] = value;
+  j["coefficients"] = coefficients;
+  j["metric"] = {{"name", f.metric}, {"fitted_value", f.fitted_value}};
+  Json records = Json::array();
+  for (const ModelFileRecord& r : f.records)
+    records.push_back({{"name", r.name}, {"path", r.path}, {"metric_value", r.metric_value}, {"operating", r.operating}});
+  j["records"] = records;
+  std::ostringstream out;
+  write_json(out, j, 0);
+  out << "\n";
+  return out.str();
+}
+
+void write_model_file(const std::string& path, const ModelFile& file) { write_text_file(path, model_file_text(file)); }
+
+namespace {
+
+/// Reads keys of one JSON object, naming the file and the key's full path in every message.
+struct Keys {
+  const std::string& source;
+  const Json& object;
+  std::string where;  ///< "model", "records[0]", ... ("" at the top)
+
+  [[nodiscard]] std::string key_path(const std::string& key) const { return where.empty() ? key : where + "." + key; }
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw InputError(fmt::format("{}: key '{}': {}", source, key_path(key), what));
+  }
+  [[nodiscard]] const Json* find(const std::string& key, bool required) const {
+    const auto it = object.find(key);
+    if (it == object.end()) {
+      if (required) fail(key, "missing");
+      return nullptr;
+    }
+    return &*it;
+  }
+  [[nodiscard]] std::string string(const std::string& key, bool required = true) const {
+    const Json* v = find(key, required);
+    if (!v) return "";
+    if (!v->is_string()) fail(key, fmt::format("expected a string, got {}", v->dump()));
+    return v->get<std::string>();
+  }
+  /// A number; null reads as NaN (a non-finite metric is written as null).
+  [[nodiscard]] double number(const std::string& key) const {
+    const Json* v = find(key, true);
+    if (v->is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!v->is_number()) fail(key, fmt::format("expected a number, got {}", v->dump()));
+    return v->get<double>();
+  }
+  [[nodiscard]] Keys object_at(const std::string& key) const {
+    const Json* v = find(key, true);
+    if (!v->is_object()) fail(key, fmt::format("expected an object, got {}", v->dump()));
+    return {source, *v, key_path(key)};
+  }
+};
+
+void check_header(const Keys& top) {
+  if (const std::string format = top.string("format"); format != kModelFileFormat)
+    top.fail("format", fmt::format("expected \"{}\", got \"{}\"", kModelFileFormat, format));
+  const Json* version = top.find("format_version", true);
+  if (!version->is_number_integer() || version->get<int>() != kModelFileVersion)
+    top.fail("format_version", fmt::format("expected {}, got {}", kModelFileVersion, version->dump()));
+}
+
+std::vector<ModelFileRecord> parse_records(const Keys& top) {
+  const Json* list = top.find("records", true);
+  if (!list->is_array()) top.fail("records", fmt::format("expected an array, got {}", list->dump()));
+  std::vector<ModelFileRecord> records;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const std::string where = fmt::format("records[{}]", i);
+    if (!(*list)[i].is_object()) top.fail(where, "expected an object");
+    const Keys r{top.source, (*list)[i], where};
+    ModelFileRecord rec{r.string("name"), r.string("path"), r.number("metric_value"), Json::object()};
+    const Keys operating = r.object_at("operating");
+    for (const auto& [name, entry] : operating.object.items()) {
+      if (!entry.is_object()) operating.fail(name, "expected an object {\"value\": number, \"source\": string}");
+      const Keys e{top.source, entry, operating.key_path(name)};
+      rec.operating[name] = {{"value", e.number("value")}, {"source", e.string("source")}};
+    }
+    records.push_back(std::move(rec));
+  }
+  return records;
+}
+
+}  // namespace
+
+ModelFile parse_model_file(const std::string& text, const std::string& source) {
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not JSON ({})", source, e.what()));
+  }
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object at the top", source));
+  const Keys top{source, j, ""};
+  check_header(top);
+  ModelFile f;
+  f.dampbench_version = top.string("dampbench_version");
+  f.vector_level = top.string("vector_level");
+  const Keys model = top.object_at("model");
+  f.model_id = model.string("id", false);
+  f.choice.model = model.string("base", false);
+  f.choice.laws = model.string("laws", false);
+  f.choice.fixture = model.string("fixture", false);
+  if (f.choice.model.empty() == f.choice.fixture.empty())
+    model.fail("base", "give exactly one of model.base (a model id) and model.fixture (a law fixture)");
+  const Keys coefficients = top.object_at("coefficients");
+  for (const auto& [name, value] : coefficients.object.items()) {
+    (void)value;
+    f.coefficients.emplace_back(name, coefficients.number(name));
+  }
+  const Keys metric = top.object_at("metric");
+  f.metric = metric.string("name");
+  f.fitted_value = metric.number("fitted_value");
+  f.records = parse_records(top);
+  return f;
+}
+
+namespace {
+
+/// The file's coefficients in the model's parameter order: each named once, every parameter given.
+std::vector<double> coefficients_in_order(const ModelFile& f, const Model& model, const std::string& source) {
+  const auto params = model.parameters();
+  std::string expected;
+  for (const auto& p : params) expected += (expected.empty() ? "" : ", ") + p.name;
+  std::vector<double> values(static_cast<std::size_t>(model.dim()), std::numeric_limits<double>::quiet_NaN());
+  std::vector<bool> given(values.size(), false);
+  for (const auto& [name, value] : f.coefficients) {
+    const auto it = std::find_if(params.begin(), params.end(), [&](const auto& p) { return p.name == name; });
+    if (it == params.end())
+      throw InputError(fmt::format("{}: key 'coefficients.{}': not a coefficient of {} (its {}: {})", source, name,
+                                   model.id(), params.size(), expected));
+    const auto i = static_cast<std::size_t>(it - params.begin());
+    if (!std::isfinite(value))
+      throw InputError(fmt::format("{}: key 'coefficients.{}': expected a finite number", source, name));
+    values[i] = value;
+    given[i] = true;
+  }
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!given[i])
+      throw InputError(fmt::format("{}: key 'coefficients.{}': missing ({} has {} coefficients: {}; the file gives {})",
+                                   source, params[i].name, model.id(), params.size(), expected, f.coefficients.size()));
+  return values;
+}
+
+}  // namespace
+
+LoadedModel load_model_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("--model-file: cannot open '{}'", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  LoadedModel m;
+  m.file = parse_model_file(text.str(), path);
+  ModelChoice choice = m.file.choice;
+  choice.option_prefix = "model.";  // messages name the file's key model.laws
+  ModelChoice base = choice;
+  base.laws.clear();
+  try {
+    (void)resolve_model(base);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: key 'model.{}': {}", path, choice.fixture.empty() ? "base" : "fixture", e.what()));
+  }
+  try {
+    m.model = resolve_model(choice);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: key 'model.laws': {}", path, e.what()));
+  }
+  m.params = coefficients_in_order(m.file, *m.model.model, path);
+  return m;
+}
+
+}  // namespace dampbench

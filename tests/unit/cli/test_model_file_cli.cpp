@@ -1,0 +1,215 @@
+// A fitted model as a file, end to end: fit --save-model, then evaluate and simulate --model-file reproduce the
+// fit's metric and force bit for bit (same binary, same vector level); where each operating variable came from
+// is printed; a time-varying current column is refused for a law.
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+using testing::run_dampbench;
+
+std::filesystem::path temp_dir() {
+  auto dir = std::filesystem::temp_directory_path() /
+             ("dampbench_model_file_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+              ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::uint64_t bits(const nlohmann::json& j) { return std::bit_cast<std::uint64_t>(j.get<double>()); }
+
+/// Fits `fit_args` on `csv` with --save-model, then checks the file against the fit's JSON and that evaluate
+/// --model-file gives the fit's metric bit for bit. Returns the model file.
+nlohmann::json fit_save_evaluate(const std::filesystem::path& dir, const std::string& fit_args,
+                                 const std::string& record_args, const std::string& metric) {
+  const auto model = dir / "model.json";
+  auto r = run_dampbench("fit " + fit_args + " " + record_args + " --metric " + metric +
+                         " --format json --save-model " + model.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto fit = nlohmann::json::parse(r.output);
+  const auto file = nlohmann::json::parse(read(model));
+  EXPECT_EQ(file.at("format"), "dampbench-model");
+  EXPECT_EQ(file.at("metric").at("name"), metric);
+  EXPECT_EQ(bits(file.at("metric").at("fitted_value")), bits(fit.at("metrics").at(metric)));
+  EXPECT_EQ(bits(file.at("records")[0].at("metric_value")), bits(fit.at("metrics").at(metric)));
+  for (const auto& [name, value] : fit.at("best_params").items())
+    EXPECT_EQ(bits(file.at("coefficients").at(name)), bits(value)) << name;
+  EXPECT_EQ(file.at("records")[0].at("operating"), fit.at("operating")[0].at("variables"));
+
+  r = run_dampbench("evaluate --model-file " + model.string() + " " + record_args + " --format json");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto eval = nlohmann::json::parse(r.output);
+  for (const auto& [path, metrics] : eval.items())
+    EXPECT_EQ(bits(metrics.at(metric)), bits(fit.at("metrics").at(metric))) << path;
+  return file;
+}
+
+TEST(ModelFileCli, AFittedModelEvaluatesToTheFitsMetricBitForBit) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "fvd.csv";
+  auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 "
+                         "--sine amp=0.02,freq=1,cycles=2,fs=200 --noise-rel 0.02 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto file = fit_save_evaluate(dir, "--model fvd.generalized_viscous --runs 2 --iters 30 --threads 2",
+                                      "--data " + csv.string(), "of_abs");
+  EXPECT_EQ(file.at("model").at("base"), "fvd.generalized_viscous");
+  EXPECT_EQ(file.at("model").at("laws"), "");
+  EXPECT_FALSE(file.at("vector_level").get<std::string>().empty());
+  EXPECT_EQ(file.at("records")[0].at("operating").at("amp").at("source"), "record estimate (half peak-to-peak)");
+  EXPECT_EQ(file.at("records")[0].at("path"), csv.string());
+}
+
+// A law model (Spencer with c0 linear in I) on a record whose current comes from --set: the laws string, the
+// coefficients and the current's source are in the file; evaluate and simulate rebuild the same model.
+TEST(ModelFileCli, ALawModelRoundTripsWithItsOperatingVariables) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "spencer.csv";
+  auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,alpha=9000,"
+                         "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=2,fs=200 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string record = "--data " + csv.string() + " --set I=0.5";
+  const auto file = fit_save_evaluate(
+      dir, "--model mrd.spencer --laws \"c0=poly(I,1)\" --runs 2 --iters 10 --pop 12 --threads 2", record, "nrmse");
+  EXPECT_EQ(file.at("model").at("base"), "mrd.spencer");
+  EXPECT_EQ(file.at("model").at("laws"), "c0=poly(I,1)");
+  EXPECT_TRUE(file.at("coefficients").contains("c0_I0"));
+  EXPECT_TRUE(file.at("coefficients").contains("c0_I1"));
+  const auto& operating = file.at("records")[0].at("operating");
+  EXPECT_EQ(operating.at("I").at("value"), 0.5);
+  EXPECT_EQ(operating.at("I").at("source"), "--set");
+  EXPECT_EQ(operating.at("freq").at("source"), "record estimate (fdsp eq. 15)");
+
+  // Without the current the law cannot be evaluated: the record options are the ones the command always takes.
+  r = run_dampbench("evaluate --model-file " + (dir / "model.json").string() + " --data " + csv.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no operating variable 'I'"), std::string::npos) << r.output;
+
+  // simulate --model-file gives the force of the same model with the file's coefficients given by hand.
+  std::string params;
+  for (const auto& [name, value] : file.at("coefficients").items())
+    params += (params.empty() ? "" : ",") + name + "=" + nlohmann::json(value).dump();
+  const auto from_file = dir / "from_file.csv", by_hand = dir / "by_hand.csv";
+  r = run_dampbench("simulate --model-file " + (dir / "model.json").string() + " --input " + csv.string() +
+                    " --set I=0.5 -o " + from_file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_dampbench("simulate --model mrd.spencer --laws \"c0=poly(I,1)\" --params " + params + " --input " +
+                    csv.string() + " --set I=0.5 -o " + by_hand.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read(from_file), read(by_hand));
+  EXPECT_GT(read(from_file).size(), 1000u);
+
+  r = run_dampbench("evaluate --model-file " + (dir / "model.json").string() + " --model mrd.spencer " + record);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--model-file gives the model"), std::string::npos) << r.output;
+}
+
+// Fitted on two records: each record's metric in the file is what evaluate gives for it, bit for bit.
+TEST(ModelFileCli, EachFittedRecordsMetricIsWhatEvaluateGives) {
+  const auto dir = temp_dir();
+  std::string data;
+  for (const char* amp : {"0.01", "0.02"}) {
+    const auto csv = dir / (std::string("amp") + amp + ".csv");
+    const auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 --sine amp=" +
+                                 std::string(amp) + ",freq=1,cycles=2,fs=200 --noise-rel 0.05 -o " + csv.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    data += " --data " + csv.string();
+  }
+  const auto model = dir / "model.json";
+  auto r = run_dampbench("fit --model fvd.generalized_viscous --runs 2 --iters 20 --metric nrmse --threads 2" + data +
+                         " --save-model " + model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto file = nlohmann::json::parse(read(model));
+  r = run_dampbench("evaluate --model-file " + model.string() + data + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto eval = nlohmann::json::parse(r.output);
+  ASSERT_EQ(file.at("records").size(), 2u);
+  for (const auto& record : file.at("records")) {
+    const std::string path = record.at("path");
+    EXPECT_EQ(bits(eval.at(path).at("nrmse")), bits(record.at("metric_value"))) << path;
+  }
+  EXPECT_NE(bits(file.at("records")[0].at("metric_value")), bits(file.at("records")[1].at("metric_value")));
+}
+
+TEST(ModelFileCli, OptionsThatCannotGoTogetherAreRefused) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "r.csv";
+  auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 --sine amp=0.01,freq=1,fs=100 -o " +
+                         csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::pair<std::string, std::string> cases[] = {
+      {"fit --model fvd.linear_viscous --runs 1 --iters 1 --data " + csv.string() + " --save-model " +
+           (dir / "no" / "m.json").string(),
+       "--save-model: the folder of '" + (dir / "no" / "m.json").string() + "' does not exist"},
+      {"evaluate --data " + csv.string(), "evaluate: give --model and --params (or --model-file FILE)"},
+      {"evaluate --model-file m.json --params C=1 --data " + csv.string(), "evaluate: --model-file gives the model"},
+      {"simulate --model-file m.json --fixture mfm.table3 --sine amp=0.01,freq=1,fs=100",
+       "simulate: --model-file gives the model"},
+      {"evaluate --model-file " + (dir / "none.json").string() + " --data " + csv.string(),
+       "--model-file: cannot open '" + (dir / "none.json").string() + "'"}};
+  for (const auto& [args, message] : cases) {
+    r = run_dampbench(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
+TEST(ModelFileCli, FitPrintsWhereEachOperatingVariableComesFrom) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "10mm1Hz0x5A.csv";
+  auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 "
+                         "--sine amp=0.01,freq=1,cycles=2,fs=100 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = run_dampbench("fit --model fvd.linear_viscous --runs 2 --iters 5 --conditions utfsm --set freq=1.25 --data " +
+                    csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Operating variables (source):\n- 10mm1Hz0x5A: I = 0.5 (file name), amp = 0.01 (file name), "
+                          "freq = 1.25 (--set), w = "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(" (record estimate (fdsp eq. 15))\n"), std::string::npos) << r.output;
+}
+
+TEST(ModelFileCli, ATimeVaryingCurrentColumnIsRefusedForALaw) {
+  const auto dir = temp_dir();
+  std::string text = "t,x,F,I\n";
+  for (int k = 0; k < 40; ++k) {
+    const double x = 0.01 * std::sin(6.283185307179586 * 0.025 * k);
+    text += std::to_string(0.025 * k) + "," + std::to_string(x) + "," + std::to_string(1e5 * x) + "," +
+            (k < 20 ? "0" : "1") + "\n";
+  }
+  const auto csv = dir / "step.csv";
+  std::ofstream(csv) << text;
+  auto r = run_dampbench("fit --model fvd.linear_viscous --laws \"C=poly(I,1)\" --runs 1 --iters 2 --data " + csv.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find(csv.string() + ": column I varies over the test (min 0, max 1: spread 1 is 200 % of "
+                          "max(|mean|, 0.1)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("a time-varying I is out of scope"), std::string::npos) << r.output;
+  // A model without laws in I does not need the current: the same record fits.
+  r = run_dampbench("fit --model fvd.linear_viscous --runs 1 --iters 2 --data " + csv.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("I = 0.5 (column mean)"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace dampbench
