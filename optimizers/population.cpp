@@ -1,5 +1,7 @@
 #include "optimizers/population.hpp"
 
+#include <algorithm>
+
 #include "engine/common/random.hpp"
 
 namespace dampbench {
@@ -13,6 +15,8 @@ PopulationOptimizer::PopulationOptimizer(int population, int generations, const 
     RandomStream rng(hash_key({run_key_, 0, static_cast<std::uint64_t>(i)}));
     for (int j = 0; j < dim_; ++j) x(i, j) = rng.uniform(bounds_.lower[j], bounds_.upper[j]);
   }
+  if (static_cast<int>(bounds_.start.size()) == dim_ && population > 0)
+    for (int j = 0; j < dim_; ++j) x(0, j) = std::clamp(bounds_.start[j], bounds_.lower[j], bounds_.upper[j]);
   best_position_.assign(population_.begin(), population_.begin() + dim_);
 }
 

@@ -19,7 +19,8 @@ class PopulationOptimizer : public Optimizer {
   [[nodiscard]] double best_value() const override { return best_value_; }
 
  protected:
-  /// Draws the initial population; the best position is its first member until a value is told.
+  /// Draws the initial population (member 0 is bounds.start, clamped into the box, when it is given); the best
+  /// position is its first member until a value is told.
   /// `population` and `generations` must be validated by the caller (≥ 1).
   PopulationOptimizer(int population, int generations, const Bounds& bounds, std::uint64_t run_key);
 

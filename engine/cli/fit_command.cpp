@@ -13,6 +13,7 @@
 #include "engine/common/statistics.hpp"
 #include "engine/common/table.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/law_selection.hpp"
 #include "engine/fit/model_file.hpp"
 
 namespace dampbench::cli {
@@ -22,7 +23,9 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   fit.model.option_prefix = "--";
   c->add_option("--model", fit.model.model, "model id")->required();
   c->add_option("--data", fit.paths, "test record (CSV); repeat for several conditions fitted at once")->required();
-  c->add_option("--laws", fit.model.laws, "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
+  c->add_option("--laws", fit.model.laws,
+                "parameter laws in operating variables, e.g. 'c0=poly(I,1);alpha=poly(I,1)', or 'auto' to choose them "
+                "by leave-one-setting-out folds of the records");
   add_data_options(c, fit.data);
   c->add_option("--metric", fit.metric, metric_names() + " (default of_abs)");
   c->add_option("--optimizer", fit.optimizer,
@@ -130,7 +133,8 @@ void print_operating(const FitRecords& records) {
   std::cout << "\n";
 }
 
-void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t) {
+void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t,
+                const LawSelection* selection) {
   const Model& model = *p.model.model;
   const RunResult& best = fit.best();
   const Summary& s = t.spread;
@@ -138,6 +142,9 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["model"] = model.id();
   j["data"] = o.fit.paths;
   j["samples"] = p.records.samples();
+  const std::string laws = selection ? selection->laws : o.fit.model.laws;
+  if (!laws.empty()) j["laws"] = laws;
+  if (selection) j["law_selection"] = selection_json(*selection);
   j["metric"] = o.fit.metric;
   j["optimizer"] = {{"name", p.plan.optimizer}, {"population", p.plan.population}, {"iterations", p.plan.iterations},
                     {"settings", p.optimizer.settings}};
@@ -185,6 +192,34 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
                            p.records.samples(), id.wall_time_s, id.candidate_samples / id.wall_time_s);
 }
 
+/// `--laws auto`: chooses the laws (engine/fit/law_selection.hpp), fits them, and makes `prepared` and `spec`
+/// describe the chosen model, so that the tables, the report and the model file show it.
+FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, LawSelection& selection) {
+  const FitRequest request = prepared.request();
+  LawSearch search;
+  search.base = prepared.model.model;
+  search.records = request.records;
+  search.optimizer = request.optimizer;
+  search.optimizer_name = prepared.plan.optimizer;
+  search.settings = request.settings;
+  ResolvedModel fitted;
+  FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
+  prepared.model = std::move(fitted);
+  spec.model.laws = selection.laws;
+  return outcome;
+}
+
+nlohmann::ordered_json selection_json(const LawSelection& s) {
+  nlohmann::ordered_json choices = nlohmann::ordered_json::object();
+  for (std::size_t j = 0; j < s.parameters.size(); ++j) choices[s.parameters[j]] = s.chosen[j].text();
+  nlohmann::ordered_json folds = nlohmann::ordered_json::array();
+  for (const auto& row : s.folds.rows)
+    folds.push_back({{"left_out", row[0].text}, {"records", std::stoi(row[1].text)},
+                     {"shared", json_number(*row[2].value)}, {"chosen", json_number(*row[3].value)}});
+  return {{"laws", s.laws}, {"per_parameter", choices}, {"score", json_number(s.score)},
+          {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
+}
+
 }  // namespace
 
 int fit_command(const FitOptions& o) {
@@ -196,9 +231,11 @@ int fit_command(const FitOptions& o) {
   }
   if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
     throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
-  const PreparedFit prepared = prepare_fit(o.fit);
+  FitSpec spec = o.fit;
+  PreparedFit prepared = prepare_fit(spec);
+  LawSelection selection;
+  const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, selection) : run_fit(prepared.request());
   const FitRequest request = prepared.request();
-  const FitOutcome fit = run_fit(request);
   const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
   if (!o.report.empty()) {
     FitReport report{prepared.model.model, prepared.plan.optimizer,
@@ -207,9 +244,19 @@ int fit_command(const FitOptions& o) {
     write_fit_report(o.report, report);
   }
   if (!o.save_model.empty())
-    write_model_file(o.save_model, model_file_of_fit(o.fit, prepared, fit, DAMPBENCH_VERSION));
-  if (o.format == "json") print_json(o, prepared, fit, tables);
-  else print_markdown(prepared, fit, tables);
+    write_model_file(o.save_model, model_file_of_fit(spec, prepared, fit, DAMPBENCH_VERSION));
+  if (o.format == "json") {
+    print_json(o, prepared, fit, tables, prepared.auto_laws ? &selection : nullptr);
+  } else {
+    if (prepared.auto_laws)
+      std::cout << fmt::format("Laws chosen: {}
+
+", selection.laws.empty() ? "none (every parameter shared)" : selection.laws)
+                << selection.choices.to_markdown() << "
+" << selection.folds.to_markdown() << "
+";
+    print_markdown(prepared, fit, tables);
+  }
   return 0;
 }
 

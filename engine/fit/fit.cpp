@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "engine/common/error.hpp"
 #include "engine/model/law_model.hpp"
 
@@ -17,6 +19,11 @@ FitOutcome run_fit(const FitRequest& request) {
   for (const Signals* r : request.records) check_record(model, *r);
   FitOutcome out;
   out.bounds = request.model->bounds_for(request.records);
+  if (!request.start.empty()) {
+    if (static_cast<int>(request.start.size()) != model.dim())
+      throw InputError(fmt::format("fit: a start point of {} values for {} parameters", request.start.size(), model.dim()));
+    out.bounds.start = request.start;
+  }
   out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
   out.convergence = assess_convergence(out.identification);
   const RunResult& best = out.best();

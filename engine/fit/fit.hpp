@@ -27,6 +27,8 @@ struct FitRequest {
   /// Assess identifiability even when every run failed (no finite best value): `fit` prints it whatever the
   /// outcome, a sweep stores it only for a fit that found something.
   bool assess_failed_fit = false;
+  /// A start point for the search (Bounds::start), in the model's parameter order; empty: none.
+  std::vector<double> start;
 };
 
 struct FitOutcome {

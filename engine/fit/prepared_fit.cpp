@@ -20,7 +20,14 @@ FitRequest PreparedFit::request() const {
 
 PreparedFit prepare_fit(const FitSpec& spec) {
   PreparedFit p;
-  p.model = resolve_model(spec.model);
+  ModelChoice choice = spec.model;
+  p.auto_laws = choice.laws == "auto";
+  if (p.auto_laws) {
+    if (!choice.bounds.empty())
+      throw InputError("--bounds with --laws auto: the laws' coefficients are not known before they are chosen");
+    choice.laws.clear();
+  }
+  p.model = resolve_model(choice);
   const Model& model = *p.model.model;
   p.metric = parse_metric(spec.metric);
   p.plan = fit_plan(model, spec.optimizer, spec.population, spec.iterations, spec.runs);

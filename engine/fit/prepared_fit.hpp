@@ -29,7 +29,8 @@ struct FitSpec {
 
 /// Everything a FitSpec names, built and loaded; its request points into it.
 struct PreparedFit {
-  ResolvedModel model;
+  ResolvedModel model;      ///< with --laws auto: the base model until the laws are chosen
+  bool auto_laws = false;   ///< --laws auto (engine/fit/law_selection.hpp)
   Metric metric = Metric::of_abs;
   FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults
   OptimizerSpec optimizer;  ///< the plan's with the settings given

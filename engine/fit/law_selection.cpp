@@ -1,0 +1,224 @@
+#include "engine/fit/law_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "engine/common/error.hpp"
+#include "engine/fit/held_out.hpp"
+#include "engine/model/law_model.hpp"
+
+namespace dampbench {
+namespace {
+
+/// A set of laws, one per parameter of the gauged model.
+using LawSet = std::vector<ValueLaw>;
+
+/// What scoring needs, fixed for one selection.
+struct Scoring {
+  const Model& model;  ///< the gauged model, its parameters those of the per-record fits
+  const std::vector<const Signals*>& records;
+  const std::vector<std::vector<double>>& per_record;
+  std::vector<Fold> folds;
+  std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
+  Metric metric;
+
+  /// Values of parameter j over records `which`, and their variables.
+  void values(int j, const std::vector<int>& which, std::vector<std::map<std::string, double>>& vars,
+              std::vector<double>& y) const {
+    vars.clear(), y.clear();
+    for (int r : which) {
+      vars.push_back(records[r]->law_variables);
+      y.push_back(per_record[r][j]);
+    }
+  }
+
+  /// The metric of every record when left out (the folds cover each record once), in record order.
+  std::vector<double> left_out_metrics(const LawSet& laws) const {
+    std::vector<double> out(records.size(), std::numeric_limits<double>::quiet_NaN());
+    for (const Fold& fold : folds) {
+      std::vector<ValueFit> fits;
+      std::vector<std::map<std::string, double>> vars;
+      std::vector<double> y;
+      for (int j = 0; j < model.dim(); ++j) {
+        values(j, fold.fit, vars, y);
+        fits.push_back(fit_value_law(laws[j], vars, y));
+      }
+      tbb::parallel_for(std::size_t{0}, fold.predict.size(), [&](std::size_t i) {
+        const int r = fold.predict[i];
+        std::vector<double> p(model.dim());
+        for (int j = 0; j < model.dim(); ++j)
+          p[j] = std::clamp(fits[j].predict(laws[j], records[r]->law_variables), boxes[r].lower[j], boxes[r].upper[j]);
+        const double m = record_metric(model, p, *records[r], metric);
+        out[r] = std::isfinite(m) ? m : std::numeric_limits<double>::infinity();
+      });
+    }
+    return out;
+  }
+
+  double score(const LawSet& laws) const {
+    const auto m = left_out_metrics(laws);
+    double sum = 0;
+    for (double v : m) sum += v;
+    return sum / static_cast<double>(m.size());
+  }
+
+  /// BIC of one family on parameter j's values over every record.
+  double bic(int j, const ValueLaw& law) const {
+    std::vector<int> all(records.size());
+    for (std::size_t r = 0; r < all.size(); ++r) all[r] = static_cast<int>(r);
+    std::vector<std::map<std::string, double>> vars;
+    std::vector<double> y;
+    values(j, all, vars, y);
+    const double n = static_cast<double>(y.size());
+    // Residuals below 1e-12 of the values' energy are rounding: families that fit exactly tie, and the
+    // coefficient count decides.
+    double energy = 0;
+    for (double v : y) energy += v * v;
+    const double rss = std::max(fit_value_law(law, vars, y).rss, std::max(1e-12 * energy, std::numeric_limits<double>::min()));
+    return n * std::log(rss / n) + law.coefficients() * std::log(n);
+  }
+};
+
+/// One coordinate step: the family for parameter j, the others held. Returns the new score.
+double choose_for_parameter(const Scoring& s, LawSet& laws, int j, int& scored, double& chosen_bic) {
+  const auto candidates = value_law_candidates();
+  std::vector<double> scores;
+  for (const ValueLaw& c : candidates) {
+    LawSet trial = laws;
+    trial[j] = c;
+    scores.push_back(s.score(trial));
+    ++scored;
+  }
+  const double best = *std::min_element(scores.begin(), scores.end());
+  int pick = -1;
+  double pick_bic = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (!(scores[c] <= best * 1.01)) continue;
+    const double b = s.bic(j, candidates[c]);
+    if (pick < 0 || b < pick_bic) pick = static_cast<int>(c), pick_bic = b;
+  }
+  laws[j] = candidates[pick];
+  chosen_bic = pick_bic;
+  return scores[pick];
+}
+
+std::string describe_setting(const Signals& r) {
+  return fmt::format("amp {:g} mm, freq {:g} Hz", 1e3 * r.law_variables.at("amp"), r.law_variables.at("freq"));
+}
+
+Table fold_table(const Scoring& s, const LawSet& shared, const LawSet& chosen) {
+  const auto a = s.left_out_metrics(shared), b = s.left_out_metrics(chosen);
+  Table t;
+  t.id = "law_folds";
+  t.title = "Leave-one-setting-out folds of the training records (laws fitted to the per-record values)";
+  t.columns = {"left-out setting", "records", fmt::format("{} shared", metric_name(s.metric)),
+               fmt::format("{} chosen laws", metric_name(s.metric))};
+  for (const Fold& f : s.folds) {
+    double sa = 0, sb = 0;
+    for (int r : f.predict) sa += a[r], sb += b[r];
+    const double n = static_cast<double>(f.predict.size());
+    t.rows.push_back({describe_setting(*s.records[f.predict.front()]), fmt::format("{}", f.predict.size()),
+                      number_cell(sa / n), number_cell(sb / n)});
+  }
+  return t;
+}
+
+}  // namespace
+
+ResolvedModel gauged_model(const Model& base) {
+  ResolvedModel r;
+  r.keep.push_back(std::make_shared<LawModel>(base, std::map<std::string, ParameterLaw>{}));
+  r.model = r.keep.back().get();
+  r.bounds = default_bounds(*r.model);
+  r.bounds_option = "--bounds";
+  return r;
+}
+
+std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged) {
+  std::vector<std::vector<double>> out;
+  for (const Signals* record : search.records) {
+    FitRequest request;
+    request.model = &gauged;
+    request.records = {record};
+    request.optimizer = search.optimizer;
+    request.settings = search.settings;
+    request.settings.task_key = task_key(gauged.model->id(), record->name, search.optimizer_name);
+    const FitOutcome outcome = run_fit(request);
+    if (!std::isfinite(outcome.best().best_value))
+      throw DataError(fmt::format("--laws auto: the fit of {} alone failed (every run ended without a finite {})",
+                                  record->name, metric_name(search.settings.metric)));
+    out.push_back(outcome.best().best_params);
+  }
+  return out;
+}
+
+LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
+                         const std::vector<std::vector<double>>& per_record) {
+  const Model& model = *gauged.model;
+  Scoring s{model, search.records, per_record, make_folds(search.records, "leave-setting", "--laws auto"), {},
+            search.settings.metric};
+  for (const Signals* r : search.records) s.boxes.push_back(gauged.bounds_for(std::span<const Signals* const>(&r, 1)));
+  LawSelection out;
+  for (const auto& p : model.parameters()) out.parameters.push_back(p.name);
+  const LawSet shared(static_cast<std::size_t>(model.dim()));
+  LawSet laws = shared;
+  out.shared_score = out.score = s.score(shared);
+  std::vector<double> bics(laws.size()), scores(laws.size(), out.score);
+  for (int pass = 0; pass < 3; ++pass) {
+    bool changed = false;
+    for (int j = 0; j < model.dim(); ++j) {
+      const ValueLaw before = laws[j];
+      out.score = scores[j] = choose_for_parameter(s, laws, j, out.scored, bics[j]);
+      changed |= laws[j].text() != before.text();
+    }
+    if (!changed) break;
+  }
+  out.chosen = laws;
+  out.folds = fold_table(s, shared, laws);
+  out.choices.id = "law_choices";
+  out.choices.title = "Chosen laws (BIC of each on the per-record values; score: mean left-out metric when chosen)";
+  out.choices.columns = {"parameter", "law", "coefficients", "BIC", "score"};
+  std::vector<int> all(search.records.size());
+  for (std::size_t r = 0; r < all.size(); ++r) all[r] = static_cast<int>(r);
+  std::vector<std::map<std::string, double>> vars;
+  std::vector<double> y;
+  for (int j = 0; j < model.dim(); ++j) {
+    const std::string text = laws[j].text();
+    if (text != "free") out.laws += fmt::format("{}{}={}", out.laws.empty() ? "" : ";", out.parameters[j], text);
+    s.values(j, all, vars, y);
+    const auto c = fit_value_law(laws[j], vars, y).coefficients;
+    out.start.insert(out.start.end(), c.begin(), c.end());
+    out.choices.rows.push_back({out.parameters[j], text, fmt::format("{}", laws[j].coefficients()),
+                                number_cell(bics[j]), number_cell(scores[j])});
+  }
+  return out;
+}
+
+FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection) {
+  const ResolvedModel gauged = gauged_model(*search.base);
+  selection = select_laws(search, gauged, fit_each_record(search, gauged));
+  ModelChoice choice;
+  choice.model = std::string(search.base->id());
+  choice.laws = selection.laws.empty() ? "c0=free" : selection.laws;  // a law model, so that the gauge applies
+  choice.option_prefix = "--";
+  fitted_model = resolve_model(choice);
+  if (fitted_model.model->dim() != static_cast<int>(selection.start.size()))
+    throw std::logic_error(fmt::format("--laws auto: {} start values for {} coefficients", selection.start.size(),
+                                       fitted_model.model->dim()));
+  FitRequest request;
+  request.model = &fitted_model;
+  request.records = search.records;
+  request.optimizer = search.optimizer;
+  request.settings = search.settings;
+  std::string names;
+  for (const Signals* r : search.records) names += (names.empty() ? "" : "+") + r->name;
+  request.settings.task_key = task_key(fitted_model.model->id(), names, search.optimizer_name);
+  request.start = selection.start;
+  return run_fit(request);
+}
+
+}  // namespace dampbench

@@ -1,0 +1,65 @@
+#pragma once
+// `fit --laws auto`: one model of the damper whose parameters follow laws in current and in the test setting,
+// the laws chosen by how well they predict records they were not fitted on.
+//
+//  1. What the records identify: the model, under its state gauge (engine/model/model.hpp StateGauge), fitted to
+//     each training record alone (the fit's optimizer, budget and runs).
+//  2. Choice: for each parameter, shared, or one of the law families of engine/fit/value_laws.hpp. A set of laws
+//     is scored by leave-one-setting-out folds over the training records: the laws are fitted to the fold's
+//     per-record values, predict the left-out setting's parameters, and the model simulates its records; the
+//     score is the mean metric over all left-out records. Coordinate search from "every parameter shared":
+//     each parameter in turn takes the family with the lowest score; families within 1 % of it are a tie, broken
+//     by the Bayesian information criterion of the family on the parameter's values (n·ln(RSS/n) + k·ln n). At
+//     most three passes, fewer when a pass changes nothing.
+//     Laws in current have up to three coefficients. With three training currents, leaving one current out
+//     leaves two, which cannot determine them: the folds leave settings out, so that every fold keeps every
+//     current, and a family's shape between the trained currents is judged only through the BIC tie-break.
+//  3. The chosen law model is fitted to all training records jointly, its search starting from the laws fitted
+//     to the per-record values (Bounds::start).
+// Cost: one fit per training record, then simulations only (candidates × folds' records per pass), then one
+// joint fit.
+#include <string>
+#include <vector>
+
+#include "engine/common/table.hpp"
+#include "engine/fit/fit.hpp"
+#include "engine/fit/resolve_model.hpp"
+#include "engine/fit/value_laws.hpp"
+
+namespace dampbench {
+
+/// How the per-record fits and the final fit are made.
+struct LawSearch {
+  const Model* base = nullptr;          ///< the registered model the laws act on
+  std::vector<const Signals*> records;  ///< the training records
+  const OptimizerFactory* optimizer = nullptr;
+  std::string optimizer_name;           ///< names the fits' task keys
+  IdentificationSettings settings;      ///< runs, seed, metric, budget (the task key is set per fit)
+};
+
+/// The base model with its gauge and no laws: the model of the per-record fits.
+ResolvedModel gauged_model(const Model& base);
+
+/// Step 1: each training record fitted alone; the best parameters of each (the gauged model's order).
+std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged);
+
+struct LawSelection {
+  std::vector<std::string> parameters;  ///< the gauged model's parameters
+  std::vector<ValueLaw> chosen;         ///< one per parameter
+  std::string laws;                     ///< parse_laws text of the chosen laws (shared parameters left out)
+  std::vector<double> start;            ///< the chosen law model's coefficients fitted to the per-record values
+  double score = 0;                     ///< mean left-out metric of the chosen laws
+  double shared_score = 0;              ///< ... and of every parameter shared
+  int scored = 0;                       ///< sets of laws scored
+  Table folds;                          ///< per fold: left-out setting, its records, both scores
+  Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
+};
+
+/// Step 2 on the per-record parameters of step 1 (same order as search.records).
+LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
+                         const std::vector<std::vector<double>>& per_record);
+
+/// Steps 1–3; `selection` receives step 2's result.
+FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection);
+
+}  // namespace dampbench

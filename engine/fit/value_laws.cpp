@@ -1,0 +1,137 @@
+#include "engine/fit/value_laws.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace dampbench {
+namespace {
+
+double variable(const std::map<std::string, double>& v, const std::string& name) {
+  const auto it = v.find(name);
+  return it == v.end() ? std::nan("") : it->second;
+}
+
+/// g(I) of F = a + b·g(I); h is the shape's current scale [A].
+double shape(ValueLaw::Shape s, double current, double h) {
+  switch (s) {
+    case ValueLaw::Shape::constant: return 0.0;
+    case ValueLaw::Shape::linear: return current;
+    case ValueLaw::Shape::hill2: return current * current / (h * h + current * current);
+    case ValueLaw::Shape::saturating: return 1.0 - std::exp(-current / h);
+  }
+  return 0.0;
+}
+
+bool has_scale(ValueLaw::Shape s) { return s == ValueLaw::Shape::hill2 || s == ValueLaw::Shape::saturating; }
+
+/// F(I)·(1 + k·v) in its own terms.
+struct Fitted {
+  double a = 0, b = 0, h = 1, k = 0, rss = 0;
+};
+
+/// (a, b) by least squares for a fixed h and k, with b ≥ 0 (b = 0: a alone).
+void fit_levels(const ValueLaw& law, const std::vector<double>& g, const std::vector<double>& G,
+                const std::vector<double>& y, Fitted& f) {
+  double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double u1 = G[i], u2 = g[i] * G[i];
+    s11 += u1 * u1, s12 += u1 * u2, s22 += u2 * u2, r1 += u1 * y[i], r2 += u2 * y[i];
+  }
+  const double det = s11 * s22 - s12 * s12;
+  f.b = 0;
+  f.a = s11 > 0 ? r1 / s11 : 0;
+  if (law.current != ValueLaw::Shape::constant && det > 1e-12 * s11 * s22) {
+    const double b = (s11 * r2 - s12 * r1) / det;
+    if (b > 0) f.a = (r1 * s22 - r2 * s12) / det, f.b = b;
+  }
+}
+
+/// F(I)·G(v) for one shape scale h: alternating least squares in (a, b) and k.
+Fitted fit_at_scale(const ValueLaw& law, double h, const std::vector<double>& I, const std::vector<double>& v,
+                    const std::vector<double>& y) {
+  const std::size_t n = y.size();
+  std::vector<double> g(n), G(n, 1.0);
+  for (std::size_t i = 0; i < n; ++i) g[i] = shape(law.current, I[i], h);
+  Fitted f;
+  f.h = h;
+  for (int pass = 0; pass < (law.setting.empty() ? 1 : 40); ++pass) {
+    for (std::size_t i = 0; i < n; ++i) G[i] = 1.0 + f.k * v[i];
+    fit_levels(law, g, G, y, f);
+    if (law.setting.empty()) break;
+    double num = 0, den = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double F = f.a + f.b * g[i];
+      num += F * v[i] * (y[i] - F), den += F * v[i] * F * v[i];
+    }
+    f.k = den > 0 ? num / den : 0.0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = (f.a + f.b * g[i]) * (1.0 + f.k * (law.setting.empty() ? 0.0 : v[i])) - y[i];
+    f.rss += e * e;
+  }
+  return f;
+}
+
+}  // namespace
+
+std::string ValueLaw::text() const {
+  const char* shapes[] = {"", "poly(I,1)", "hill(I,2)", "sat(I)"};
+  const std::string f = shapes[static_cast<int>(current)];
+  if (setting.empty()) return f.empty() ? "free" : f;
+  const std::string g = fmt::format("poly({},1)", setting);
+  return f.empty() ? g : fmt::format("prod({},{})", f, g);
+}
+
+int ValueLaw::coefficients() const {
+  const int f = current == Shape::constant ? 1 : has_scale(current) ? 3 : 2;
+  return setting.empty() ? f : current == Shape::constant ? 2 : f + 2;
+}
+
+std::vector<ValueLaw> value_law_candidates() {
+  std::vector<ValueLaw> out;
+  for (auto s : {ValueLaw::Shape::constant, ValueLaw::Shape::linear, ValueLaw::Shape::hill2, ValueLaw::Shape::saturating})
+    for (const char* v : {"", "amp", "freq"}) out.push_back({s, v});
+  return out;
+}
+
+double ValueFit::predict(const ValueLaw& law, const std::map<std::string, double>& variables) const {
+  const auto& c = coefficients;
+  if (law.current == ValueLaw::Shape::constant)
+    return law.setting.empty() ? c[0] : c[0] + c[1] * variable(variables, law.setting);
+  const bool scaled = has_scale(law.current);
+  const double F = c[0] + c[1] * shape(law.current, variable(variables, "I"), scaled ? c[2] : 1.0);
+  if (law.setting.empty()) return F;
+  const std::size_t q = scaled ? 3 : 2;
+  return F * (c[q] + c[q + 1] * variable(variables, law.setting));
+}
+
+ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::string, double>>& variables,
+                       const std::vector<double>& values) {
+  const std::size_t n = values.size();
+  std::vector<double> I(n, 0.0), v(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (law.current != ValueLaw::Shape::constant) I[i] = variable(variables[i], "I");
+    if (!law.setting.empty()) v[i] = variable(variables[i], law.setting);
+  }
+  Fitted best;
+  best.rss = std::numeric_limits<double>::infinity();
+  const int scales = has_scale(law.current) ? 40 : 1;
+  for (int s = 0; s < scales; ++s) {
+    const double h = scales == 1 ? 1.0 : 0.05 * std::pow(40.0, s / (scales - 1.0));  // 0.05 … 2 A
+    const Fitted f = fit_at_scale(law, h, I, v, values);
+    if (f.rss < best.rss) best = f;
+  }
+  ValueFit out;
+  out.rss = best.rss;
+  if (law.current == ValueLaw::Shape::constant) {
+    out.coefficients = law.setting.empty() ? std::vector<double>{best.a} : std::vector<double>{best.a, best.a * best.k};
+    return out;
+  }
+  out.coefficients = {best.a, best.b};
+  if (has_scale(law.current)) out.coefficients.push_back(best.h);
+  if (!law.setting.empty()) out.coefficients.insert(out.coefficients.end(), {1.0, best.k});
+  return out;
+}
+
+}  // namespace dampbench

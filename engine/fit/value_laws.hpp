@@ -1,0 +1,42 @@
+#pragma once
+// The law families `fit --laws auto` chooses from, fitted to values of one parameter identified record by record
+// (engine/fit/law_selection.hpp). A candidate is a shape in current times an optional linear factor in one
+// setting variable:
+//   F(I) · G(v),  F ∈ {a, a + b·I, a + b·I²/(h² + I²), a + b·(1 − e^(−I/h))},  G ∈ {1, q0 + q1·amp, q0 + q1·freq}
+// written in the law grammar (engine/model/parameter_law.hpp) as free, poly(I,1), hill(I,2), sat(I),
+// poly(amp,1), prod(hill(I,2),poly(freq,1)), ... b ≥ 0 keeps F non-decreasing in I; a law in a setting
+// variable has two coefficients (six settings would otherwise become a lookup table).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace dampbench {
+
+struct ValueLaw {
+  enum class Shape { constant, linear, hill2, saturating };
+  Shape current = Shape::constant;  ///< F(I)
+  std::string setting;              ///< "" (G = 1), "amp" or "freq"
+
+  /// The law in the grammar of parse_law ("free" for a constant without a setting factor).
+  [[nodiscard]] std::string text() const;
+  /// Coefficients of the law in the grammar (its coefficient_names order).
+  [[nodiscard]] int coefficients() const;
+};
+
+/// Every candidate: 4 shapes × (no factor, amp, freq).
+std::vector<ValueLaw> value_law_candidates();
+
+/// A candidate fitted to values: its coefficients in the grammar's order, and the residual sum of squares.
+struct ValueFit {
+  std::vector<double> coefficients;
+  double rss = 0;
+  [[nodiscard]] double predict(const ValueLaw& law, const std::map<std::string, double>& variables) const;
+};
+
+/// Least squares of `law` to values[r] at variables[r] (each with I and the setting variable): linear in (a, b)
+/// for a fixed h and q1/q0, h on a grid over 0.05–2 A, the factor by alternating least squares; b < 0 falls
+/// back to b = 0, so the fit is non-decreasing in I like the law's default bounds.
+ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::string, double>>& variables,
+                       const std::vector<double>& values);
+
+}  // namespace dampbench

@@ -1,0 +1,97 @@
+// `fit --laws auto` (engine/fit/law_selection.hpp, engine/fit/value_laws.hpp): on synthetic records generated from
+// known laws, the search picks the true families and the joint fit recovers their coefficients.
+#include "engine/fit/law_selection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <tbb/global_control.h>
+
+#include "engine/model/law_model.hpp"
+#include "engine/record/excitation.hpp"
+#include "models/registry.hpp"
+#include "optimizers/registry.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
+  // y = (20 + 300·I²/(0.5² + I²))·(1 + 0.4·freq) at five currents and three frequencies
+  const ValueLaw law{ValueLaw::Shape::hill2, "freq"};
+  EXPECT_EQ(law.text(), "prod(hill(I,2),poly(freq,1))");
+  EXPECT_EQ(law.coefficients(), 5);
+  std::vector<std::map<std::string, double>> vars;
+  std::vector<double> y;
+  for (double f : {0.5, 1.0, 3.0})
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      vars.push_back({{"I", I}, {"freq", f}});
+      y.push_back((20 + 300 * I * I / (0.25 + I * I)) * (1 + 0.4 * f));
+    }
+  const ValueFit fit = fit_value_law(law, vars, y);
+  // h lies on the grid only approximately (0.05·40^(s/39)): the levels and the factor follow it closely
+  EXPECT_NEAR(fit.coefficients[2], 0.5, 0.05);
+  EXPECT_NEAR(fit.coefficients[4] / fit.coefficients[3], 0.4, 0.02);
+  for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.02 * y[i] + 1);
+  // a linear law in I cannot follow the sigmoid: its residuals are far larger
+  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss);
+}
+
+TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) {
+  const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
+  const ValueFit fit = fit_value_law({ValueLaw::Shape::linear, ""}, vars, {3.0, 2.0, 1.0});
+  EXPECT_EQ(fit.coefficients[1], 0.0);
+  EXPECT_DOUBLE_EQ(fit.coefficients[0], 2.0);
+  EXPECT_EQ(ValueLaw{}.text(), "free");
+  EXPECT_EQ((ValueLaw{ValueLaw::Shape::constant, "amp"}.text()), "poly(amp,1)");
+  EXPECT_EQ(value_law_candidates().size(), 12u);
+}
+
+/// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine, with f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
+/// (1000 + 2000·I) and f0 = 5 N shared.
+Signals bingham_record(double amp, double freq, double current) {
+  SineSpec spec;
+  spec.amplitude_m = amp, spec.freq_hz = freq, spec.cycles = 2, spec.fs_hz = 400 * freq;
+  Dataset d = make_sine(spec);
+  d.operating["I"] = current;
+  const double f_c = 60 + 500 * current * current / (0.36 + current * current), c0 = 1000 + 2000 * current;
+  const std::vector<double> p{f_c, c0, 5.0};
+  d.F_N = find_model("mrd.bingham").simulate(p, prepare_signals(d));
+  d.name = fmt::format("{}mm{}Hz{}A", amp * 1e3, freq, current);
+  return prepare_signals(d);
+}
+
+TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
+  std::vector<Signals> records;
+  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) records.push_back(bingham_record(amp, freq, I));
+  const OptimizerFactory factory = make_optimizer_factory({"ga-lm", 24, 30});
+  LawSearch search;
+  search.base = &find_model("mrd.bingham");
+  for (const auto& r : records) search.records.push_back(&r);
+  search.optimizer = &factory;
+  search.optimizer_name = "ga-lm";
+  search.settings.runs = 2;
+  search.settings.metric = Metric::nrmse;
+  ResolvedModel fitted;
+  LawSelection selection;
+  const FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
+  EXPECT_EQ(selection.laws, "f_c=hill(I,2);c0=poly(I,1)");
+  EXPECT_LT(selection.score, 0.1 * selection.shared_score);
+  const auto& c = outcome.best().best_params;
+  ASSERT_EQ(c.size(), 6u);  // f_c: a, b, h; c0: two; f0
+  const double truth[] = {60, 500, 0.6, 1000, 2000, 5};
+  for (std::size_t j = 0; j < c.size(); ++j) EXPECT_NEAR(c[j], truth[j], 0.02 * truth[j]) << j;
+
+  // same bits on one thread
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  ResolvedModel fitted1;
+  LawSelection selection1;
+  const FitOutcome outcome1 = fit_with_auto_laws(search, fitted1, selection1);
+  EXPECT_EQ(selection1.laws, selection.laws);
+  EXPECT_EQ(outcome1.best().best_params, c);
+}
+
+}  // namespace
+}  // namespace dampbench
