@@ -20,10 +20,61 @@ double variable_scale(const std::string& v) {
   return 5.0;                    // freq and w, Hz
 }
 
-/// Default bounds of a law's coefficients from the base parameter's bounds [lo, hi]: the leading
-/// factor's constant term keeps [lo, hi], a term of degree k gets ±2M/scale^k (M = max|lo|, |hi|: the
-/// parameter may move by twice its range over the variable's typical span);
-/// further factors of a product are near 1; power and Gaussian terms are bounded around the same range.
+/// Span of the variable over which a monotone law places its bend: sat's x0 in [0.05, 3]·span (its
+/// half-point is x0·ln 2), hill's half-point h and tanh's width w in [0.05, 2]·span, tanh's steepest point
+/// x1 in [0, 2]·span. The MR dampers here run 0–1 A, so I gets 1 A: x0 and the half-points then cover
+/// 0.05–2 A, enough for a bend just above 0 A or a law nearly linear over the tested currents, without
+/// searching bends far beyond them. variable_scale's 3 A bounds poly's slopes and stays as it is: the
+/// published fixtures' bounds depend on it.
+double bend_span(const std::string& v) { return v == "I" ? 1.0 : variable_scale(v); }
+
+/// The range a factor's coefficients are bounded around: the base parameter's [lo, hi] and M = max|lo|, |hi|
+/// for the first factor of a product, [0, 2] and M = 1 for every later one (those stay near 1, so that
+/// the first factor carries the parameter's magnitude).
+struct Level {
+  double lo, hi, M;
+};
+
+/// Default bounds of one factor's coefficients, appended through `add(lo, hi)`. poly: the constant term
+/// keeps [lo, hi], a term of degree k gets ±2M/scale^k (the parameter may move by twice its range over the
+/// variable's typical span); power and Gaussian terms are bounded around the same range. sat, hill, tanh and
+/// mono have levels a in [lo, hi] and rises b, d_k ≥ 0 (at most 2M; tanh's b at most M, as its bracket
+/// reaches 2): non-decreasing in the variable and never below a there by construction.
+template <class Add>
+void factor_bounds(const LawFactor& f, const Level& L, Add add) {
+  using Family = LawFactor::Family;
+  const double s = variable_scale(f.variable), span = bend_span(f.variable);
+  switch (f.family) {
+    case Family::poly:
+      for (int k = 0; k <= f.degree; ++k) {
+        if (k == 0) add(L.lo, L.hi);
+        else add(-2 * L.M / std::pow(s, k), 2 * L.M / std::pow(s, k));
+      }
+      break;
+    case Family::power: add(-L.M, L.M); add(-2.0, 2.0); add(-L.M, L.M); break;
+    case Family::gauss2:
+      for (int g = 0; g < 2; ++g) {
+        add(0.0, L.M);
+        add(0.0, 2 * s);
+        add(0.05 * s, 2 * s);
+      }
+      break;
+    case Family::sat: add(L.lo, L.hi); add(0.0, 2 * L.M); add(0.05 * span, 3 * span); break;
+    case Family::hill:
+      add(L.lo, L.hi);
+      add(0.0, 2 * L.M);
+      add(0.05 * span, 2 * span);
+      if (f.exponent == 0) add(1.0, 4.0);  // 1: saturating from the start; 4: a sharp sigmoid
+      break;
+    case Family::tanh: add(L.lo, L.hi); add(0.0, L.M); add(0.0, 2 * span); add(0.05 * span, 2 * span); break;
+    case Family::mono:
+      add(L.lo, L.hi);
+      for (std::size_t k = 1; k < f.knots.size(); ++k) add(0.0, 2 * L.M);
+      break;
+  }
+}
+
+/// Default bounds of a law's coefficients from the base parameter's bounds (factor_bounds, factor by factor).
 std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const ParameterLaw& law) {
   const double M = std::max(std::fabs(p.lower), std::fabs(p.upper));
   const auto names = law.coefficient_names(p.name);
@@ -32,26 +83,10 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
   switch (law.kind) {
     case ParameterLaw::Kind::free: add(p.lower, p.upper); break;
     case ParameterLaw::Kind::fixed: break;
-    case ParameterLaw::Kind::polynomial:
-      for (std::size_t f = 0; f < law.factors.size(); ++f) {
-        const auto& [var, degree] = law.factors[f];
-        const double s = variable_scale(var), m = f == 0 ? 2 * M : 2.0;
-        for (int k = 0; k <= degree; ++k) {
-          if (k == 0) f == 0 ? add(p.lower, p.upper) : add(0.0, 2.0);
-          else add(-m / std::pow(s, k), m / std::pow(s, k));
-        }
-      }
+    case ParameterLaw::Kind::product:
+      for (std::size_t f = 0; f < law.factors.size(); ++f)
+        factor_bounds(law.factors[f], f == 0 ? Level{p.lower, p.upper, M} : Level{0.0, 2.0, 1.0}, add);
       break;
-    case ParameterLaw::Kind::power: add(-M, M); add(-2.0, 2.0); add(-M, M); break;
-    case ParameterLaw::Kind::gaussian2: {
-      const double s = variable_scale(law.variable);
-      for (int g = 0; g < 2; ++g) {
-        add(0.0, M);
-        add(0.0, 2 * s);
-        add(0.05 * s, 2 * s);
-      }
-      break;
-    }
   }
   return out;
 }
@@ -123,10 +158,7 @@ std::vector<double> LawModel::base_parameters(std::span<const double> c, const S
 void LawModel::check_variables(const Signals& data) const {
   const auto params = base_.parameters();
   for (std::size_t j = 0; j < laws_.size(); ++j) {
-    std::vector<std::string> vars;
-    for (const auto& f : laws_[j].factors) vars.push_back(f.first);
-    if (!laws_[j].variable.empty()) vars.push_back(laws_[j].variable);
-    for (const auto& v : vars) {
+    for (const auto& v : laws_[j].variables()) {
       if (const auto refused = data.operating_refused.find(v); refused != data.operating_refused.end())
         throw InputError(fmt::format("{} (needed by the law of {})", refused->second, params[j].name));
       if (!data.law_variables.count(v))

@@ -236,8 +236,7 @@ json ecdf_figures(const ReportInput& in) {
 
 /// The variable a law is drawn against: its first one.
 std::string first_variable(const ParameterLaw& law) {
-  if (law.kind == ParameterLaw::Kind::polynomial && !law.factors.empty()) return law.factors.front().first;
-  return law.variable;
+  return law.factors.empty() ? std::string() : law.factors.front().variable;
 }
 
 json law_figures(const ReportInput& in) {
@@ -250,9 +249,8 @@ json law_figures(const ReportInput& in) {
     std::map<std::vector<std::pair<std::string, double>>, std::vector<std::size_t>> curves;
     for (std::size_t i = 0; i < l.conditions.size(); ++i) {
       std::vector<std::pair<std::string, double>> others;
-      if (l.law.law.kind == ParameterLaw::Kind::polynomial)
-        for (const auto& [variable, degree] : l.law.law.factors)
-          if (variable != axis) others.emplace_back(variable, l.variables[i].at(variable));
+      for (const auto& f : l.law.law.factors)
+        if (f.variable != axis) others.emplace_back(f.variable, l.variables[i].at(f.variable));
       curves[others].push_back(i);
     }
     json groups = json::array();

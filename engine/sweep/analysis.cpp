@@ -105,13 +105,13 @@ std::vector<double> fit_product(const ParameterLaw& law, std::span<const std::ma
   const std::size_t n = y.size();
   std::vector<int> offset;
   int total = 0;
-  for (const auto& [var, degree] : factors) {
+  for (const auto& f : factors) {
     offset.push_back(total);
-    total += degree + 1;
+    total += f.degree + 1;
   }
   std::vector<std::vector<double>> xv(factors.size(), std::vector<double>(n));
   for (std::size_t f = 0; f < factors.size(); ++f)
-    for (std::size_t i = 0; i < n; ++i) xv[f][i] = x[i].at(factors[f].first);
+    for (std::size_t i = 0; i < n; ++i) xv[f][i] = x[i].at(factors[f].variable);
   std::vector<double> c(static_cast<std::size_t>(total), 0.0);
   for (std::size_t f = 1; f < factors.size(); ++f) c[static_cast<std::size_t>(offset[f])] = 1.0;
   const Vec Y = Eigen::Map<const Vec>(y.data(), static_cast<Eigen::Index>(n));
@@ -119,12 +119,12 @@ std::vector<double> fit_product(const ParameterLaw& law, std::span<const std::ma
   // Alternating least squares: each factor in turn, the others held (each step is linear).
   for (int sweep = 0; sweep < 200; ++sweep) {
     for (std::size_t f = 0; f < factors.size(); ++f) {
-      const int degree = factors[f].second;
+      const int degree = factors[f].degree;
       Mat A(static_cast<Eigen::Index>(n), degree + 1);
       for (std::size_t i = 0; i < n; ++i) {
         double others = 1;
         for (std::size_t g = 0; g < factors.size(); ++g)
-          if (g != f) others *= factor_value(c, offset[g], factors[g].second, xv[g][i]);
+          if (g != f) others *= factor_value(c, offset[g], factors[g].degree, xv[g][i]);
         double p = 1;
         for (int k = 0; k <= degree; ++k, p *= xv[f][i]) A(static_cast<Eigen::Index>(i), k) = p * others;
       }
@@ -141,8 +141,8 @@ std::vector<double> fit_product(const ParameterLaw& law, std::span<const std::ma
   for (std::size_t f = 1; f < factors.size(); ++f) {
     const double c0 = c[static_cast<std::size_t>(offset[f])];
     if (!(std::fabs(c0) > 1e-300)) continue;
-    for (int k = 0; k <= factors[f].second; ++k) c[static_cast<std::size_t>(offset[f] + k)] /= c0;
-    for (int k = 0; k <= factors[0].second; ++k) c[static_cast<std::size_t>(offset[0] + k)] *= c0;
+    for (int k = 0; k <= factors[f].degree; ++k) c[static_cast<std::size_t>(offset[f] + k)] /= c0;
+    for (int k = 0; k <= factors[0].degree; ++k) c[static_cast<std::size_t>(offset[0] + k)] *= c0;
   }
   return c;
 }
@@ -158,7 +158,7 @@ std::vector<double> fit_power(const ParameterLaw& law, std::span<const std::map<
     const double p = 0.05 * step;
     Mat A(static_cast<Eigen::Index>(n), 2);
     for (std::size_t i = 0; i < n; ++i) {
-      A(static_cast<Eigen::Index>(i), 0) = std::pow(x[i].at(law.variable), p);
+      A(static_cast<Eigen::Index>(i), 0) = std::pow(x[i].at(law.factors[0].variable), p);
       A(static_cast<Eigen::Index>(i), 1) = 1;
     }
     const Vec s = least_squares(A, Y);
@@ -176,7 +176,7 @@ std::vector<double> fit_gaussian2(const ParameterLaw& law, std::span<const std::
                                   std::span<const double> y) {
   const std::size_t n = y.size();
   std::vector<double> xs(n);
-  for (std::size_t i = 0; i < n; ++i) xs[i] = x[i].at(law.variable);
+  for (std::size_t i = 0; i < n; ++i) xs[i] = x[i].at(law.factors[0].variable);
   const auto [lo_it, hi_it] = std::minmax_element(xs.begin(), xs.end());
   const double lo = *lo_it, range = std::max(*hi_it - lo, 1e-12);
   const Vec Y = Eigen::Map<const Vec>(y.data(), static_cast<Eigen::Index>(n));
@@ -226,6 +226,15 @@ std::vector<double> fit_gaussian2(const ParameterLaw& law, std::span<const std::
 
 }  // namespace
 
+void check_regression_law(const ParameterLaw& law, const std::string& parameter) {
+  if (law.kind != ParameterLaw::Kind::product || law.polynomial() || law.single(LawFactor::Family::power) ||
+      law.single(LawFactor::Family::gauss2))
+    return;
+  throw InputError(fmt::format("regression of {}: '{}' has no regression fit (regressions fit poly, prod of poly, "
+                               "power and gauss2 laws; fit the others as laws of the model with --laws)",
+                               parameter, law.text()));
+}
+
 RegressionFit fit_law(const ParameterLaw& law, const std::string& parameter,
                       std::span<const std::map<std::string, double>> x, std::span<const double> y) {
   RegressionFit fit;
@@ -235,10 +244,8 @@ RegressionFit fit_law(const ParameterLaw& law, const std::string& parameter,
   if (n < fit.names.size())
     throw InputError(fmt::format("regression of {}: {} observations for {} coefficients ({})", parameter, n,
                                  fit.names.size(), law.text()));
-  std::vector<std::string> vars;
-  if (law.kind == ParameterLaw::Kind::polynomial)
-    for (const auto& [v, d] : law.factors) vars.push_back(v);
-  if (law.kind == ParameterLaw::Kind::power || law.kind == ParameterLaw::Kind::gaussian2) vars.push_back(law.variable);
+  check_regression_law(law, parameter);
+  const std::vector<std::string> vars = law.variables();
   for (std::size_t i = 0; i < n; ++i)
     for (const auto& v : vars)
       if (!x[i].count(v)) throw InputError(fmt::format("regression of {}: observation {} has no variable '{}'", parameter, i + 1, v));
@@ -248,12 +255,16 @@ RegressionFit fit_law(const ParameterLaw& law, const std::string& parameter,
     case ParameterLaw::Kind::free:
       fit.coefficients = {std::accumulate(y.begin(), y.end(), 0.0) / static_cast<double>(n)};
       break;
-    case ParameterLaw::Kind::polynomial:
-      if (law.factors.size() == 1) {
-        const int degree = law.factors[0].second;
+    case ParameterLaw::Kind::product:
+      if (law.single(LawFactor::Family::power)) {
+        fit.coefficients = fit_power(law, x, y);
+      } else if (law.single(LawFactor::Family::gauss2)) {
+        fit.coefficients = fit_gaussian2(law, x, y);
+      } else if (law.factors.size() == 1) {
+        const int degree = law.factors[0].degree;
         Mat A(static_cast<Eigen::Index>(n), degree + 1);
         for (std::size_t i = 0; i < n; ++i) {
-          const double xi = x[i].at(law.factors[0].first);
+          const double xi = x[i].at(law.factors[0].variable);
           double p = 1;
           for (int k = 0; k <= degree; ++k, p *= xi) A(static_cast<Eigen::Index>(i), k) = p;
         }
@@ -263,8 +274,6 @@ RegressionFit fit_law(const ParameterLaw& law, const std::string& parameter,
         fit.coefficients = fit_product(law, x, y);
       }
       break;
-    case ParameterLaw::Kind::power: fit.coefficients = fit_power(law, x, y); break;
-    case ParameterLaw::Kind::gaussian2: fit.coefficients = fit_gaussian2(law, x, y); break;
   }
   double mean = std::accumulate(y.begin(), y.end(), 0.0) / static_cast<double>(n), sst = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -28,6 +28,9 @@ struct RegressionFit {
   double sse = 0, r2 = 0, rms_residual = 0;
 };
 
+/// InputError when `law` is a form fit_law does not fit (sat, hill, tanh, mono, or products holding them).
+void check_regression_law(const ParameterLaw& law, const std::string& parameter);
+
 /// Fits `law` of parameter `parameter` to observations y_i at operating variables x_i (least squares).
 /// Products of polynomials are reported with every factor after the first scaled to a constant term of 1.
 /// InputError when there are fewer observations than coefficients or a variable is missing.

@@ -1,6 +1,7 @@
 // [[regressions]]: laws fitted to the per-condition parameters of one model; each law is checked against the
 // model here.
 #include "engine/model/parameter_law.hpp"
+#include "engine/sweep/analysis.hpp"
 #include "engine/sweep/spec/reader.hpp"
 
 namespace dampbench::sweep::spec_file {
@@ -33,6 +34,7 @@ void read_regressions(const Reader& r, const toml::table& root, PartSpec& part) 
         (void)model.model->parameter_index(name);
         if (law.kind == ParameterLaw::Kind::fixed)
           throw InputError(fmt::format("laws {}: a regression needs a law with coefficients, got a number", name));
+        check_regression_law(law, name);
       }
       return 0;
     });

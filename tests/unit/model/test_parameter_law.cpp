@@ -51,7 +51,7 @@ TEST(ParameterLaw, ParsesLists) {
   const auto laws = parse_laws("c0=poly(I,1); alpha = poly(I,1);n=0.9929;", "--laws");
   ASSERT_EQ(laws.size(), 3u);
   EXPECT_EQ(laws.at("n").kind, ParameterLaw::Kind::fixed);
-  EXPECT_EQ(laws.at("alpha").factors[0].first, "I");
+  EXPECT_EQ(laws.at("alpha").factors[0].variable, "I");
 }
 
 TEST(ParameterLaw, BadLawsAreReported) {
@@ -60,7 +60,7 @@ TEST(ParameterLaw, BadLawsAreReported) {
   EXPECT_EQ(error_of([] { parse_law("poly(I,1.5)", "--laws c0"); }),
             "--laws c0: polynomial degree must be a whole number from 0 to 6, got '1.5'");
   EXPECT_EQ(error_of([] { parse_law("spline(I)", "--laws c0"); }),
-            "--laws c0: unknown law 'spline' (known: poly, prod, power, gauss2, free, or a number)");
+            "--laws c0: unknown law 'spline' (known: poly, prod, power, gauss2, sat, hill, tanh, mono, free, or a number)");
   EXPECT_NE(error_of([] { parse_law("poly I", "--laws c0"); }).find("--laws c0: expected a number, poly(VAR,DEGREE)"),
             std::string::npos);
   EXPECT_EQ(error_of([] { parse_laws("c0=poly(I,1);c0=1", "--laws"); }), "--laws: law for 'c0' given twice");

@@ -218,6 +218,18 @@ TEST(Regression, TooFewObservationsIsAnError) {
             std::string::npos);
 }
 
+TEST(Regression, MonotoneFamiliesAreRefusedByName) {
+  EXPECT_EQ(testing::error_of([] {
+              (void)fit_law(parse_law("hill(I,2)", "t"), "c1", grid("I", {0, 0.5, 1, 1.5}), std::vector<double>{1, 2, 3, 4});
+            }),
+            "regression of c1: 'hill(I,2)' has no regression fit (regressions fit poly, prod of poly, power and gauss2 "
+            "laws; fit the others as laws of the model with --laws)");
+  EXPECT_NE(testing::error_of([] { check_regression_law(parse_law("prod(poly(I,1),power(freq))", "t"), "c1"); }),
+            "no error");
+  EXPECT_EQ(testing::error_of([] { check_regression_law(parse_law("prod(poly(I,1),poly(freq,1))", "t"), "c1"); }),
+            "no error");
+}
+
 // ---- tables on a tiny store ---------------------------------------------------------------------------
 
 /// One part, models mrd.bingham (f_c, c0, f0 in N, N·s/m, N: paper units are SI) twice (two optimizers
