@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/cli/cli_options.hpp"
+#include "engine/cli/fit_held_out.hpp"
 #include "engine/cli/report_command.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/statistics.hpp"
@@ -34,6 +35,7 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");
+  add_held_out_options(c, o.held_out);
 }
 
 namespace {
@@ -107,7 +109,8 @@ nlohmann::ordered_json identifiability_json(const Model& model, const Identifiab
   return {{"identifiable", ident.all_identifiable()}, {"parameters", per}, {"correlation", corr}};
 }
 
-void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t) {
+void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t,
+                const std::optional<HeldOut>& held_out) {
   const Model& model = *p.model.model;
   const RunResult& best = fit.best();
   const Summary& s = t.spread;
@@ -140,6 +143,7 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["evaluations"] = t.evaluations;
   j["wall_time_s"] = fit.identification.wall_time_s;
   j["candidate_samples_per_s"] = fit.identification.candidate_samples / fit.identification.wall_time_s;
+  if (held_out) j["held_out"] = held_out_json(*held_out, per_file_model(model).id());
   std::cout << j.dump(2) << "\n";
 }
 
@@ -170,8 +174,11 @@ int fit_command(const FitOptions& o) {
       throw InputError(fmt::format("--report: the folder of '{}' does not exist", o.report));
   }
   const PreparedFit prepared = prepare_fit(o.fit);
+  const HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   const FitRequest request = prepared.request();
   const FitOutcome fit = run_fit(request);
+  std::optional<HeldOut> held_out;
+  if (o.held_out.any()) held_out = run_held_out(prepared, fit, held_out_plan);
   const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
   if (!o.report.empty()) {
     FitReport report{prepared.model.model, prepared.plan.optimizer,
@@ -179,8 +186,14 @@ int fit_command(const FitOptions& o) {
                      request.records, &fit.identification, {tables.params, tables.metrics, tables.runs}};
     write_fit_report(o.report, report);
   }
-  if (o.format == "json") print_json(o, prepared, fit, tables);
-  else print_markdown(prepared, fit, tables);
+  if (o.format == "json") {
+    print_json(o, prepared, fit, tables, held_out);
+  } else {
+    print_markdown(prepared, fit, tables);
+    if (held_out)
+      for (const Table& t : held_out_tables(*held_out, o.held_out.folds, per_file_model(*prepared.model.model).id()))
+        std::cout << "\n" << t.to_markdown();
+  }
   return 0;
 }
 
