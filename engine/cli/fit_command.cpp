@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/cli/cli_options.hpp"
+#include "engine/cli/fit_held_out.hpp"
 #include "engine/cli/report_command.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/statistics.hpp"
@@ -39,6 +40,7 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");
   c->add_option("--save-model", o.save_model, "also write the fitted model as JSON (for evaluate/simulate --model-file)");
+  add_held_out_options(c, o.held_out);
 }
 
 namespace {
@@ -133,8 +135,36 @@ void print_operating(const FitRecords& records) {
   std::cout << "\n";
 }
 
+/// `--laws auto`: chooses the laws (engine/fit/law_selection.hpp), fits them, and makes `prepared` and `spec`
+/// describe the chosen model, so that the tables, the report and the model file show it.
+FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, LawSelection& selection) {
+  const FitRequest request = prepared.request();
+  LawSearch search;
+  search.base = prepared.model.model;
+  search.records = request.records;
+  search.optimizer = request.optimizer;
+  search.optimizer_name = prepared.plan.optimizer;
+  search.settings = request.settings;
+  ResolvedModel fitted;
+  FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
+  prepared.model = std::move(fitted);
+  spec.model.laws = selection.laws;
+  return outcome;
+}
+
+nlohmann::ordered_json selection_json(const LawSelection& s) {
+  nlohmann::ordered_json choices = nlohmann::ordered_json::object();
+  for (std::size_t j = 0; j < s.parameters.size(); ++j) choices[s.parameters[j]] = s.chosen[j].text();
+  nlohmann::ordered_json folds = nlohmann::ordered_json::array();
+  for (const auto& row : s.folds.rows)
+    folds.push_back({{"left_out", row[0].text}, {"records", std::stoi(row[1].text)},
+                     {"shared", json_number(*row[2].value)}, {"chosen", json_number(*row[3].value)}});
+  return {{"laws", s.laws}, {"per_parameter", choices}, {"score", json_number(s.score)},
+          {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
+}
+
 void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t,
-                const LawSelection* selection) {
+                const LawSelection* selection, const std::optional<HeldOut>& held_out) {
   const Model& model = *p.model.model;
   const RunResult& best = fit.best();
   const Summary& s = t.spread;
@@ -168,6 +198,7 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["history"] = history;
   j["identifiability"] = identifiability_json(model, *fit.identifiability);
   j["operating"] = operating_records_json(p.records);
+  if (held_out) j["held_out"] = held_out_json(*held_out, per_file_model(model).id());
   j["evaluations"] = t.evaluations;
   j["wall_time_s"] = fit.identification.wall_time_s;
   j["candidate_samples_per_s"] = fit.identification.candidate_samples / fit.identification.wall_time_s;
@@ -192,34 +223,6 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
                            p.records.samples(), id.wall_time_s, id.candidate_samples / id.wall_time_s);
 }
 
-/// `--laws auto`: chooses the laws (engine/fit/law_selection.hpp), fits them, and makes `prepared` and `spec`
-/// describe the chosen model, so that the tables, the report and the model file show it.
-FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, LawSelection& selection) {
-  const FitRequest request = prepared.request();
-  LawSearch search;
-  search.base = prepared.model.model;
-  search.records = request.records;
-  search.optimizer = request.optimizer;
-  search.optimizer_name = prepared.plan.optimizer;
-  search.settings = request.settings;
-  ResolvedModel fitted;
-  FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
-  prepared.model = std::move(fitted);
-  spec.model.laws = selection.laws;
-  return outcome;
-}
-
-nlohmann::ordered_json selection_json(const LawSelection& s) {
-  nlohmann::ordered_json choices = nlohmann::ordered_json::object();
-  for (std::size_t j = 0; j < s.parameters.size(); ++j) choices[s.parameters[j]] = s.chosen[j].text();
-  nlohmann::ordered_json folds = nlohmann::ordered_json::array();
-  for (const auto& row : s.folds.rows)
-    folds.push_back({{"left_out", row[0].text}, {"records", std::stoi(row[1].text)},
-                     {"shared", json_number(*row[2].value)}, {"chosen", json_number(*row[3].value)}});
-  return {{"laws", s.laws}, {"per_parameter", choices}, {"score", json_number(s.score)},
-          {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
-}
-
 }  // namespace
 
 int fit_command(const FitOptions& o) {
@@ -234,8 +237,11 @@ int fit_command(const FitOptions& o) {
   FitSpec spec = o.fit;
   PreparedFit prepared = prepare_fit(spec);
   LawSelection selection;
+  const HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, selection) : run_fit(prepared.request());
   const FitRequest request = prepared.request();
+  std::optional<HeldOut> held_out;
+  if (o.held_out.any()) held_out = run_held_out(prepared, fit, held_out_plan);
   const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
   if (!o.report.empty()) {
     FitReport report{prepared.model.model, prepared.plan.optimizer,
@@ -246,16 +252,15 @@ int fit_command(const FitOptions& o) {
   if (!o.save_model.empty())
     write_model_file(o.save_model, model_file_of_fit(spec, prepared, fit, DAMPBENCH_VERSION));
   if (o.format == "json") {
-    print_json(o, prepared, fit, tables, prepared.auto_laws ? &selection : nullptr);
+    print_json(o, prepared, fit, tables, prepared.auto_laws ? &selection : nullptr, held_out);
   } else {
     if (prepared.auto_laws)
-      std::cout << fmt::format("Laws chosen: {}
-
-", selection.laws.empty() ? "none (every parameter shared)" : selection.laws)
-                << selection.choices.to_markdown() << "
-" << selection.folds.to_markdown() << "
-";
+      std::cout << fmt::format("Laws chosen: {}\n\n", selection.laws.empty() ? "none (every parameter shared)" : selection.laws)
+                << selection.choices.to_markdown() << "\n" << selection.folds.to_markdown() << "\n";
     print_markdown(prepared, fit, tables);
+    if (held_out)
+      for (const Table& t : held_out_tables(*held_out, o.held_out.folds, per_file_model(*prepared.model.model).id()))
+        std::cout << "\n" << t.to_markdown();
   }
   return 0;
 }

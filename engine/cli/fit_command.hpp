@@ -4,6 +4,7 @@
 // HTML report.
 #include <string>
 
+#include "engine/fit/held_out.hpp"
 #include "engine/fit/prepared_fit.hpp"
 
 namespace CLI {
@@ -14,6 +15,7 @@ namespace dampbench::cli {
 
 struct FitOptions {
   FitSpec fit;                ///< what to fit (the command line's --model, --data, --optimizer, ...)
+  HeldOutSpec held_out;       ///< what to predict beside the fit (--predict, --folds, --reference)
   std::string format = "md";
   std::string report;         ///< HTML report file ("" = none)
   std::string save_model;     ///< model file of the best run (engine/fit/model_file.hpp; "" = none)

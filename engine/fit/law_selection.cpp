@@ -141,6 +141,10 @@ ResolvedModel gauged_model(const Model& base) {
 std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged) {
   std::vector<std::vector<double>> out;
   for (const Signals* record : search.records) {
+    if (search.record_fits && search.record_fits->count(record)) {
+      out.push_back(search.record_fits->at(record));
+      continue;
+    }
     FitRequest request;
     request.model = &gauged;
     request.records = {record};
@@ -152,6 +156,7 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
       throw DataError(fmt::format("--laws auto: the fit of {} alone failed (every run ended without a finite {})",
                                   record->name, metric_name(search.settings.metric)));
     out.push_back(outcome.best().best_params);
+    if (search.record_fits) (*search.record_fits)[record] = out.back();
   }
   return out;
 }

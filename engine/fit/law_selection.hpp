@@ -18,6 +18,7 @@
 //     to the per-record values (Bounds::start).
 // Cost: one fit per training record, then simulations only (candidates × folds' records per pass), then one
 // joint fit.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct LawSearch {
   const OptimizerFactory* optimizer = nullptr;
   std::string optimizer_name;           ///< names the fits' task keys
   IdentificationSettings settings;      ///< runs, seed, metric, budget (the task key is set per fit)
+  /// Per-record fits already made (a record's fit depends only on the record and the settings, so folds over
+  /// the same records share them); filled as records are fitted. Null: none kept.
+  std::map<const Signals*, std::vector<double>>* record_fits = nullptr;
 };
 
 /// The base model with its gauge and no laws: the model of the per-record fits.

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 
 #include "engine/model/law_model.hpp"

@@ -1,0 +1,311 @@
+#include "engine/fit/held_out.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/fit/law_selection.hpp"
+#include "engine/model/law_model.hpp"
+#include "optimizers/registry.hpp"
+
+namespace dampbench {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// One value for the folds: the same number read from two files, or computed twice, may differ in its last bits.
+bool same_value(double a, double b) {
+  return a == b || std::fabs(a - b) <= 1e-9 * std::max(std::fabs(a), std::fabs(b));
+}
+
+/// The distinct values among `v` (ascending, each the smallest of its group) and each element's index among them.
+struct Distinct {
+  std::vector<double> values;
+  std::vector<int> of;
+};
+
+Distinct distinct_values(const std::vector<double>& v) {
+  std::vector<int> order(v.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return v[a] < v[b]; });
+  Distinct d;
+  d.of.assign(v.size(), -1);
+  for (int i : order) {
+    // Against the group's first value, so that a chain of near values cannot drift into one group.
+    if (d.values.empty() || !same_value(d.values.back(), v[i])) d.values.push_back(v[i]);
+    d.of[i] = static_cast<int>(d.values.size()) - 1;
+  }
+  return d;
+}
+
+double variable_of(const Signals& record, const std::string& variable, std::string_view rule, std::string_view where) {
+  const auto it = record.law_variables.find(variable);
+  if (it == record.law_variables.end())
+    throw InputError(fmt::format("{} {}: record '{}' has no operating variable '{}' (give it with --set {}=... or in "
+                                 "the record)",
+                                 where, rule, record.name, variable, variable));
+  return it->second;
+}
+
+std::vector<double> values_of(const std::vector<const Signals*>& records, const std::string& variable,
+                              std::string_view rule, std::string_view where) {
+  std::vector<double> v;
+  for (const Signals* r : records) v.push_back(variable_of(*r, variable, rule, where));
+  return v;
+}
+
+/// One fold per key that some record has, in the order of the keys: it predicts the records of its key.
+std::vector<Fold> folds_by_key(const std::vector<int>& key, int keys, const std::vector<std::string>& names) {
+  std::vector<Fold> folds;
+  for (int k = 0; k < keys; ++k) {
+    Fold f{names[k], {}, {}};
+    for (int i = 0; i < static_cast<int>(key.size()); ++i) (key[i] == k ? f.predict : f.fit).push_back(i);
+    if (!f.predict.empty()) folds.push_back(std::move(f));
+  }
+  return folds;
+}
+
+std::vector<Fold> leave_one_out(const std::vector<const Signals*>& records, const std::string& variable,
+                                std::string_view rule, std::string_view where) {
+  const Distinct d = distinct_values(values_of(records, variable, rule, where));
+  std::vector<std::string> names;
+  for (double v : d.values) names.push_back(fmt::format("{}={:g}", variable, v));
+  return folds_by_key(d.of, static_cast<int>(d.values.size()), names);
+}
+
+std::vector<Fold> leave_setting_out(const std::vector<const Signals*>& records, std::string_view rule,
+                                    std::string_view where) {
+  const Distinct amp = distinct_values(values_of(records, "amp", rule, where));
+  const Distinct freq = distinct_values(values_of(records, "freq", rule, where));
+  const int nf = static_cast<int>(freq.values.size());
+  std::vector<int> key;
+  for (std::size_t i = 0; i < records.size(); ++i) key.push_back(amp.of[i] * nf + freq.of[i]);
+  std::vector<std::string> names;
+  for (double a : amp.values)
+    for (double f : freq.values) names.push_back(fmt::format("amp={:g},freq={:g}", a, f));
+  return folds_by_key(key, static_cast<int>(names.size()), names);
+}
+
+int metric_index(Metric metric) {
+  return static_cast<int>(std::find(kAllMetrics.begin(), kAllMetrics.end(), metric) - kAllMetrics.begin());
+}
+
+}  // namespace
+
+std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where) {
+  constexpr std::string_view kLeaveOne = "leave-one:";
+  std::vector<Fold> folds;
+  if (rule.starts_with(kLeaveOne) && rule.size() > kLeaveOne.size()) {
+    folds = leave_one_out(records, std::string(rule.substr(kLeaveOne.size())), rule, where);
+  } else if (rule == "leave-setting") {
+    folds = leave_setting_out(records, rule, where);
+  } else {
+    throw InputError(fmt::format("{}: unknown fold rule '{}' (expected leave-one:VAR, e.g. leave-one:I, or "
+                                 "leave-setting)",
+                                 where, rule));
+  }
+  if (folds.size() < 2)
+    throw InputError(fmt::format("{} {}: the {} record{} give{} {} fold{} ({}); held-out evaluation needs at least two",
+                                 where, rule, records.size(), records.size() == 1 ? "" : "s",
+                                 records.size() == 1 ? "s" : "", folds.size(), folds.size() == 1 ? "" : "s",
+                                 folds.empty() ? "no records" : "every record has " + folds[0].name));
+  return folds;
+}
+
+double record_metric(const Model& model, std::span<const double> parameters, const Signals& record, Metric metric) {
+  if (static_cast<int>(parameters.size()) != model.dim())
+    throw InputError(fmt::format("{} has {} parameters, got {}", model.id(), model.dim(), parameters.size()));
+  CandidateBatch batch(model.dim(), 1);
+  batch.set_candidate(0, parameters);
+  std::vector<MetricRow> row(1);
+  BatchEvaluator(model, record).evaluate_all(batch, row);
+  return row[0][metric_index(metric)];
+}
+
+FitRequest fold_request(const FitRequest& request, const Fold& fold) {
+  FitRequest r = request;
+  r.records.clear();
+  for (int i : fold.fit) r.records.push_back(request.records.at(static_cast<std::size_t>(i)));
+  r.settings.task_key = extend_key(request.settings.task_key, hash_name("fold " + fold.name));
+  return r;
+}
+
+const Model& per_file_model(const Model& model) {
+  if (const auto* law = dynamic_cast<const LawModel*>(&model)) return law->base();
+  return model;
+}
+
+FitOutcome per_file_fit(const Model& model, const Signals& record, Metric metric, std::uint64_t seed) {
+  ResolvedModel resolved;
+  resolved.model = &model;
+  resolved.bounds = default_bounds(model);
+  resolved.bounds_option = "--bounds";
+  const FitPlan plan = fit_plan(model, std::nullopt, std::nullopt, std::nullopt, std::nullopt);
+  const OptimizerFactory factory = make_optimizer_factory({plan.optimizer, plan.population, plan.iterations});
+  FitRequest r;
+  r.model = &resolved;
+  r.records = {&record};
+  r.optimizer = &factory;
+  r.settings.runs = plan.runs;
+  r.settings.seed = seed;
+  r.settings.metric = metric;
+  r.settings.task_key = task_key(model.id(), record.name, plan.optimizer);  // as PreparedFit::request names it
+  r.assess_failed_fit = true;
+  return run_fit(r);
+}
+
+double RecordError::ratio() const { return per_file ? metric / *per_file : kNaN; }
+
+ErrorSummary summarize_errors(std::span<const RecordError> errors) {
+  ErrorSummary s;
+  s.count = static_cast<int>(errors.size());
+  double sum = 0, sum_per_file = 0;
+  bool reference = !errors.empty();
+  for (const RecordError& e : errors) {
+    sum += e.metric;
+    if (e.per_file) sum_per_file += *e.per_file;
+    else reference = false;
+  }
+  s.mean = errors.empty() ? kNaN : sum / s.count;
+  s.mean_per_file = s.ratio_of_means = s.worst_ratio = kNaN;
+  if (!reference) return s;
+  s.mean_per_file = sum_per_file / s.count;
+  s.ratio_of_means = s.mean / s.mean_per_file;
+  for (const RecordError& e : errors) {
+    // A NaN ratio (a prediction or a reference that failed) counts as the worst: it must not hide.
+    if (s.worst_record.empty() || !(e.ratio() <= s.worst_ratio)) {
+      s.worst_ratio = e.ratio();
+      s.worst_record = e.record;
+      if (std::isnan(s.worst_ratio)) break;
+    }
+  }
+  return s;
+}
+
+HeldOutPlan plan_held_out(const PreparedFit& fit, const RecordOptions& data, const HeldOutSpec& spec) {
+  HeldOutPlan plan;
+  plan.spec = spec;
+  if (!spec.reference.empty() && spec.reference != "per-file")
+    throw InputError(fmt::format("--reference: expected per-file, got '{}'", spec.reference));
+  if (!spec.folds.empty()) plan.folds = make_folds(fit.records.pointers(), spec.folds, "--folds");
+  if (!spec.predict.empty()) plan.predict = load_fit_records(*fit.model.model, spec.predict, data);
+  return plan;
+}
+
+namespace {
+
+/// The per-file reference fits of a held-out evaluation, each record's fitted once however often it is asked for.
+class References {
+ public:
+  References(const PreparedFit& fit, bool enabled)
+      : model_(per_file_model(*fit.model.model)), metric_(fit.metric), seed_(fit.seed), enabled_(enabled) {}
+
+  /// `record`'s metric beside its per-file fit (when references are enabled).
+  RecordError error(std::string role, std::string fold, const Signals& record, double metric) {
+    RecordError e{std::move(role), std::move(fold), record.name, metric, std::nullopt, std::nullopt};
+    if (!enabled_) return e;
+    auto it = done_.find(&record);
+    if (it == done_.end()) {
+      const FitOutcome f = per_file_fit(model_, record, metric_, seed_);
+      it = done_.emplace(&record, std::make_pair(f.best().best_value, f.convergence.verdict())).first;
+    }
+    e.per_file = it->second.first;
+    e.per_file_verdict = it->second.second;
+    return e;
+  }
+
+ private:
+  const Model& model_;
+  Metric metric_;
+  std::uint64_t seed_;
+  bool enabled_;
+  std::map<const Signals*, std::pair<double, std::string>> done_;
+};
+
+/// Two records of one amplitude–frequency setting (the relative tolerance of make_folds).
+bool same_setting(const Signals& a, const Signals& b) {
+  const auto near = [&](const char* v) {
+    const auto x = a.law_variables.find(v), y = b.law_variables.find(v);
+    return x != a.law_variables.end() && y != b.law_variables.end() &&
+           std::fabs(x->second - y->second) <= 1e-9 * std::max(std::fabs(x->second), std::fabs(y->second));
+  };
+  return near("amp") && near("freq");
+}
+
+/// A fold of a `--laws auto` fit: its laws chosen and fitted on the fold's records alone.
+FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
+                                   ResolvedModel& fold_model, std::map<const Signals*, std::vector<double>>& record_fits) {
+  const FitRequest r = fold_request(request, fold);
+  LawSearch search;
+  search.base = &per_file_model(*fit.model.model);
+  search.records = r.records;
+  search.optimizer = r.optimizer;
+  search.optimizer_name = fit.plan.optimizer;
+  search.settings = r.settings;
+  search.record_fits = &record_fits;
+  LawSelection selection;
+  return fit_with_auto_laws(search, fold_model, selection);
+}
+
+FoldFit fold_fit(const Fold& fold, const std::vector<const Signals*>& records, const FitOutcome& outcome) {
+  FoldFit f{fold, {}, {}, outcome.best().best_value, outcome.convergence.verdict(), outcome.convergence.converged};
+  for (int i : fold.fit) f.fit_names.push_back(records[i]->name);
+  for (int i : fold.predict) f.predict_names.push_back(records[i]->name);
+  return f;
+}
+
+}  // namespace
+
+HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const HeldOutPlan& plan) {
+  HeldOut h;
+  h.metric = fit.metric;
+  h.reference = !plan.spec.reference.empty();
+  const Model& model = *fit.model.model;
+  const FitRequest request = fit.request();
+  References references(fit, h.reference);
+  std::map<const Signals*, std::vector<double>> record_fits;  // --laws auto: each record's own fit, once
+  for (const Fold& fold : plan.folds) {
+    ResolvedModel fold_model;
+    const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits)
+                                       : run_fit(fold_request(request, fold));
+    const Model& predicting = fit.auto_laws ? *fold_model.model : model;
+    h.folds.push_back(fold_fit(fold, request.records, f));
+    std::vector<const Signals*> predicted;
+    for (int i : fold.predict) predicted.push_back(request.records[i]);
+    if (plan.spec.folds == "leave-setting")  // the --predict records of the left-out setting too
+      for (const Signals* r : plan.predict.pointers())
+        if (same_setting(*r, *request.records[fold.predict.front()])) predicted.push_back(r);
+    for (const Signals* r : predicted) {
+      const double metric = record_metric(predicting, f.best().best_params, *r, h.metric);
+      h.held_out.push_back(references.error("held out", fold.name, *r, metric));
+    }
+  }
+  const std::vector<double>& best = outcome.best().best_params;
+  if (!plan.predict.signals.empty()) {
+    // The fit on every --data record, as a fold of its own: it predicts the --predict records.
+    std::vector<const Signals*> all = request.records;
+    const std::vector<const Signals*> predicted = plan.predict.pointers();
+    all.insert(all.end(), predicted.begin(), predicted.end());
+    Fold fold{"all", {}, {}};
+    for (int i = 0; i < static_cast<int>(all.size()); ++i)
+      (i < static_cast<int>(request.records.size()) ? fold.fit : fold.predict).push_back(i);
+    h.folds.push_back(fold_fit(fold, all, outcome));
+    for (const Signals* r : predicted)
+      h.held_out.push_back(references.error("held out", "all", *r, record_metric(model, best, *r, h.metric)));
+  }
+  if (h.reference)
+    for (const Signals* r : request.records)
+      h.fitted.push_back(references.error("fitted", "all", *r, record_metric(model, best, *r, h.metric)));
+  h.fitted_summary = summarize_errors(h.fitted);
+  h.held_out_summary = summarize_errors(h.held_out);
+  return h;
+}
+
+}  // namespace dampbench

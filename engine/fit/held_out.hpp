@@ -1,0 +1,116 @@
+#pragma once
+// Held-out evaluation: a model fitted on some records predicts others, and each predicted record's error stands
+// beside that record's own per-file fit. A joint or law model is judged by how well it predicts records it was
+// not fitted on; the ratio to the per-file fit (the best the base model does on that record alone) is the honest
+// measure, because records differ in how well any model can describe them.
+//
+// Folds are named by a rule over the records' operating variables (leave one value of a variable out, leave one
+// amplitude–frequency setting out) or given as explicit fit / predict lists. Each fold's fit is an ordinary
+// FitRequest whose task key is extended by the fold's name, so that every fold has its own reproducible streams.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/fit/fit.hpp"
+#include "engine/fit/prepared_fit.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/model/model.hpp"
+#include "engine/record/record_options.hpp"
+#include "engine/record/signals.hpp"
+
+namespace dampbench {
+
+/// One fold: fit on `fit`, predict `predict` (indices into the record list).
+struct Fold {
+  std::string name;
+  std::vector<int> fit, predict;
+};
+
+/// Folds by a rule: "leave-one:VAR" (one fold per distinct value of operating variable VAR among the records,
+/// e.g. leave-one:I), "leave-setting" (one fold per distinct (amp, freq) pair: leave one amplitude–frequency
+/// setting out). Folds are sorted by the value (setting) they leave out; values within a relative 1e-9 of each
+/// other are one value. InputError (naming `where` and the rule) for an unknown rule, a variable a record lacks,
+/// or a rule that gives fewer than two folds.
+std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where);
+
+/// The metric of a model with given parameters on one record (what predicting a held-out record means): the
+/// evaluation `evaluate` prints (BatchEvaluator::evaluate_all), so the two agree bit for bit.
+double record_metric(const Model& model, std::span<const double> parameters, const Signals& record, Metric metric);
+
+/// The request of one fold: `request` (model, optimizer, settings) on the fold's fit records, which index
+/// `request.records`, with its task key extended by the fold's name.
+FitRequest fold_request(const FitRequest& request, const Fold& fold);
+
+/// The model a per-file reference fits: a law model's base (every parameter free), a plain model itself.
+const Model& per_file_model(const Model& model);
+
+/// The per-file reference of one record: `model` fitted to it alone with fit's defaults for the model's class
+/// (fit_defaults.hpp), its default bounds and the task key `dampbench fit --model ID --data FILE` uses, so that
+/// `dampbench fit --model ID --data FILE --metric METRIC --seed SEED` gives the same bits.
+FitOutcome per_file_fit(const Model& model, const Signals& record, Metric metric, std::uint64_t seed);
+
+/// What `fit` evaluates beyond the fit itself (its options --predict, --folds, --reference).
+struct HeldOutSpec {
+  std::vector<std::string> predict;  ///< records predicted by the fit on every --data record
+  std::string folds;                 ///< fold rule over the --data records ("" = none)
+  std::string reference;             ///< "per-file" or "" (no reference fits)
+  [[nodiscard]] bool any() const { return !predict.empty() || !folds.empty() || !reference.empty(); }
+};
+
+/// One record's metric (predicted, or fitted) beside its own per-file fit.
+struct RecordError {
+  std::string role;    ///< "fitted" (a record of the fit on every --data record) or "held out"
+  std::string fold;    ///< the fold whose fit gives `metric` ("all": the fit on every --data record)
+  std::string record;  ///< the record's name
+  double metric = 0;
+  std::optional<double> per_file;            ///< the per-file reference fit's best value (--reference per-file)
+  std::optional<std::string> per_file_verdict;  ///< its convergence verdict
+  [[nodiscard]] double ratio() const;        ///< metric / per_file; NaN without a reference
+};
+
+/// Means over records and the worst ratio to the per-file fits.
+struct ErrorSummary {
+  int count = 0;
+  double mean = 0;
+  double mean_per_file = 0, ratio_of_means = 0, worst_ratio = 0;  ///< NaN without a reference
+  std::string worst_record;  ///< the record of the worst ratio ("" without a reference)
+};
+ErrorSummary summarize_errors(std::span<const RecordError> errors);
+
+/// One fold's fit as held-out evaluation reports it.
+struct FoldFit {
+  Fold fold;
+  std::vector<std::string> fit_names, predict_names;
+  double fit_value = 0;  ///< the fit's best value (the metric's mean over the fold's fit records)
+  std::string verdict;   ///< the fit's convergence verdict
+  bool converged = false;
+};
+
+/// The held-out evaluation of a fit, checked and loaded before anything is fitted.
+struct HeldOutPlan {
+  HeldOutSpec spec;
+  FitRecords predict;       ///< --predict records (loaded with the fit's loader options, checked against the model)
+  std::vector<Fold> folds;  ///< of the fit's records
+};
+
+/// The plan of `spec` for `fit`, the --predict records loaded with the fit's loader options `data`. InputError for
+/// an unknown --reference or a bad fold rule, and the loader's errors for the --predict records.
+HeldOutPlan plan_held_out(const PreparedFit& fit, const RecordOptions& data, const HeldOutSpec& spec);
+
+struct HeldOut {
+  Metric metric = Metric::of_abs;
+  bool reference = false;
+  std::vector<FoldFit> folds;  ///< the rule's, then "all" (the fit on every --data record) when it predicts
+  std::vector<RecordError> fitted;  ///< each --data record under the fit on all of them (with --reference)
+  std::vector<RecordError> held_out;  ///< each fold's predicted records, then the --predict records
+  ErrorSummary fitted_summary, held_out_summary;
+};
+
+/// Runs the plan: each fold fitted and its records predicted, the --predict records predicted by `outcome` (the
+/// fit of `fit`'s request), and with a reference every record involved fitted alone (once each).
+HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const HeldOutPlan& plan);
+
+}  // namespace dampbench
