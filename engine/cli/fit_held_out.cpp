@@ -109,15 +109,20 @@ std::vector<Table> held_out_tables(const HeldOut& h, std::string_view rule, std:
   return tables;
 }
 
-nlohmann::ordered_json held_out_json(const HeldOut& h, std::string_view base_id) {
+nlohmann::ordered_json held_out_json(const HeldOut& h, const Model& model) {
+  const std::string base_id(per_file_model(model).id());
   nlohmann::ordered_json j;
   j["metric"] = std::string(metric_name(h.metric));
-  j["reference"] = h.reference ? nlohmann::ordered_json{{"kind", "per-file"}, {"model", std::string(base_id)}}
+  j["reference"] = h.reference ? nlohmann::ordered_json{{"kind", "per-file"}, {"model", base_id}}
                                : nlohmann::ordered_json(nullptr);
   nlohmann::ordered_json folds = nlohmann::ordered_json::array();
-  for (const FoldFit& f : h.folds)
+  for (const FoldFit& f : h.folds) {
+    nlohmann::ordered_json params = nlohmann::ordered_json::object();
+    for (int i = 0; i < model.dim(); ++i) params[model.parameters()[i].name] = f.best_params[i];
     folds.push_back({{"name", f.fold.name}, {"fit", f.fit_names}, {"predict", f.predict_names},
-                     {"fit_value", json_number(f.fit_value)}, {"converged", f.converged}, {"verdict", f.verdict}});
+                     {"fit_value", json_number(f.fit_value)}, {"converged", f.converged}, {"verdict", f.verdict},
+                     {"best_params", params}});
+  }
   j["folds"] = folds;
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
   for (const auto* rows : {&h.fitted, &h.held_out})

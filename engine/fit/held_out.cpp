@@ -229,7 +229,13 @@ class References {
 };
 
 FoldFit fold_fit(const Fold& fold, const std::vector<const Signals*>& records, const FitOutcome& outcome) {
-  FoldFit f{fold, {}, {}, outcome.best().best_value, outcome.convergence.verdict(), outcome.convergence.converged};
+  FoldFit f{fold,
+            {},
+            {},
+            outcome.best().best_params,
+            outcome.best().best_value,
+            outcome.convergence.verdict(),
+            outcome.convergence.converged};
   for (int i : fold.fit) f.fit_names.push_back(records[i]->name);
   for (int i : fold.predict) f.predict_names.push_back(records[i]->name);
   return f;

@@ -84,6 +84,7 @@ ErrorSummary summarize_errors(std::span<const RecordError> errors);
 struct FoldFit {
   Fold fold;
   std::vector<std::string> fit_names, predict_names;
+  std::vector<double> best_params;  ///< the fit's best parameters (what predicts the fold's records)
   double fit_value = 0;  ///< the fit's best value (the metric's mean over the fold's fit records)
   std::string verdict;   ///< the fit's convergence verdict
   bool converged = false;
