@@ -95,7 +95,8 @@ nlohmann::ordered_json summary_json(const ErrorSummary& s) {
           {"mean_per_file", json_number(s.mean_per_file)},
           {"ratio_of_means", json_number(s.ratio_of_means)},
           {"worst_ratio", json_number(s.worst_ratio)},
-          {"worst_record", s.worst_record.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(s.worst_record)}};
+          {"worst_record",
+           s.worst_record.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(s.worst_record)}};
 }
 
 }  // namespace

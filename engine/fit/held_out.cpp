@@ -98,7 +98,8 @@ int metric_index(Metric metric) {
 
 }  // namespace
 
-std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where) {
+std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule,
+                             std::string_view where) {
   constexpr std::string_view kLeaveOne = "leave-one:";
   std::vector<Fold> folds;
   if (rule.starts_with(kLeaveOne) && rule.size() > kLeaveOne.size()) {
