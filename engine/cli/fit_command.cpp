@@ -198,7 +198,7 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["history"] = history;
   j["identifiability"] = identifiability_json(model, *fit.identifiability);
   j["operating"] = operating_records_json(p.records);
-  if (held_out) j["held_out"] = held_out_json(*held_out, per_file_model(model).id());
+  if (held_out) j["held_out"] = held_out_json(*held_out, model);
   j["evaluations"] = t.evaluations;
   j["wall_time_s"] = fit.identification.wall_time_s;
   j["candidate_samples_per_s"] = fit.identification.candidate_samples / fit.identification.wall_time_s;

@@ -82,6 +82,8 @@ Table summary_table(const HeldOut& h, std::string_view metric) {
   };
   add("fitted", h.fitted_summary);
   add("held out", h.held_out_summary);
+  add("held out by the folds", h.folds_summary);
+  add("held out by the fit on every --data record", h.predicted_summary);
   return t;
 }
 
@@ -95,7 +97,8 @@ nlohmann::ordered_json summary_json(const ErrorSummary& s) {
           {"mean_per_file", json_number(s.mean_per_file)},
           {"ratio_of_means", json_number(s.ratio_of_means)},
           {"worst_ratio", json_number(s.worst_ratio)},
-          {"worst_record", s.worst_record.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(s.worst_record)}};
+          {"worst_record",
+           s.worst_record.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(s.worst_record)}};
 }
 
 }  // namespace
@@ -109,15 +112,20 @@ std::vector<Table> held_out_tables(const HeldOut& h, std::string_view rule, std:
   return tables;
 }
 
-nlohmann::ordered_json held_out_json(const HeldOut& h, std::string_view base_id) {
+nlohmann::ordered_json held_out_json(const HeldOut& h, const Model& model) {
+  const std::string base_id(per_file_model(model).id());
   nlohmann::ordered_json j;
   j["metric"] = std::string(metric_name(h.metric));
-  j["reference"] = h.reference ? nlohmann::ordered_json{{"kind", "per-file"}, {"model", std::string(base_id)}}
+  j["reference"] = h.reference ? nlohmann::ordered_json{{"kind", "per-file"}, {"model", base_id}}
                                : nlohmann::ordered_json(nullptr);
   nlohmann::ordered_json folds = nlohmann::ordered_json::array();
-  for (const FoldFit& f : h.folds)
-    folds.push_back({{"name", f.fold.name}, {"fit", f.fit_names}, {"predict", f.predict_names},
-                     {"fit_value", json_number(f.fit_value)}, {"converged", f.converged}, {"verdict", f.verdict}});
+  for (const FoldFit& f : h.folds) {
+    nlohmann::ordered_json params = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < f.best_params.size(); ++i) params[f.parameter_names[i]] = f.best_params[i];
+    folds.push_back({{"name", f.fold.name}, {"model", f.model_id}, {"fit", f.fit_names}, {"predict", f.predict_names},
+                     {"fit_value", json_number(f.fit_value)}, {"converged", f.converged}, {"verdict", f.verdict},
+                     {"best_params", params}});
+  }
   j["folds"] = folds;
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
   for (const auto* rows : {&h.fitted, &h.held_out})
@@ -129,6 +137,9 @@ nlohmann::ordered_json held_out_json(const HeldOut& h, std::string_view base_id)
                          {"ratio", e.per_file ? json_number(e.ratio()) : nlohmann::ordered_json(nullptr)}});
   j["records"] = records;
   j["summary"] = {{"fitted", summary_json(h.fitted_summary)}, {"held_out", summary_json(h.held_out_summary)}};
+  if (h.folds_summary.count > 0)
+    j["summary"]["held_out_by_folds"] = summary_json(h.folds_summary),
+    j["summary"]["held_out_by_all"] = summary_json(h.predicted_summary);
   return j;
 }
 

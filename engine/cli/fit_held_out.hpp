@@ -21,9 +21,9 @@ void add_held_out_options(CLI::App* cmd, HeldOutSpec& spec);
 /// `rule` names the folds in the titles; `base_id` the model of the per-file fits.
 std::vector<Table> held_out_tables(const HeldOut& held_out, std::string_view rule, std::string_view base_id);
 
-/// {metric, reference, folds: [{name, fit, predict, fit_value, verdict}], records: [{role, fold, record, metric,
-/// per_file, per_file_verdict, ratio}], summary: {fitted, held_out}: {count, mean, mean_per_file, ratio_of_means,
-/// worst_ratio, worst_record}}; absent numbers are null.
-nlohmann::ordered_json held_out_json(const HeldOut& held_out, std::string_view base_id);
+/// {metric, reference, folds: [{name, fit, predict, fit_value, converged, verdict, best_params}], records: [{role,
+/// fold, record, metric, per_file, per_file_verdict, ratio}], summary: {fitted, held_out}: {count, mean,
+/// mean_per_file, ratio_of_means, worst_ratio, worst_record}}; absent numbers are null. `model` is the fitted one.
+nlohmann::ordered_json held_out_json(const HeldOut& held_out, const Model& model);
 
 }  // namespace dampbench::cli

@@ -99,7 +99,8 @@ int metric_index(Metric metric) {
 
 }  // namespace
 
-std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where) {
+std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule,
+                             std::string_view where) {
   constexpr std::string_view kLeaveOne = "leave-one:";
   std::vector<Fold> folds;
   if (rule.starts_with(kLeaveOne) && rule.size() > kLeaveOne.size()) {
@@ -254,10 +255,18 @@ FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& req
   return fit_with_auto_laws(search, fold_model, selection);
 }
 
-FoldFit fold_fit(const Fold& fold, const std::vector<const Signals*>& records, const FitOutcome& outcome) {
-  FoldFit f{fold, {}, {}, outcome.best().best_value, outcome.convergence.verdict(), outcome.convergence.converged};
+FoldFit fold_fit(const Fold& fold, const std::vector<const Signals*>& records, const FitOutcome& outcome,
+                 const Model& model, const std::vector<const Signals*>& predicted) {
+  FoldFit f;
+  f.fold = fold;
+  f.best_params = outcome.best().best_params;
+  f.fit_value = outcome.best().best_value;
+  f.verdict = outcome.convergence.verdict();
+  f.converged = outcome.convergence.converged;
+  for (const auto& p : model.parameters()) f.parameter_names.push_back(p.name);
+  f.model_id = std::string(model.id());
   for (int i : fold.fit) f.fit_names.push_back(records[i]->name);
-  for (int i : fold.predict) f.predict_names.push_back(records[i]->name);
+  for (const Signals* r : predicted) f.predict_names.push_back(r->name);
   return f;
 }
 
@@ -276,12 +285,12 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
     const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits)
                                        : run_fit(fold_request(request, fold));
     const Model& predicting = fit.auto_laws ? *fold_model.model : model;
-    h.folds.push_back(fold_fit(fold, request.records, f));
     std::vector<const Signals*> predicted;
     for (int i : fold.predict) predicted.push_back(request.records[i]);
     if (plan.spec.folds == "leave-setting")  // the --predict records of the left-out setting too
       for (const Signals* r : plan.predict.pointers())
         if (same_setting(*r, *request.records[fold.predict.front()])) predicted.push_back(r);
+    h.folds.push_back(fold_fit(fold, request.records, f, predicting, predicted));
     for (const Signals* r : predicted) {
       const double metric = record_metric(predicting, f.best().best_params, *r, h.metric);
       h.held_out.push_back(references.error("held out", fold.name, *r, metric));
@@ -296,7 +305,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
     Fold fold{"all", {}, {}};
     for (int i = 0; i < static_cast<int>(all.size()); ++i)
       (i < static_cast<int>(request.records.size()) ? fold.fit : fold.predict).push_back(i);
-    h.folds.push_back(fold_fit(fold, all, outcome));
+    h.folds.push_back(fold_fit(fold, all, outcome, model, predicted));
     for (const Signals* r : predicted)
       h.held_out.push_back(references.error("held out", "all", *r, record_metric(model, best, *r, h.metric)));
   }
@@ -305,6 +314,12 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       h.fitted.push_back(references.error("fitted", "all", *r, record_metric(model, best, *r, h.metric)));
   h.fitted_summary = summarize_errors(h.fitted);
   h.held_out_summary = summarize_errors(h.held_out);
+  if (!plan.folds.empty() && !plan.predict.signals.empty()) {
+    std::vector<RecordError> by_folds, by_all;
+    for (const RecordError& e : h.held_out) (e.fold == "all" ? by_all : by_folds).push_back(e);
+    h.folds_summary = summarize_errors(by_folds);
+    h.predicted_summary = summarize_errors(by_all);
+  }
   return h;
 }
 

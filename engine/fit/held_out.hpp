@@ -84,6 +84,9 @@ ErrorSummary summarize_errors(std::span<const RecordError> errors);
 struct FoldFit {
   Fold fold;
   std::vector<std::string> fit_names, predict_names;
+  std::vector<double> best_params;  ///< the fit's best parameters (what predicts the fold's records)
+  std::vector<std::string> parameter_names;  ///< of the fold's model (with --laws auto each fold has its laws)
+  std::string model_id;
   double fit_value = 0;  ///< the fit's best value (the metric's mean over the fold's fit records)
   std::string verdict;   ///< the fit's convergence verdict
   bool converged = false;
@@ -107,6 +110,9 @@ struct HeldOut {
   std::vector<RecordError> fitted;  ///< each --data record under the fit on all of them (with --reference)
   std::vector<RecordError> held_out;  ///< each fold's predicted records, then the --predict records
   ErrorSummary fitted_summary, held_out_summary;
+  /// With both folds and --predict records: the held-out records of the folds and those of the fit on every --data
+  /// record apart (count 0 otherwise).
+  ErrorSummary folds_summary, predicted_summary;
 };
 
 /// Runs the plan: each fold fitted and its records predicted, the --predict records predicted by `outcome` (the

@@ -235,6 +235,7 @@ TEST(HeldOutCommand, TheTrueLawPredictsHeldOutCurrentsAtTheNoiseFloorAndAWrongOn
   }
   EXPECT_EQ(right.at("held_out").at("folds").size(), 1u);  // "all": the fit on the --data records
   EXPECT_EQ(right.at("held_out").at("folds")[0].at("name"), "all");
+  EXPECT_EQ(right.at("held_out").at("folds")[0].at("best_params"), right.at("best_params"));
   EXPECT_TRUE(right.at("held_out").at("reference").is_null());
   EXPECT_TRUE(right.at("held_out").at("records")[0].at("ratio").is_null());
 }
