@@ -137,9 +137,10 @@ nlohmann::ordered_json held_out_json(const HeldOut& h, const Model& model) {
                          {"ratio", e.per_file ? json_number(e.ratio()) : nlohmann::ordered_json(nullptr)}});
   j["records"] = records;
   j["summary"] = {{"fitted", summary_json(h.fitted_summary)}, {"held_out", summary_json(h.held_out_summary)}};
-  if (h.folds_summary.count > 0)
-    j["summary"]["held_out_by_folds"] = summary_json(h.folds_summary),
+  if (h.folds_summary.count > 0) {
+    j["summary"]["held_out_by_folds"] = summary_json(h.folds_summary);
     j["summary"]["held_out_by_all"] = summary_json(h.predicted_summary);
+  }
   return j;
 }
 

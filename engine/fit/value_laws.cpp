@@ -117,10 +117,22 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
   Fitted best;
   best.rss = std::numeric_limits<double>::infinity();
   const int scales = has_scale(law.current) ? 40 : 1;
+  const auto scale = [&](double s) { return scales == 1 ? 1.0 : 0.05 * std::pow(40.0, s / (scales - 1.0)); };  // 0.05 … 2 A
+  int best_s = 0;
   for (int s = 0; s < scales; ++s) {
-    const double h = scales == 1 ? 1.0 : 0.05 * std::pow(40.0, s / (scales - 1.0));  // 0.05 … 2 A
-    const Fitted f = fit_at_scale(law, h, I, v, values);
-    if (f.rss < best.rss) best = f;
+    const Fitted f = fit_at_scale(law, scale(s), I, v, values);
+    if (f.rss < best.rss) best = f, best_s = s;
+  }
+  if (scales > 1) {  // golden-section search between the grid neighbours of the best scale
+    double lo = std::max(0.0, best_s - 1.0), hi = std::min(scales - 1.0, best_s + 1.0);
+    const double r = (std::sqrt(5.0) - 1) / 2;
+    for (int it = 0; it < 40; ++it) {
+      const double a = hi - r * (hi - lo), b = lo + r * (hi - lo);
+      const Fitted fa = fit_at_scale(law, scale(a), I, v, values), fb = fit_at_scale(law, scale(b), I, v, values);
+      if (fa.rss < best.rss) best = fa;
+      if (fb.rss < best.rss) best = fb;
+      (fa.rss < fb.rss ? hi : lo) = fa.rss < fb.rss ? b : a;
+    }
   }
   ValueFit out;
   out.rss = best.rss;

@@ -31,7 +31,7 @@ TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
       y.push_back((20 + 300 * I * I / (0.25 + I * I)) * (1 + 0.4 * f));
     }
   const ValueFit fit = fit_value_law(law, vars, y);
-  // h lies on the grid only approximately (0.05·40^(s/39)): the levels and the factor follow it closely
+  // h from a grid over 0.05–2 A refined by golden-section search, the factor by alternating least squares
   EXPECT_NEAR(fit.coefficients[2], 0.5, 0.05);
   EXPECT_NEAR(fit.coefficients[4] / fit.coefficients[3], 0.4, 0.02);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.02 * y[i] + 1);
