@@ -28,48 +28,64 @@ double variable_scale(const std::string& v) {
 /// published fixtures' bounds depend on it.
 double bend_span(const std::string& v) { return v == "I" ? 1.0 : variable_scale(v); }
 
+/// Unit of an operating variable: the unit of the positions and widths of a bend in it.
+const char* variable_unit(const std::string& v) {
+  if (v == "I") return "A";
+  if (v == "V") return "V";
+  if (v == "phi") return "deg";
+  if (v == "amp") return "m";
+  return "Hz";  // freq and w
+}
+
 /// The range a factor's coefficients are bounded around: the base parameter's [lo, hi] and M = max|lo|, |hi|
 /// for the first factor of a product, [0, 2] and M = 1 for every later one (those stay near 1, so that
 /// the first factor carries the parameter's magnitude).
 struct Level {
   double lo, hi, M;
+  bool first;
 };
 
-/// Default bounds of one factor's coefficients, appended through `add(lo, hi)`. poly: the constant term
-/// keeps [lo, hi], a term of degree k gets ±2M/scale^k (the parameter may move by twice its range over the
-/// variable's typical span); power and Gaussian terms are bounded around the same range. sat, hill, tanh and
-/// mono have levels a in [lo, hi] and rises b, d_k ≥ 0 (at most 2M; tanh's b at most M, as its bracket
-/// reaches 2): non-decreasing in the variable and never below a there by construction.
+/// Default bounds of one factor's coefficients, appended through `add(lo, hi, unit, paper_unit)`. poly: the
+/// constant term keeps [lo, hi], a term of degree k gets ±2M/scale^k (the parameter may move by twice its
+/// range over the variable's typical span); power and Gaussian terms are bounded around the same range.
+/// sat, hill, tanh and mono have levels a in [lo, hi] and rises b, d_k ≥ 0 (at most 2M; tanh's b at most M,
+/// as its bracket reaches 2): non-decreasing in the variable and never below a there by construction.
+/// Units: poly, power and gauss2 coefficients carry the parameter's units, as they always have; the new
+/// families' levels and rises carry them in the first factor and are pure numbers in later ones, their
+/// bend positions and widths carry the variable's unit, hill's exponent is a pure number.
 template <class Add>
-void factor_bounds(const LawFactor& f, const Level& L, Add add) {
+void factor_bounds(const LawFactor& f, const Level& L, const ParameterInfo& p, Add add) {
   using Family = LawFactor::Family;
   const double s = variable_scale(f.variable), span = bend_span(f.variable);
+  auto same = [&](double lo, double hi) { add(lo, hi, p.unit, p.paper_unit); };
+  auto value = [&](double lo, double hi) { L.first ? same(lo, hi) : add(lo, hi, "1", "1"); };
+  auto bend = [&](double lo, double hi) { add(lo * span, hi * span, variable_unit(f.variable), variable_unit(f.variable)); };
   switch (f.family) {
     case Family::poly:
       for (int k = 0; k <= f.degree; ++k) {
-        if (k == 0) add(L.lo, L.hi);
-        else add(-2 * L.M / std::pow(s, k), 2 * L.M / std::pow(s, k));
+        if (k == 0) same(L.lo, L.hi);
+        else same(-2 * L.M / std::pow(s, k), 2 * L.M / std::pow(s, k));
       }
       break;
-    case Family::power: add(-L.M, L.M); add(-2.0, 2.0); add(-L.M, L.M); break;
+    case Family::power: same(-L.M, L.M); same(-2.0, 2.0); same(-L.M, L.M); break;
     case Family::gauss2:
       for (int g = 0; g < 2; ++g) {
-        add(0.0, L.M);
-        add(0.0, 2 * s);
-        add(0.05 * s, 2 * s);
+        same(0.0, L.M);
+        same(0.0, 2 * s);
+        same(0.05 * s, 2 * s);
       }
       break;
-    case Family::sat: add(L.lo, L.hi); add(0.0, 2 * L.M); add(0.05 * span, 3 * span); break;
+    case Family::sat: value(L.lo, L.hi); value(0.0, 2 * L.M); bend(0.05, 3); break;
     case Family::hill:
-      add(L.lo, L.hi);
-      add(0.0, 2 * L.M);
-      add(0.05 * span, 2 * span);
-      if (f.exponent == 0) add(1.0, 4.0);  // 1: saturating from the start; 4: a sharp sigmoid
+      value(L.lo, L.hi);
+      value(0.0, 2 * L.M);
+      bend(0.05, 2);
+      if (f.exponent == 0) add(1.0, 4.0, "1", "1");  // 1: saturating from the start; 4: a sharp sigmoid
       break;
-    case Family::tanh: add(L.lo, L.hi); add(0.0, L.M); add(0.0, 2 * span); add(0.05 * span, 2 * span); break;
+    case Family::tanh: value(L.lo, L.hi); value(0.0, L.M); bend(0, 2); bend(0.05, 2); break;
     case Family::mono:
-      add(L.lo, L.hi);
-      for (std::size_t k = 1; k < f.knots.size(); ++k) add(0.0, 2 * L.M);
+      value(L.lo, L.hi);
+      for (std::size_t k = 1; k < f.knots.size(); ++k) value(0.0, 2 * L.M);
       break;
   }
 }
@@ -79,13 +95,15 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
   const double M = std::max(std::fabs(p.lower), std::fabs(p.upper));
   const auto names = law.coefficient_names(p.name);
   std::vector<ParameterInfo> out;
-  auto add = [&](double lo, double hi) { out.push_back({names[out.size()], p.unit, lo, hi, p.paper_unit}); };
+  auto add = [&](double lo, double hi, const std::string& unit, const std::string& paper_unit) {
+    out.push_back({names[out.size()], unit, lo, hi, paper_unit});
+  };
   switch (law.kind) {
-    case ParameterLaw::Kind::free: add(p.lower, p.upper); break;
+    case ParameterLaw::Kind::free: add(p.lower, p.upper, p.unit, p.paper_unit); break;
     case ParameterLaw::Kind::fixed: break;
     case ParameterLaw::Kind::product:
       for (std::size_t f = 0; f < law.factors.size(); ++f)
-        factor_bounds(law.factors[f], f == 0 ? Level{p.lower, p.upper, M} : Level{0.0, 2.0, 1.0}, add);
+        factor_bounds(law.factors[f], f == 0 ? Level{p.lower, p.upper, M, true} : Level{0.0, 2.0, 1.0, false}, p, add);
       break;
   }
   return out;

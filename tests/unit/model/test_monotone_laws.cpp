@@ -160,6 +160,15 @@ TEST(MonotoneLaws, DefaultBounds) {
   EXPECT_EQ(bounds(hill, "c0_freqx0"), std::pair(0.05 * 5.0, 15.0));
   EXPECT_EQ(bounds(hill, "c0_amp0"), std::pair(0.0, 2.0));  // as for poly factors before
   EXPECT_EQ(bounds(hill, "c0_amp1"), std::pair(-2.0 / 0.02, 2.0 / 0.02));
+  // units: levels and rises in the parameter's, bends in the variable's, exponents and later factors' levels pure
+  auto unit = [&](const LawModel& m, const char* name) { return m.parameters()[static_cast<std::size_t>(m.parameter_index(name))].unit; };
+  EXPECT_EQ(unit(hill, "c1_Ia"), "N*s/m");
+  EXPECT_EQ(unit(hill, "c1_Ib"), "N*s/m");
+  EXPECT_EQ(unit(hill, "c1_Ih"), "A");
+  EXPECT_EQ(unit(hill, "c1_Ip"), "1");
+  EXPECT_EQ(unit(hill, "c0_freqb"), "1");
+  EXPECT_EQ(unit(hill, "c0_freqx0"), "Hz");
+  EXPECT_EQ(unit(hill, "c0_amp1"), "N*s/m");  // poly keeps its labels
   const LawModel rest(spencer, parse_laws("c1=sat(I);c0=tanh(I);alpha=mono(I,0,0.5,1)", "t"));
   EXPECT_EQ(bounds(rest, "c1_Ix0"), std::pair(0.05, 3.0));
   EXPECT_EQ(bounds(rest, "c0_Ib"), std::pair(0.0, 5e4));  // tanh's bracket reaches 2: b up to M
