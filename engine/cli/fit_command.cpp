@@ -145,6 +145,7 @@ FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, LawSelecti
   search.optimizer = request.optimizer;
   search.optimizer_name = prepared.plan.optimizer;
   search.settings = request.settings;
+  search.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   ResolvedModel fitted;
   FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
   prepared.model = std::move(fitted);
@@ -237,7 +238,8 @@ int fit_command(const FitOptions& o) {
   FitSpec spec = o.fit;
   PreparedFit prepared = prepare_fit(spec);
   LawSelection selection;
-  const HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
+  HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
+  held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, selection) : run_fit(prepared.request());
   const FitRequest request = prepared.request();
   std::optional<HeldOut> held_out;

@@ -242,7 +242,8 @@ bool same_setting(const Signals& a, const Signals& b) {
 
 /// A fold of a `--laws auto` fit: its laws chosen and fitted on the fold's records alone.
 FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
-                                   ResolvedModel& fold_model, std::map<const Signals*, std::vector<double>>& record_fits) {
+                                   ResolvedModel& fold_model, std::map<const Signals*, std::vector<double>>& record_fits,
+                                   const std::function<void(const std::string&)>& progress) {
   const FitRequest r = fold_request(request, fold);
   LawSearch search;
   search.base = &per_file_model(*fit.model.model);
@@ -251,6 +252,7 @@ FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& req
   search.optimizer_name = fit.plan.optimizer;
   search.settings = r.settings;
   search.record_fits = &record_fits;
+  if (progress) search.progress = [&](const std::string& line) { progress(fmt::format("fold {}: {}", fold.name, line)); };
   LawSelection selection;
   return fit_with_auto_laws(search, fold_model, selection);
 }
@@ -282,7 +284,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   std::map<const Signals*, std::vector<double>> record_fits;  // --laws auto: each record's own fit, once
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
-    const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits)
+    const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits, plan.progress)
                                        : run_fit(fold_request(request, fold));
     const Model& predicting = fit.auto_laws ? *fold_model.model : model;
     std::vector<const Signals*> predicted;

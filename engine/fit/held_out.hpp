@@ -8,6 +8,7 @@
 // amplitude–frequency setting out) or given as explicit fit / predict lists. Each fold's fit is an ordinary
 // FitRequest whose task key is extended by the fold's name, so that every fold has its own reproducible streams.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -97,6 +98,8 @@ struct HeldOutPlan {
   HeldOutSpec spec;
   FitRecords predict;       ///< --predict records (loaded with the fit's loader options, checked against the model)
   std::vector<Fold> folds;  ///< of the fit's records
+  /// Told one line per step of a `--laws auto` fold (law_selection.hpp LawSearch::progress); may be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// The plan of `spec` for `fit`, the --predict records loaded with the fit's loader options `data`. InputError for

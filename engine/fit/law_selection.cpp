@@ -157,6 +157,9 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
                                   record->name, metric_name(search.settings.metric)));
     out.push_back(outcome.best().best_params);
     if (search.record_fits) (*search.record_fits)[record] = out.back();
+    if (search.progress)
+      search.progress(fmt::format("--laws auto: {} fitted alone ({}/{}): {} {:.6g}", record->name, out.size(),
+                                  search.records.size(), metric_name(search.settings.metric), outcome.best().best_value));
   }
   return out;
 }
@@ -179,6 +182,9 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
       const ValueLaw before = laws[j];
       out.score = scores[j] = choose_for_parameter(s, laws, j, out.scored, bics[j]);
       changed |= laws[j].text() != before.text();
+      if (search.progress)
+        search.progress(fmt::format("--laws auto: pass {}, {} = {} (mean left-out {} {:.6g})", pass + 1,
+                                    out.parameters[j], laws[j].text(), metric_name(s.metric), out.score));
     }
     if (!changed) break;
   }
@@ -223,6 +229,9 @@ FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_mod
   for (const Signals* r : search.records) names += (names.empty() ? "" : "+") + r->name;
   request.settings.task_key = task_key(fitted_model.model->id(), names, search.optimizer_name);
   request.start = selection.start;
+  if (search.progress)
+    search.progress(fmt::format("--laws auto: fitting {} on the {} records together", fitted_model.model->id(),
+                                search.records.size()));
   return run_fit(request);
 }
 

@@ -18,6 +18,7 @@
 //     to the per-record values (Bounds::start).
 // Cost: one fit per training record, then simulations only (candidates × folds' records per pass), then one
 // joint fit.
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -39,6 +40,8 @@ struct LawSearch {
   /// Per-record fits already made (a record's fit depends only on the record and the settings, so folds over
   /// the same records share them); filled as records are fitted. Null: none kept.
   std::map<const Signals*, std::vector<double>>* record_fits = nullptr;
+  /// Told one line per step (each record's fit, each parameter's choice, the joint fit); may be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 /// The base model with its gauge and no laws: the model of the per-record fits.
