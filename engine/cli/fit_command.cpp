@@ -248,7 +248,8 @@ int fit_command(const FitOptions& o) {
   if (!o.report.empty()) {
     FitReport report{prepared.model.model, prepared.plan.optimizer,
                      std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", prepared.metric,
-                     request.records, &fit.identification, {tables.params, tables.metrics, tables.runs}};
+                     request.records, &fit.identification, {tables.params, tables.metrics, tables.runs},
+                     held_out ? &*held_out : nullptr, o.held_out.folds};
     write_fit_report(o.report, report);
   }
   if (!o.save_model.empty())

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/common/table.hpp"
+#include "engine/fit/held_out.hpp"
 #include "engine/identification/identification.hpp"
 #include "engine/model/model.hpp"
 #include "engine/record/signals.hpp"
@@ -23,7 +24,8 @@ struct ReportOptions {
 void add_report_options(CLI::App* cmd, ReportOptions& options);
 int report_command(const ReportOptions& options);
 
-/// What `fit --report FILE` draws: the fitted records, every run, and the fit's printed tables.
+/// What `fit --report FILE` draws: the fitted records, every run, and the fit's printed tables; with held-out
+/// evaluation also each held-out record against its fold's prediction, and the held-out tables.
 struct FitReport {
   const Model* model = nullptr;
   std::string optimizer, fingerprint;
@@ -31,6 +33,8 @@ struct FitReport {
   std::vector<const Signals*> records;
   const Identification* identification = nullptr;
   std::vector<Table> tables;
+  const HeldOut* held_out = nullptr;  ///< null without --predict, --folds or --reference
+  std::string fold_rule;              ///< --folds (names the folds in the held-out tables)
 };
 /// Writes the HTML report of one fit (engine/report), whole or not at all.
 void write_fit_report(const std::string& path, const FitReport& fit);

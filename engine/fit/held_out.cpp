@@ -268,7 +268,11 @@ FoldFit fold_fit(const Fold& fold, const std::vector<const Signals*>& records, c
   for (const auto& p : model.parameters()) f.parameter_names.push_back(p.name);
   f.model_id = std::string(model.id());
   for (int i : fold.fit) f.fit_names.push_back(records[i]->name);
-  for (const Signals* r : predicted) f.predict_names.push_back(r->name);
+  for (const Signals* r : predicted) {
+    f.predict_names.push_back(r->name);
+    f.predicted.push_back(r);
+    f.predicted_force.push_back(model.simulate(f.best_params, *r));
+  }
   return f;
 }
 

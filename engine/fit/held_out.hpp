@@ -88,6 +88,11 @@ struct FoldFit {
   std::vector<double> best_params;  ///< the fit's best parameters (what predicts the fold's records)
   std::vector<std::string> parameter_names;  ///< of the fold's model (with --laws auto each fold has its laws)
   std::string model_id;
+  /// The predicted records (in the order of predict_names; owned by the fit's records or the plan's --predict
+  /// records) and each one's force simulated by the fold's model with best_params (Model::simulate), kept so that a
+  /// report can draw measured against predicted after the fold's model is gone (with --laws auto it is the fold's).
+  std::vector<const Signals*> predicted;
+  std::vector<std::vector<double>> predicted_force;
   double fit_value = 0;  ///< the fit's best value (the metric's mean over the fold's fit records)
   std::string verdict;   ///< the fit's convergence verdict
   bool converged = false;
@@ -119,7 +124,8 @@ struct HeldOut {
 };
 
 /// Runs the plan: each fold fitted and its records predicted, the --predict records predicted by `outcome` (the
-/// fit of `fit`'s request), and with a reference every record involved fitted alone (once each).
+/// fit of `fit`'s request), and with a reference every record involved fitted alone (once each). The folds'
+/// `predicted` point into `fit`'s and `plan`'s records: the result is read while they live.
 HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const HeldOutPlan& plan);
 
 }  // namespace dampbench

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -84,6 +85,17 @@ std::size_t record_stride(const Signals& s, const HtmlOptions& options) {
   return std::max<std::size_t>(1, (s.size() + cap - 1) / cap);
 }
 
+/// One model's force on a record as a loop draws it (at the record's stride); `runs` where the value is a best run's.
+json model_force(const std::string& model, const std::string& optimizer, Metric metric, double value,
+                 std::optional<std::size_t> runs, const std::vector<double>& params, const std::vector<double>& force,
+                 std::size_t stride) {
+  json j = {{"model", model}, {"optimizer", optimizer}, {"metric", metric_name(metric)}, {"value", number(value)}};
+  if (runs) j["runs"] = *runs;
+  j["params"] = numbers(params);
+  j["F"] = numbers(force, stride);
+  return j;
+}
+
 json record_figures(const ReportInput& in, const Condition& c, const HtmlOptions& options) {
   const std::vector<const FitInput*> models = best_per_model(c);
   // Every (record, model) force, simulated in parallel: each is one candidate on one record.
@@ -102,16 +114,37 @@ json record_figures(const ReportInput& in, const Condition& c, const HtmlOptions
     if (record.signals)
       for (std::size_t m = 0; m < models.size(); ++m) {
         const FitInput& fit = *models[m];
-        list.push_back({{"model", fit.model_name},
-                        {"optimizer", fit.optimizer},
-                        {"metric", metric_name(fit.metric)},
-                        {"value", number(best_value(fit))},
-                        {"runs", fit.runs.size()},
-                        {"params", numbers(fit.runs[best_run(fit)].params)},
-                        {"F", numbers(forces[r][m], record_stride(*record.signals, options))}});
+        list.push_back(model_force(fit.model_name, fit.optimizer, fit.metric, best_value(fit), fit.runs.size(),
+                                   fit.runs[best_run(fit)].params, forces[r][m], record_stride(*record.signals, options)));
       }
     j["models"] = std::move(list);
     out.push_back(std::move(j));
+  }
+  return out;
+}
+
+/// "rec held out by fold I=0.5: nrmse 0.0812, 1.42× its per-file fit (0.0572)".
+std::string prediction_title(const RecordInput& record, const PredictionInput& p) {
+  std::string title = fmt::format("{} held out by fold {}: {} {:.4g}", record.name, p.fold, metric_name(p.metric), p.value);
+  if (p.per_file) title += fmt::format(", {:.3g}× its per-file fit ({:.4g})", p.value / *p.per_file, *p.per_file);
+  return title;
+}
+
+/// The held-out records by fold, in the order of each fold's first record: loops as record_figures draws them, with
+/// the fold's predicted force as the one model.
+json prediction_figures(const ReportInput& in, const HtmlOptions& options) {
+  json out = json::array();
+  std::map<std::string, std::size_t> index;
+  for (const PredictionInput& p : in.predictions) {
+    auto [it, added] = index.try_emplace(p.fold, out.size());
+    if (added) out.push_back({{"fold", p.fold}, {"fitted_on", p.fitted_on}, {"records", json::array()}});
+    const RecordInput& record = in.records.at(static_cast<std::size_t>(p.record));
+    json j = {{"record", p.record}, {"role", "predicted"}, {"title", prediction_title(record, p)},
+              {"ratio", p.per_file ? number(p.value / *p.per_file) : json(nullptr)}, {"models", json::array()}};
+    if (record.signals && p.force)
+      j["models"].push_back(model_force(p.model_name, p.optimizer, p.metric, p.value, std::nullopt, p.params, *p.force,
+                                        record_stride(*record.signals, options)));
+    out[it->second]["records"].push_back(std::move(j));
   }
   return out;
 }
@@ -337,7 +370,8 @@ json report_data(const ReportInput& in, const HtmlOptions& options) {
                           {"records", record_figures(in, c, options)},
                           {"convergence", convergence_figures(c)}});
   return {{"title", in.title},          {"fingerprint", std::move(fingerprint)}, {"notes", in.notes},
-          {"records", records(in, options)}, {"conditions", std::move(conditions)}, {"distributions", distributions(in)}, {"ecdfs", ecdf_figures(in)},
+          {"records", records(in, options)}, {"conditions", std::move(conditions)},
+          {"held_out", prediction_figures(in, options)}, {"distributions", distributions(in)}, {"ecdfs", ecdf_figures(in)},
           {"laws", law_figures(in)},    {"tables", tables(in)}};
 }
 

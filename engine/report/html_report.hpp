@@ -5,6 +5,9 @@
 //   - per condition and record: force–displacement and force–velocity loops, measured against the best fit of
 //     each model (simulated from its stored parameters by Model::simulate, the kernels the fit used), and the
 //     residual over time; records longer than `max_points` samples are drawn at every k-th sample;
+//   - per held-out record (held-out evaluation, grouped by fold): the same loops and residual, measured against the
+//     force predicted by the fold's model and best parameters, titled with the fold, the metric and its ratio to
+//     the record's own per-file fit when known;
 //   - per condition and model: best-so-far metric against evaluations, each run, and per optimizer the median
 //     and interquartile band over runs (sweep::convergence_band);
 //   - per model: the final metric of every run per condition and optimizer (box and points; relative to the

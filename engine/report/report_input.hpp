@@ -3,6 +3,7 @@
 // `dampbench fit` (engine/cli): the records, the repeated runs of every model fitted to every condition, the
 // regressions of identified parameters on operating variables, and the store's tables. Pointers refer to
 // objects the caller keeps alive while the report is rendered.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +41,18 @@ struct LawFigureInput {
   sweep::LawRegression law;
 };
 
+/// A record predicted by a fit it was held out of (held-out evaluation): drawn measured against the prediction.
+struct PredictionInput {
+  int record = 0;                  ///< index into ReportInput::records
+  std::string fold, fitted_on;     ///< the fold whose fit predicts it ("all": the fit on every fitted record)
+  std::string model_name, optimizer;
+  Metric metric = Metric::of_abs;
+  double value = 0;                ///< the record's metric under the prediction
+  std::optional<double> per_file;  ///< the metric of the record's own per-file fit, when known
+  std::vector<double> params;      ///< the fold's best parameters
+  const std::vector<double>* force = nullptr;  ///< the predicted force at every sample (Model::simulate of params)
+};
+
 struct ReportInput {
   std::string title;
   std::vector<std::pair<std::string, std::string>> fingerprint;  ///< (what, value): version, build, hashes
@@ -47,6 +60,7 @@ struct ReportInput {
   std::vector<RecordInput> records;
   std::vector<FitInput> fits;
   std::vector<LawFigureInput> laws;
+  std::vector<PredictionInput> predictions;  ///< held-out records, grouped by fold in the order of their first record
   std::vector<Table> ecdfs;   ///< fixed-target runtime ECDF tables (column 0: evaluations, then one per optimizer)
   std::vector<Table> tables;  ///< the sweep's tables, as `dampbench table --kind sweep` prints them
 };

@@ -12,6 +12,9 @@ known parameters, writes `dampbench report`, renders it in headless Chromium and
   - an empty store, a file that is not a store and a missing store are refused with a message and leave no file;
   - a report of 13 conditions starts with them collapsed (only the run distribution drawn) and draws each
     condition's loops and convergence curve when it is opened;
+  - a `fit --report` with held-out folds and --predict (datasets/fvd records) draws, in its held-out section, the
+    loops of each held-out record (measured and predicted, one vertex per sample) titled with its fold, and a
+    `fit --report` without held-out options has no such section;
   - a run distribution whose runs agree to 1e-12 reads "all runs equal" with one short tick label, and one whose
     runs agree to 1e-5 is drawn relative to the best run with short tick labels (no 12-digit labels).
 
@@ -69,13 +72,18 @@ class Dom(html.parser.HTMLParser):
         self.figures, self.rendered, self.errors_shown, self.data_text = [], None, False, None
         self._depth, self._in_data, self._in_errors, self._errors_text = 0, False, False, ""
         self._axis_depth, self._text = 0, None
+        self.section, self.sections = None, []
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
         if tag == "body":
             self.rendered = a.get("data-rendered")
+        if tag == "h2":
+            self.section = a.get("id")
+            self.sections.append(self.section)
         if tag == "figure":
-            self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0, "ticks": [], "texts": []})
+            self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0, "ticks": [], "texts": [],
+                                 "section": self.section})
         if self.figures and tag == "path" and "series" in (a.get("class") or ""):
             self.figures[-1]["paths"].append(a.get("d") or "")
         if self.figures and tag == "circle" and "point" in (a.get("class") or ""):
@@ -197,6 +205,38 @@ def check_collapsed_conditions():
         check(sum(1 for d in f["paths"] if vertices(d) >= 2) + f["points"] > 0, f"opened figure {i} ({f['kind']}) is empty")
 
 
+def check_fit_held_out():
+    """`fit --report` with folds and --predict: one group per fold in the held-out section, each held-out record's
+    loops drawn (measured and predicted) and titled with its fold; without held-out options, no such section."""
+    fvd = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "datasets", "fvd")
+    files = [os.path.join(fvd, n) for n in ("test1_20mm_92mms.csv", "test2_20mm_230mms.csv", "test3_20mm_460mms.csv")]
+    fit = ["fit", "--model", "fvd.linear_viscous", "--runs", "2", "--pop", "8", "--iters", "5"]
+    for f in files:
+        fit += ["--data", f]
+    run(*fit, "--folds", "leave-setting", "--predict", os.path.join(fvd, "test4_17mm_460mms.csv"),
+        "--report", "held_out.html")
+    dom = render(os.path.join(WORK, "held_out.html"))
+    data = json.loads(dom.data_text)
+    held = [(g["fold"], r) for g in data["held_out"] for r in g["records"]]
+    check(len(held) == 4, f"held-out section has {len(held)} records, expected 4 (3 folds and --predict)")
+    for kind in ("loop-displacement", "loop-velocity", "residual"):
+        figs = [f for f in dom.figures if f["section"] == "held-out" and f["kind"] == kind]
+        check(len(figs) == len(held), f"held-out section: {len(figs)} {kind} figures for {len(held)} held-out records")
+    loops = [f for f in dom.figures if f["section"] == "held-out" and f["kind"] == "loop-displacement"]
+    for (fold, r), fig in zip(held, loops):
+        rec = data["records"][r["record"]]
+        caption = fig["texts"][0] if fig["texts"] else ""
+        check(caption.startswith(f"{rec['name']} held out by fold {fold}: "), f"held-out loop caption {caption!r}")
+        check(len(fig["paths"]) == 2 and all(vertices(d) == len(rec["F"]) for d in fig["paths"]),
+              f"held-out loop of {rec['name']}: vertices {[vertices(d) for d in fig['paths']]}, expected 2 × {len(rec['F'])}")
+    check(dom.rendered == str(len(dom.figures)), f"held-out report: data-rendered={dom.rendered}, figures {len(dom.figures)}")
+    run(*fit, "--report", "plain.html")
+    plain = render(os.path.join(WORK, "plain.html"))
+    check("held-out" not in plain.sections and not json.loads(plain.data_text)["held_out"],
+          f"a fit without held-out options has a held-out section: {plain.sections}")
+    check(plain.sections[:2] == ["loops", "convergence"], f"plain fit report sections {plain.sections}")
+
+
 def check_run_axis():
     """Runs that agree to 1e-12 read as "all runs equal"; runs that agree to 1e-5 are drawn relative to the best.
     The page of the test sweep is drawn again with its run distributions replaced by such runs."""
@@ -309,6 +349,7 @@ def main():
               f"report {store}: exit {p.returncode}, stderr {p.stderr!r}")
         check(not os.path.exists(out), f"report {store} left {out}")
     check_collapsed_conditions()
+    check_fit_held_out()
     check_run_axis()
     if failures:
         print(f"{len(failures)} failures")

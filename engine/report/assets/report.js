@@ -135,6 +135,7 @@
   data.notes.forEach(function (n) { el(root, 'p', n, 'note'); });
   var sections = [
     ['loops', 'Hysteresis loops', data.conditions.length > 0],
+    ['held-out', 'Held-out predictions', data.held_out.length > 0],
     ['convergence', 'Convergence', data.conditions.length > 0],
     ['runs', 'Run distributions', data.distributions.length > 0],
     ['ecdf', 'Fixed-target runtime ECDFs', data.ecdfs.length > 0],
@@ -163,31 +164,49 @@
       var box = el(root, 'details', undefined, 'condition');
       if (!collapsed) box.attr('open', '');
       el(box, 'summary', conditionTitle(c));
-      c.records.forEach(function (rf) {
-        var rec = data.records[rf.record];
-        var head = (rf.role === 'predicted' ? 'predicted: ' : '') + rec.name + (rec.label ? ' (' + rec.label + ')' : '');
-        if (rec.unavailable) { el(box, 'p', head + ': not drawn, ' + rec.unavailable, 'note'); return; }
-        var row = el(box, 'div', undefined, 'row');
-        var every = rec.stride > 1 ? ', every ' + rec.stride + 'th of ' + rec.samples + ' samples' : '';
-        whenOpen(box, function () { later(function () {
-          var measured = {label: 'measured', color: '#000', kind: 'line'};
-          function loop(xKey, kind, xLabel) {
-            var series = [Object.assign({}, measured, {x: rec[xKey], y: rec.F})];
-            rf.models.forEach(function (m) {
-              series.push({label: m.model + ' (' + m.optimizer + ', ' + m.metric + ' ' + fmt(m.value) + ')',
-                           color: colorOf(m.model), kind: 'line', dashed: rf.role === 'predicted', x: rec[xKey], y: m.F});
-            });
-            chart(row, {kind: kind, title: head + ': force against ' + xLabel + every, xLabel: xLabel, yLabel: 'F [N or N·m]', series: series});
-          }
-          loop('x', 'loop-displacement', 'x [m or rad]');
-          loop('v', 'loop-velocity', 'v [m/s or rad/s]');
-          var residuals = rf.models.map(function (m) {
-            return {label: m.model, color: colorOf(m.model), kind: 'line', x: rec.t,
-                    y: m.F.map(function (f, i) { return finite(f) && finite(rec.F[i]) ? f - rec.F[i] : null; })};
-          });
-          chart(row, {kind: 'residual', title: head + ': residual over time' + every, xLabel: 't [s]', yLabel: 'F model − measured', series: residuals});
-        }); });
+      c.records.forEach(function (rf) { recordFigures(box, rf); });
+    });
+  }
+
+  // One record's figures in a condition's (or fold's) box: F–x, F–v and residual over time, measured against each
+  // model's force (dashed where the record was predicted, not fitted). rf.title, when given, heads the captions.
+  function recordFigures(box, rf) {
+    var rec = data.records[rf.record];
+    var head = rf.title || (rf.role === 'predicted' ? 'predicted: ' : '') + rec.name + (rec.label ? ' (' + rec.label + ')' : '');
+    if (rec.unavailable) { el(box, 'p', head + ': not drawn, ' + rec.unavailable, 'note'); return; }
+    var row = el(box, 'div', undefined, 'row');
+    var every = rec.stride > 1 ? ', every ' + rec.stride + 'th of ' + rec.samples + ' samples' : '';
+    whenOpen(box, function () { later(function () {
+      var measured = {label: 'measured', color: '#000', kind: 'line'};
+      function loop(xKey, kind, xLabel) {
+        var series = [Object.assign({}, measured, {x: rec[xKey], y: rec.F})];
+        rf.models.forEach(function (m) {
+          series.push({label: m.model + ' (' + m.optimizer + ', ' + m.metric + ' ' + fmt(m.value) + ')',
+                       color: colorOf(m.model), kind: 'line', dashed: rf.role === 'predicted', x: rec[xKey], y: m.F});
+        });
+        chart(row, {kind: kind, title: head + ': force against ' + xLabel + every, xLabel: xLabel, yLabel: 'F [N or N·m]', series: series});
+      }
+      loop('x', 'loop-displacement', 'x [m or rad]');
+      loop('v', 'loop-velocity', 'v [m/s or rad/s]');
+      var residuals = rf.models.map(function (m) {
+        return {label: m.model, color: colorOf(m.model), kind: 'line', x: rec.t,
+                y: m.F.map(function (f, i) { return finite(f) && finite(rec.F[i]) ? f - rec.F[i] : null; })};
       });
+      chart(row, {kind: 'residual', title: head + ': residual over time' + every, xLabel: 't [s]', yLabel: 'F model − measured', series: residuals});
+    }); });
+  }
+
+  // Held-out records: per fold, each record it predicts measured against the fold's prediction (the same figures).
+  if (data.held_out.length) {
+    el(root, 'h2', 'Held-out predictions').attr('id', 'held-out');
+    el(root, 'p', 'Each held-out record (black) against the force predicted for it (dashed) by the model and best ' +
+      'parameters of the fold that left it out; fold "all" is the fit on every fitted record, predicting the --predict ' +
+      'records. Captions give the record\'s metric and, with --reference per-file, its ratio to the record\'s own ' +
+      'per-file fit; the held-out tables list them all.', 'help');
+    data.held_out.forEach(function (f) {
+      var box = el(root, 'details', undefined, 'condition fold').attr('open', '');
+      el(box, 'summary', 'fold ' + f.fold + (f.fitted_on ? ' — fitted on ' + f.fitted_on : ''));
+      f.records.forEach(function (rf) { recordFigures(box, rf); });
     });
   }
 

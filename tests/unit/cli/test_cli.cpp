@@ -7,8 +7,11 @@
 #include <utility>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/fit/fit_records.hpp"
+#include "models/registry.hpp"
 #include "tests/optimizer_test_support.hpp"
 #include "tests/test_support.hpp"
 
@@ -224,6 +227,61 @@ TEST(Cli, FitWritesAReportOfItsRuns) {
   // A report that cannot be written is refused before the fit runs.
   expect_error("fit --model fvd.linear_viscous --data " + data + " --runs 3 --report " + (dir / "no/such/dir/x.html").string(),
                "--report: the folder");
+}
+
+TEST(Cli, FitReportDrawsEachHeldOutRecordAgainstItsFoldsPrediction) {
+  const auto dir = temp_dir();
+  const std::string fvd = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/";
+  const std::vector<std::string> paths{fvd + "test1_20mm_92mms.csv", fvd + "test2_20mm_230mms.csv",
+                                       fvd + "test3_20mm_460mms.csv", fvd + "test4_17mm_460mms.csv"};
+  const std::string fit = "fit --model fvd.linear_viscous --runs 3 --pop 10 --iters 5 --format json --data " + paths[0] +
+                          " --data " + paths[1] + " --data " + paths[2];
+  const auto file = dir / "held_out.html";
+  // Three settings (one frequency each): three folds, each predicting its left-out record, and the fit on all three
+  // predicting the fourth record.
+  const auto r = run_dampbench(fit + " --folds leave-setting --reference per-file --predict " + paths[3] + " --report " +
+                               file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto out = nlohmann::json::parse(r.output);
+  const auto& h = out.at("held_out");
+  const auto j = report_data_of(file);
+  ASSERT_FALSE(j.is_null());
+  const auto& section = j.at("held_out");
+  ASSERT_EQ(section.size(), 4u);  // one group per fold, one loop per held-out record
+  const Model& model = find_model("fvd.linear_viscous");
+  std::vector<std::string> names;
+  for (const auto& p : model.parameters()) names.push_back(p.name);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& fold = h.at("folds")[i];
+    const auto& row = h.at("records")[3 + i];  // the three fitted records first, then the held-out ones
+    EXPECT_EQ(section[i].at("fold"), fold.at("name"));
+    ASSERT_EQ(section[i].at("records").size(), 1u);
+    const auto& rec = section[i].at("records")[0];
+    EXPECT_EQ(j.at("records")[rec.at("record").get<std::size_t>()].at("name"), fold.at("predict")[0]);
+    EXPECT_EQ(rec.at("title"), fmt::format("{} held out by fold {}: {} {:.4g}, {:.3g}× its per-file fit ({:.4g})",
+                                           row.at("record").get<std::string>(), row.at("fold").get<std::string>(),
+                                           h.at("metric").get<std::string>(), row.at("metric").get<double>(), row.at("ratio").get<double>(),
+                                           row.at("per_file").get<double>()));
+    // The drawn force is the fold's model with the fold's best parameters on the held-out record, sample for sample.
+    std::vector<double> params;
+    for (const auto& n : names) params.push_back(fold.at("best_params").at(n).get<double>());
+    const FitRecords held = load_fit_records(model, {paths[i]}, RecordOptions{});
+    const std::vector<double> expected = model.simulate(params, held.signals[0]);
+    const auto& drawn = rec.at("models")[0].at("F");
+    ASSERT_EQ(drawn.size(), expected.size()) << i;
+    for (std::size_t k = 0; k < expected.size(); ++k) ASSERT_EQ(drawn[k].get<double>(), expected[k]) << i << " " << k;
+  }
+  std::vector<std::string> tables;
+  for (const auto& t : j.at("tables")) tables.push_back(t.at("id"));
+  EXPECT_EQ(tables, (std::vector<std::string>{"best_params", "metrics", "runs", "held_out_folds", "held_out",
+                                               "held_out_summary"}));
+
+  // Without held-out evaluation: no held-out section and no held-out tables.
+  const auto plain = dir / "plain.html";
+  ASSERT_EQ(run_dampbench(fit + " --report " + plain.string()).exit_code, 0);
+  const auto p = report_data_of(plain);
+  EXPECT_TRUE(p.at("held_out").empty());
+  EXPECT_EQ(p.at("tables").size(), 3u);
 }
 
 TEST(Cli, ReportOfAStoreAndItsErrors) {

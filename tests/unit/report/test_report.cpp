@@ -93,6 +93,42 @@ TEST(ReportData, LoopsAreTheBestRunsForceAtEveryKthSample) {
   EXPECT_TRUE(c["records"][2]["models"].empty());
 }
 
+TEST(ReportData, HeldOutRecordsAreDrawnAgainstTheirFoldsPredictionGroupedByFold) {
+  Fixture f;
+  EXPECT_TRUE(report_data(f.in)["held_out"].empty());  // no held-out evaluation, no section
+  const auto by_a = f.model.simulate(f.truth, f.other), by_b = f.model.simulate(f.off, f.fitted);
+  f.in.predictions = {{1, "I=1", "rec0", "bingham", "pso", Metric::nrmse, 0.25, 0.1, f.truth, &by_a},
+                      {0, "I=0", "rec1", "bingham", "pso", Metric::nrmse, 0.5, std::nullopt, f.off, &by_b},
+                      {2, "I=1", "rec0", "bingham", "pso", Metric::nrmse, 0.125, 0.1, f.truth, &by_a}};
+  HtmlOptions options;
+  options.max_points = 100;
+  const auto j = report_data(f.in, options);
+  const auto& h = j["held_out"];
+  ASSERT_EQ(h.size(), 2u);  // folds in the order of their first record
+  EXPECT_EQ(h[0]["fold"], "I=1");
+  EXPECT_EQ(h[0]["fitted_on"], "rec0");
+  ASSERT_EQ(h[0]["records"].size(), 2u);
+  ASSERT_EQ(h[1]["records"].size(), 1u);
+  const auto& one = h[0]["records"][0];
+  EXPECT_EQ(one["record"], 1);
+  EXPECT_EQ(one["role"], "predicted");
+  EXPECT_EQ(one["title"], "rec1 held out by fold I=1: nrmse 0.25, 2.5× its per-file fit (0.1)");
+  EXPECT_EQ(one["ratio"], 2.5);
+  ASSERT_EQ(one["models"].size(), 1u);
+  EXPECT_EQ(numbers(one["models"][0]["params"]), f.truth);
+  EXPECT_EQ(one["models"][0]["value"], 0.25);
+  // The given force at the record's stride: the fold's prediction, not the measured force.
+  const auto drawn = numbers(one["models"][0]["F"]);
+  const std::size_t stride = j["records"][1]["stride"];
+  ASSERT_EQ(drawn.size(), (by_a.size() + stride - 1) / stride);
+  for (std::size_t k = 0; k < drawn.size(); ++k) EXPECT_EQ(drawn[k], by_a[k * stride]);
+  EXPECT_NE(drawn, numbers(j["records"][1]["F"]));
+  // Without a per-file reference the title has no ratio; an unavailable record has no force.
+  EXPECT_EQ(h[1]["records"][0]["title"], "rec0 held out by fold I=0: nrmse 0.5");
+  EXPECT_TRUE(h[1]["records"][0]["ratio"].is_null());
+  EXPECT_TRUE(h[0]["records"][1]["models"].empty());
+}
+
 TEST(ReportData, ConvergenceAndRunDistributionsPerOptimizer) {
   Fixture f;
   const auto j = report_data(f.in);
