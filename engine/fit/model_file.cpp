@@ -219,7 +219,8 @@ std::vector<double> coefficients_in_order(const ModelFile& f, const Model& model
   std::vector<double> values(static_cast<std::size_t>(model.dim()), std::numeric_limits<double>::quiet_NaN());
   std::vector<bool> given(values.size(), false);
   for (const auto& [name, value] : f.coefficients) {
-    const auto it = std::find_if(params.begin(), params.end(), [&](const auto& p) { return p.name == name; });
+    const std::string& wanted = name;  // clang before 16 cannot capture a structured binding in a lambda
+    const auto it = std::find_if(params.begin(), params.end(), [&](const auto& p) { return p.name == wanted; });
     if (it == params.end())
       throw InputError(fmt::format("{}: key 'coefficients.{}': not a coefficient of {} (its {}: {})", source, name,
                                    model.id(), params.size(), expected));

@@ -111,7 +111,9 @@ LawFactor parse_factor(std::string_view text, std::string_view where) {
                                  where, text));
   const auto [name, args] = split_call(text, where);
   if (name == "prod") throw InputError(fmt::format("{}: a prod cannot hold another prod, got '{}'", where, text));
-  const auto* known = std::find_if(std::begin(kFamilies), std::end(kFamilies), [&](const FamilyName& f) { return name == f.name; });
+  const std::string& family_name = name;  // clang before 16 cannot capture a structured binding in a lambda
+  const auto* known =
+      std::find_if(std::begin(kFamilies), std::end(kFamilies), [&](const FamilyName& f) { return family_name == f.name; });
   if (known == std::end(kFamilies)) unknown_law(name, where);
   LawFactor f;
   f.family = known->family;
