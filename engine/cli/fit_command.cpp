@@ -137,14 +137,9 @@ void print_operating(const FitRecords& records) {
 
 /// `--laws auto`: chooses the laws (engine/fit/law_selection.hpp), fits them, and makes `prepared` and `spec`
 /// describe the chosen model, so that the tables, the report and the model file show it.
-FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, LawSelection& selection) {
-  const FitRequest request = prepared.request();
-  LawSearch search;
-  search.base = prepared.model.model;
-  search.records = request.records;
-  search.optimizer = request.optimizer;
-  search.optimizer_name = prepared.plan.optimizer;
-  search.settings = request.settings;
+FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, HeldOutPlan& held_out, LawSelection& selection) {
+  LawSearch search = law_search(prepared, prepared.request());
+  search.record_fits = &held_out.record_fits;  // the folds reuse each record's own fit
   search.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   ResolvedModel fitted;
   FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
@@ -240,7 +235,8 @@ int fit_command(const FitOptions& o) {
   LawSelection selection;
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-  const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, selection) : run_fit(prepared.request());
+  const FitOutcome fit =
+      prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, held_out_plan, selection) : run_fit(prepared.request());
   const FitRequest request = prepared.request();
   std::optional<HeldOut> held_out;
   if (o.held_out.any()) held_out = run_held_out(prepared, fit, held_out_plan);

@@ -230,12 +230,11 @@ class References {
   std::map<const Signals*, std::pair<double, std::string>> done_;
 };
 
-/// Two records of one amplitude–frequency setting (the relative tolerance of make_folds).
+/// Two records of one amplitude–frequency setting, as make_folds groups them (same_value).
 bool same_setting(const Signals& a, const Signals& b) {
   const auto near = [&](const char* v) {
     const auto x = a.law_variables.find(v), y = b.law_variables.find(v);
-    return x != a.law_variables.end() && y != b.law_variables.end() &&
-           std::fabs(x->second - y->second) <= 1e-9 * std::max(std::fabs(x->second), std::fabs(y->second));
+    return x != a.law_variables.end() && y != b.law_variables.end() && same_value(x->second, y->second);
   };
   return near("amp") && near("freq");
 }
@@ -244,13 +243,7 @@ bool same_setting(const Signals& a, const Signals& b) {
 FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
                                    ResolvedModel& fold_model, std::map<const Signals*, std::vector<double>>& record_fits,
                                    const std::function<void(const std::string&)>& progress) {
-  const FitRequest r = fold_request(request, fold);
-  LawSearch search;
-  search.base = &per_file_model(*fit.model.model);
-  search.records = r.records;
-  search.optimizer = r.optimizer;
-  search.optimizer_name = fit.plan.optimizer;
-  search.settings = r.settings;
+  LawSearch search = law_search(fit, fold_request(request, fold));
   search.record_fits = &record_fits;
   if (progress) search.progress = [&](const std::string& line) { progress(fmt::format("fold {}: {}", fold.name, line)); };
   LawSelection selection;
@@ -285,7 +278,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   const Model& model = *fit.model.model;
   const FitRequest request = fit.request();
   References references(fit, h.reference);
-  std::map<const Signals*, std::vector<double>> record_fits;  // --laws auto: each record's own fit, once
+  std::map<const Signals*, std::vector<double>> record_fits = plan.record_fits;  // --laws auto: each record's own fit, once
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
     const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits, plan.progress)

@@ -9,6 +9,7 @@
 // FitRequest whose task key is extended by the fold's name, so that every fold has its own reproducible streams.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -103,6 +104,9 @@ struct HeldOutPlan {
   HeldOutSpec spec;
   FitRecords predict;       ///< --predict records (loaded with the fit's loader options, checked against the model)
   std::vector<Fold> folds;  ///< of the fit's records
+  /// `--laws auto`: each --data record's own fit (LawSearch::record_fits), made by the fit on all of them and
+  /// reused by the folds.
+  std::map<const Signals*, std::vector<double>> record_fits;
   /// Told one line per step of a `--laws auto` fold (law_selection.hpp LawSearch::progress); may be empty.
   std::function<void(const std::string&)> progress;
 };

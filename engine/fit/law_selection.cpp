@@ -129,6 +129,17 @@ Table fold_table(const Scoring& s, const LawSet& shared, const LawSet& chosen) {
 
 }  // namespace
 
+LawSearch law_search(const PreparedFit& fit, const FitRequest& request) {
+  LawSearch search;
+  const auto* law = dynamic_cast<const LawModel*>(fit.model.model);
+  search.base = law ? &law->base() : fit.model.model;
+  search.records = request.records;
+  search.optimizer = request.optimizer;
+  search.optimizer_name = fit.plan.optimizer;
+  search.settings = request.settings;
+  return search;
+}
+
 ResolvedModel gauged_model(const Model& base) {
   ResolvedModel r;
   r.keep.push_back(std::make_shared<LawModel>(base, std::map<std::string, ParameterLaw>{}));

@@ -25,6 +25,7 @@
 
 #include "engine/common/table.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/prepared_fit.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/fit/value_laws.hpp"
 
@@ -43,6 +44,10 @@ struct LawSearch {
   /// Told one line per step (each record's fit, each parameter's choice, the joint fit); may be empty.
   std::function<void(const std::string&)> progress;
 };
+
+/// The search of a prepared `--laws auto` fit on `request`'s records, with its optimizer and settings; the laws act
+/// on `fit`'s base model (its model itself before the laws are chosen, the chosen law model's base after).
+LawSearch law_search(const PreparedFit& fit, const FitRequest& request);
 
 /// The base model with its gauge and no laws: the model of the per-record fits.
 ResolvedModel gauged_model(const Model& base);
