@@ -16,6 +16,7 @@
 #include "engine/fit/fit.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/fit/model_file.hpp"
+#include "engine/fit/record_start.hpp"
 
 namespace dampbench::cli {
 
@@ -37,6 +38,8 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--runs", fit.runs, "independent runs (default 4 for internal states, else 50)");
   c->add_option("--seed", fit.seed, "seed (default 1)");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
+  c->add_option("--start", fit.start,
+                "per-file: start the search from the laws fitted to each record's own fit (member 0 of each run)");
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");
   c->add_option("--save-model", o.save_model, "also write the fitted model as JSON (for evaluate/simulate --model-file)");
@@ -235,8 +238,9 @@ int fit_command(const FitOptions& o) {
   LawSelection selection;
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
-  const FitOutcome fit =
-      prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, held_out_plan, selection) : run_fit(prepared.request());
+  FitRequest seeded = prepared.request();
+  seed_from_record_fits(prepared, seeded, &held_out_plan.record_fits, held_out_plan.progress);
+  const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, held_out_plan, selection) : run_fit(seeded);
   const FitRequest request = prepared.request();
   std::optional<HeldOut> held_out;
   if (o.held_out.any()) held_out = run_held_out(prepared, fit, held_out_plan);

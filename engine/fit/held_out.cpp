@@ -11,6 +11,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/fit/record_start.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/model/law_model.hpp"
 #include "optimizers/registry.hpp"
@@ -281,8 +282,10 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   std::map<const Signals*, std::vector<double>> record_fits = plan.record_fits;  // --laws auto: each record's own fit, once
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
+    FitRequest seeded = fold_request(request, fold);
+    seed_from_record_fits(fit, seeded, &record_fits, plan.progress);
     const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits, plan.progress)
-                                       : run_fit(fold_request(request, fold));
+                                       : run_fit(seeded);
     const Model& predicting = fit.auto_laws ? *fold_model.model : model;
     std::vector<const Signals*> predicted;
     for (int i : fold.predict) predicted.push_back(request.records[i]);

@@ -104,8 +104,8 @@ struct HeldOutPlan {
   HeldOutSpec spec;
   FitRecords predict;       ///< --predict records (loaded with the fit's loader options, checked against the model)
   std::vector<Fold> folds;  ///< of the fit's records
-  /// `--laws auto`: each --data record's own fit (LawSearch::record_fits), made by the fit on all of them and
-  /// reused by the folds.
+  /// `--laws auto` and `--start per-file`: each --data record's own fit (LawSearch::record_fits), made by the fit on
+  /// all of them and reused by the folds.
   std::map<const Signals*, std::vector<double>> record_fits;
   /// Told one line per step of a `--laws auto` fold (law_selection.hpp LawSearch::progress); may be empty.
   std::function<void(const std::string&)> progress;

@@ -164,12 +164,12 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
     request.settings.task_key = task_key(gauged.model->id(), record->name, search.optimizer_name);
     const FitOutcome outcome = run_fit(request);
     if (!std::isfinite(outcome.best().best_value))
-      throw DataError(fmt::format("--laws auto: the fit of {} alone failed (every run ended without a finite {})",
-                                  record->name, metric_name(search.settings.metric)));
+      throw DataError(fmt::format("{}: the fit of {} alone failed (every run ended without a finite {})",
+                                  search.label, record->name, metric_name(search.settings.metric)));
     out.push_back(outcome.best().best_params);
     if (search.record_fits) (*search.record_fits)[record] = out.back();
     if (search.progress)
-      search.progress(fmt::format("--laws auto: {} fitted alone ({}/{}): {} {:.6g}", record->name, out.size(),
+      search.progress(fmt::format("{}: {} fitted alone ({}/{}): {} {:.6g}", search.label, record->name, out.size(),
                                   search.records.size(), metric_name(search.settings.metric), outcome.best().best_value));
   }
   return out;

@@ -41,6 +41,7 @@ struct LawSearch {
   /// Per-record fits already made (a record's fit depends only on the record and the settings, so folds over
   /// the same records share them); filled as records are fitted. Null: none kept.
   std::map<const Signals*, std::vector<double>>* record_fits = nullptr;
+  std::string label = "--laws auto";  ///< what the progress lines and messages say they come from
   /// Told one line per step (each record's fit, each parameter's choice, the joint fit); may be empty.
   std::function<void(const std::string&)> progress;
 };

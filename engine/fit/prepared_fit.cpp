@@ -1,5 +1,7 @@
 #include "engine/fit/prepared_fit.hpp"
 
+#include <fmt/format.h>
+
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 
@@ -27,6 +29,12 @@ PreparedFit prepare_fit(const FitSpec& spec) {
       throw InputError("--bounds with --laws auto: the laws' coefficients are not known before they are chosen");
     choice.laws.clear();
   }
+  if (!spec.start.empty() && spec.start != "per-file")
+    throw InputError(fmt::format("--start: expected per-file, got '{}'", spec.start));
+  p.start_per_file = spec.start == "per-file";
+  if (p.start_per_file && p.auto_laws)
+    throw InputError("--start per-file with --laws auto: --laws auto always starts from the records' own fits");
+  p.choice = choice;
   p.model = resolve_model(choice);
   const Model& model = *p.model.model;
   p.metric = parse_metric(spec.metric);

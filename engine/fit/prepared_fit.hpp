@@ -25,12 +25,15 @@ struct FitSpec {
   std::string optimizer_settings;        ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
   std::optional<int> population, iterations, runs;
   std::uint64_t seed = 1;
+  std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
 };
 
 /// Everything a FitSpec names, built and loaded; its request points into it.
 struct PreparedFit {
+  ModelChoice choice;       ///< what the model was resolved from (--laws auto: laws cleared)
   ResolvedModel model;      ///< with --laws auto: the base model until the laws are chosen
   bool auto_laws = false;   ///< --laws auto (engine/fit/law_selection.hpp)
+  bool start_per_file = false;  ///< --start per-file (engine/fit/record_start.hpp)
   Metric metric = Metric::of_abs;
   FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults
   OptimizerSpec optimizer;  ///< the plan's with the settings given

@@ -1,6 +1,8 @@
 // `fit --laws auto` (engine/fit/law_selection.hpp, engine/fit/value_laws.hpp): on synthetic records generated from
-// known laws, the search picks the true families and the joint fit recovers their coefficients.
+// known laws, the search picks the true families and the joint fit recovers their coefficients. `fit --start
+// per-file` (engine/fit/record_start.hpp): laws fitted to the records' own fits start at the true coefficients.
 #include "engine/fit/law_selection.hpp"
+#include "engine/fit/record_start.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +11,8 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "engine/common/error.hpp"
+#include "engine/fit/prepared_fit.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/record/excitation.hpp"
 #include "models/registry.hpp"
@@ -92,6 +96,65 @@ TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
   const FitOutcome outcome1 = fit_with_auto_laws(search, fitted1, selection1);
   EXPECT_EQ(selection1.laws, selection.laws);
   EXPECT_EQ(outcome1.best().best_params, c);
+}
+
+TEST(RecordStart, FitsEachLawToValuesItWasGeneratedFrom) {
+  const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
+  // 2 + 3·I + 4·I² at 0, 0.5, 1 A: 2, 4.5, 9; three currents determine a quadratic
+  const auto quadratic = fit_law_to_values(parse_law("poly(I,2)", "test"), "c1", vars, {2.0, 4.5, 9.0});
+  ASSERT_EQ(quadratic.size(), 3u);
+  EXPECT_NEAR(quadratic[0], 2.0, 1e-12);
+  EXPECT_NEAR(quadratic[1], 3.0, 1e-12);
+  EXPECT_NEAR(quadratic[2], 4.0, 1e-12);
+  EXPECT_EQ(fit_law_to_values(parse_law("free", "test"), "n", vars, {1.0, 2.0, 6.0}), std::vector<double>{3.0});
+  EXPECT_TRUE(fit_law_to_values(parse_law("2", "test"), "n", vars, {1.0, 2.0, 6.0}).empty());
+  // sat(I) through 10 + 20·(1 − e^(−I/0.3)), by value_laws.hpp's fit
+  std::vector<double> y;
+  for (const auto& v : vars) y.push_back(10 + 20 * (1 - std::exp(-v.at("I") / 0.3)));
+  const auto sat = fit_law_to_values(parse_law("sat(I)", "test"), "alpha", vars, y);
+  ASSERT_EQ(sat.size(), 3u);
+  EXPECT_NEAR(sat[0], 10, 1e-3);
+  EXPECT_NEAR(sat[1], 20, 1e-2);
+  EXPECT_NEAR(sat[2], 0.3, 1e-3);
+  try {
+    fit_law_to_values(parse_law("tanh(I)", "test"), "c0", vars, y);
+    FAIL() << "tanh(I) has no value fit";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("c0=tanh(I)"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RecordStart, LawsFittedToEachRecordsOwnFitStartAtTheTrueCoefficients) {
+  std::vector<Signals> records;
+  for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) records.push_back(bingham_record(0.01, 1.0, I));
+  const OptimizerFactory factory = make_optimizer_factory({"ga-lm", 24, 30});
+  LawSearch search;
+  search.base = &find_model("mrd.bingham");
+  for (const auto& r : records) search.records.push_back(&r);
+  search.optimizer = &factory;
+  search.optimizer_name = "ga-lm";
+  search.settings.runs = 2;
+  search.settings.metric = Metric::nrmse;
+  ModelChoice choice;
+  choice.model = "mrd.bingham";
+  choice.laws = "f_c=hill(I,2);c0=poly(I,1)";
+  choice.option_prefix = "--";
+  const ResolvedModel law_model = resolve_model(choice);
+  EXPECT_EQ(per_record_model(choice).model->dim(), 3);
+  const auto start = start_from_record_fits(search, choice, *law_model.model);
+  ASSERT_EQ(start.size(), 6u);
+  const double truth[] = {60, 500, 0.6, 1000, 2000, 5};
+  for (std::size_t j = 0; j < start.size(); ++j) EXPECT_NEAR(start[j], truth[j], 0.02 * truth[j]) << j;
+}
+
+TEST(RecordStart, RefusesAnUnknownStartAndOneBesideLawsAuto) {
+  FitSpec spec;
+  spec.model.model = "mrd.bingham";
+  spec.start = "median";
+  EXPECT_THROW(prepare_fit(spec), InputError);
+  spec.start = "per-file";
+  spec.model.laws = "auto";
+  EXPECT_THROW(prepare_fit(spec), InputError);
 }
 
 }  // namespace

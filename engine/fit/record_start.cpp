@@ -1,0 +1,106 @@
+#include "engine/fit/record_start.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/fit/value_laws.hpp"
+#include "engine/model/parameter_law.hpp"
+
+namespace dampbench {
+namespace {
+
+/// p_X0 + p_X1·x + ... by least squares (the minimum-norm solution when the records cannot determine every power).
+std::vector<double> polynomial_fit(const LawFactor& f, const std::vector<std::map<std::string, double>>& variables,
+                                   const std::vector<double>& values) {
+  const auto n = static_cast<Eigen::Index>(values.size());
+  Eigen::MatrixXd basis(n, f.degree + 1);
+  Eigen::VectorXd y(n);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    const auto it = variables[r].find(f.variable);
+    const double x = it == variables[r].end() ? std::nan("") : it->second;
+    double power = 1;
+    for (int k = 0; k <= f.degree; ++k, power *= x) basis(r, k) = power;
+    y(r) = values[r];
+  }
+  const Eigen::VectorXd c = basis.completeOrthogonalDecomposition().solve(y);
+  return {c.data(), c.data() + c.size()};
+}
+
+}  // namespace
+
+std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string& parameter,
+                                      const std::vector<std::map<std::string, double>>& variables,
+                                      const std::vector<double>& values) {
+  if (law.kind == ParameterLaw::Kind::fixed) return {};
+  if (law.kind == ParameterLaw::Kind::free) {
+    double sum = 0;
+    for (double v : values) sum += v;
+    return {values.empty() ? 0.0 : sum / static_cast<double>(values.size())};
+  }
+  if (law.single(LawFactor::Family::poly)) return polynomial_fit(law.factors.front(), variables, values);
+  const std::string text = law.text();
+  for (const ValueLaw& v : value_law_candidates())
+    if (v.text() == text) return fit_value_law(v, variables, values).coefficients;
+  throw InputError(fmt::format("--start per-file: the law {}={} has no fit to per-record values (those that have one: "
+                               "free, poly(VAR,K), sat(I), hill(I,2), and sat, hill(I,2) or poly(I,1) times "
+                               "poly(amp,1) or poly(freq,1))",
+                               parameter, text));
+}
+
+ResolvedModel per_record_model(const ModelChoice& choice) {
+  ModelChoice free = choice;
+  free.bounds.clear();
+  free.name.clear();
+  free.laws.clear();
+  if (!choice.laws.empty())
+    for (const auto& [name, law] : parse_laws(choice.laws, choice.option_prefix + "laws"))
+      free.laws += fmt::format("{}{}={}", free.laws.empty() ? "" : ";", name,
+                               law.kind == ParameterLaw::Kind::fixed ? law.text() : "free");
+  return resolve_model(free);
+}
+
+std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
+                                           const Model& law_model) {
+  const ResolvedModel per_record = per_record_model(choice);
+  const auto fits = fit_each_record(search, per_record);
+  const auto laws = choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
+                                        : parse_laws(choice.laws, choice.option_prefix + "laws");
+  std::vector<std::map<std::string, double>> variables;
+  for (const Signals* r : search.records) variables.push_back(r->law_variables);
+  const auto fitted = per_record.model->parameters();
+  std::vector<double> start;
+  std::vector<std::string> names;
+  for (const auto& p : search.base->parameters()) {
+    const auto it = std::find_if(fitted.begin(), fitted.end(), [&](const ParameterInfo& q) { return q.name == p.name; });
+    if (it == fitted.end()) continue;  // fixed, or tied by the gauge: no coefficient
+    const auto law = laws.count(p.name) ? laws.at(p.name) : ParameterLaw{};
+    std::vector<double> values;
+    for (const auto& f : fits) values.push_back(f[static_cast<std::size_t>(it - fitted.begin())]);
+    const auto c = fit_law_to_values(law, p.name, variables, values);
+    start.insert(start.end(), c.begin(), c.end());
+    for (const auto& n : law.coefficient_names(p.name)) names.push_back(n);
+  }
+  const auto params = law_model.parameters();
+  bool same = names.size() == params.size();
+  for (std::size_t k = 0; same && k < names.size(); ++k) same = names[k] == params[k].name;
+  if (!same)
+    throw std::logic_error(fmt::format("--start per-file: the start's coefficients do not match {}'s", law_model.id()));
+  return start;
+}
+
+void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,
+                           std::map<const Signals*, std::vector<double>>* record_fits,
+                           const std::function<void(const std::string&)>& progress) {
+  if (!fit.start_per_file) return;
+  LawSearch search = law_search(fit, request);
+  search.record_fits = record_fits;
+  search.progress = progress;
+  search.label = "--start per-file";
+  request.start = start_from_record_fits(search, fit.choice, *fit.model.model);
+}
+
+}  // namespace dampbench

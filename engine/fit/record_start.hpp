@@ -1,0 +1,45 @@
+#pragma once
+// `fit --start per-file`: a law model's search starts where its records, fitted one by one, put it.
+//
+// Each record is fitted alone by the base model with every law made a free constant (fixed values stay fixed, so
+// the per-record model has the law model's gauge and fixed parameters). Each law is then fitted to its parameter's
+// per-record values: a shared parameter by their mean, the families of `--laws auto` (engine/fit/value_laws.hpp)
+// as `--laws auto` fits them, and a polynomial in one variable by linear least squares. Those coefficients are
+// the start point (Bounds::start, member 0 of a population; the search still explores the whole box).
+//
+// Why: a joint fit of many coefficients over many records is where the global stages of ga-lm stall; the
+// per-record fits are small problems they solve, and the laws between them are least-squares problems.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/fit/law_selection.hpp"
+#include "engine/fit/prepared_fit.hpp"
+#include "engine/fit/resolve_model.hpp"
+#include "engine/model/parameter_law.hpp"
+
+namespace dampbench {
+
+/// The model of the per-record fits for the law model `choice` resolves to: its base with each law replaced by
+/// a free constant (fixed laws kept).
+ResolvedModel per_record_model(const ModelChoice& choice);
+
+/// The law model's start on `search.records` (in `law_model`'s coefficient order); the per-record fits go through
+/// search.record_fits. InputError for a law with no value fit (a product other than those of value_laws.hpp, power,
+/// gauss2, tanh, mono), naming the parameter and the laws that have one.
+std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
+                                           const Model& law_model);
+
+/// `request` (of `fit`, on some of its records) with its start from its records' own fits when the fit asks for
+/// one (`--start per-file`); the fits go through `record_fits` (may be null) and `progress` (may be empty).
+void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,
+                           std::map<const Signals*, std::vector<double>>* record_fits,
+                           const std::function<void(const std::string&)>& progress);
+
+/// One law's coefficients fitted to values of its parameter at the records' variables (as above).
+std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string& parameter,
+                                      const std::vector<std::map<std::string, double>>& variables,
+                                      const std::vector<double>& values);
+
+}  // namespace dampbench
