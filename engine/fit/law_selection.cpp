@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -25,6 +26,20 @@ struct Scoring {
   std::vector<Fold> folds;
   std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
   Metric metric;
+  /// Law fits by (fold, parameter, law): a coordinate step changes one parameter's law, the others' fits stay.
+  mutable std::map<std::tuple<std::size_t, int, std::string>, ValueFit> fits_made;
+
+  const ValueFit& law_fit(std::size_t fold, int j, const ValueLaw& law) const {
+    const auto key = std::make_tuple(fold, j, law.text());
+    auto it = fits_made.find(key);
+    if (it == fits_made.end()) {
+      std::vector<std::map<std::string, double>> vars;
+      std::vector<double> y;
+      values(j, folds[fold].fit, vars, y);
+      it = fits_made.emplace(key, fit_value_law(law, vars, y)).first;
+    }
+    return it->second;
+  }
 
   /// Values of parameter j over records `which`, and their variables.
   void values(int j, const std::vector<int>& which, std::vector<std::map<std::string, double>>& vars,
@@ -39,19 +54,15 @@ struct Scoring {
   /// The metric of every record when left out (the folds cover each record once), in record order.
   std::vector<double> left_out_metrics(const LawSet& laws) const {
     std::vector<double> out(records.size(), std::numeric_limits<double>::quiet_NaN());
-    for (const Fold& fold : folds) {
-      std::vector<ValueFit> fits;
-      std::vector<std::map<std::string, double>> vars;
-      std::vector<double> y;
-      for (int j = 0; j < model.dim(); ++j) {
-        values(j, fold.fit, vars, y);
-        fits.push_back(fit_value_law(laws[j], vars, y));
-      }
+    for (std::size_t f = 0; f < folds.size(); ++f) {
+      const Fold& fold = folds[f];
+      std::vector<const ValueFit*> fits;
+      for (int j = 0; j < model.dim(); ++j) fits.push_back(&law_fit(f, j, laws[j]));
       tbb::parallel_for(std::size_t{0}, fold.predict.size(), [&](std::size_t i) {
         const int r = fold.predict[i];
         std::vector<double> p(model.dim());
         for (int j = 0; j < model.dim(); ++j)
-          p[j] = std::clamp(fits[j].predict(laws[j], records[r]->law_variables), boxes[r].lower[j], boxes[r].upper[j]);
+          p[j] = std::clamp(fits[j]->predict(laws[j], records[r]->law_variables), boxes[r].lower[j], boxes[r].upper[j]);
         const double m = record_metric(model, p, *records[r], metric);
         out[r] = std::isfinite(m) ? m : std::numeric_limits<double>::infinity();
       });

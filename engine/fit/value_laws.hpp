@@ -1,11 +1,14 @@
 #pragma once
 // The law families `fit --laws auto` chooses from, fitted to values of one parameter identified record by record
-// (engine/fit/law_selection.hpp). A candidate is a shape in current times an optional linear factor in one
-// setting variable:
-//   F(I) · G(v),  F ∈ {a, a + b·I, a + b·I²/(h² + I²), a + b·(1 − e^(−I/h))},  G ∈ {1, q0 + q1·amp, q0 + q1·freq}
+// (engine/fit/law_selection.hpp). A candidate is a shape in current times an optional factor in one setting
+// variable:
+//   F(I) · G,  F ∈ {a, a + b·I, a + b·I²/(h² + I²), a + b·(1 − e^(−I/h))},
+//              G ∈ {1, q0 + q1·amp, q0 + q1·freq, k·vamp^p + c}
 // written in the law grammar (engine/model/parameter_law.hpp) as free, poly(I,1), hill(I,2), sat(I),
-// poly(amp,1), prod(hill(I,2),poly(freq,1)), ... b ≥ 0 keeps F non-decreasing in I; a law in a setting
-// variable has two coefficients (six settings would otherwise become a lookup table).
+// poly(amp,1), prod(hill(I,2),poly(freq,1)), prod(sat(I),power(vamp)), ... b ≥ 0 keeps F non-decreasing in I.
+// A law in a setting variable has at most three coefficients (six settings would otherwise become a lookup
+// table); the power law in the velocity amplitude follows an MR damper's viscous coefficients, which fall
+// roughly as 1/vamp across tests whose post-yield force hardly changes (parameter_law.hpp).
 #include <map>
 #include <string>
 #include <vector>
@@ -15,7 +18,7 @@ namespace dampbench {
 struct ValueLaw {
   enum class Shape { constant, linear, hill2, saturating };
   Shape current = Shape::constant;  ///< F(I)
-  std::string setting;              ///< "" (G = 1), "amp" or "freq"
+  std::string setting;              ///< "" (G = 1), "amp" or "freq" (linear), "vamp" (power)
 
   /// The law in the grammar of parse_law ("free" for a constant without a setting factor).
   [[nodiscard]] std::string text() const;
@@ -23,7 +26,7 @@ struct ValueLaw {
   [[nodiscard]] int coefficients() const;
 };
 
-/// Every candidate: 4 shapes × (no factor, amp, freq).
+/// Every candidate: 4 shapes × (no factor, amp, freq, vamp).
 std::vector<ValueLaw> value_law_candidates();
 
 /// A candidate fitted to values: its coefficients in the grammar's order, and the residual sum of squares.
@@ -35,7 +38,9 @@ struct ValueFit {
 
 /// Least squares of `law` to values[r] at variables[r] (each with I and the setting variable): linear in (a, b)
 /// for a fixed h and q1/q0, h on a grid over 0.05–2 A, the factor by alternating least squares; b < 0 falls
-/// back to b = 0, so the fit is non-decreasing in I like the law's default bounds.
+/// back to b = 0, so the fit is non-decreasing in I like the law's default bounds. power(vamp)'s exponent p is
+/// searched on a grid over [−2, 2] refined by golden section, the rest as for a linear factor in vamp^p; the
+/// factor is then scaled to max(|k|, |c|) = 1 (its default bounds are ±1, the first factor carries the size).
 ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::string, double>>& variables,
                        const std::vector<double>& values);
 

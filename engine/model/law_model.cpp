@@ -17,6 +17,7 @@ double variable_scale(const std::string& v) {
   if (v == "V") return 5.0;      // V
   if (v == "phi") return 180.0;  // deg
   if (v == "amp") return 0.02;   // m
+  if (v == "vamp") return 0.1;   // m/s
   return 5.0;                    // freq and w, Hz
 }
 
@@ -34,6 +35,7 @@ const char* variable_unit(const std::string& v) {
   if (v == "V") return "V";
   if (v == "phi") return "deg";
   if (v == "amp") return "m";
+  if (v == "vamp") return "m/s";
   return "Hz";  // freq and w
 }
 

@@ -15,7 +15,7 @@ namespace {
 
 using Family = LawFactor::Family;
 
-const char* const kVariables[] = {"I", "V", "phi", "amp", "freq", "w"};
+const char* const kVariables[] = {"I", "V", "phi", "amp", "freq", "w", "vamp"};
 
 /// mono's knots live on the stack while it is evaluated (no allocation per candidate and record).
 constexpr std::size_t kMaxKnots = 16;
@@ -39,7 +39,7 @@ const char* family_name(Family f) {
 void check_variable(const std::string& v, std::string_view where) {
   for (const char* known : kVariables)
     if (v == known) return;
-  throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq, w)", where, v));
+  throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq, w, vamp)", where, v));
 }
 
 /// Splits "a,b(c,d),e" at top-level commas.

@@ -22,7 +22,9 @@
 //
 // Variables come from the dataset's operating variables; "amp" and "freq" fall back to the record's
 // own estimates (half the peak-to-peak displacement; fdsp eq. 15) when the dataset does not state them,
-// and "w" is always the record's eq. 15 estimate ω = ΔŻ/(π·ΔZ) (the fdsp model's variable).
+// and "w" is always the record's eq. 15 estimate ω = ΔŻ/(π·ΔZ) (the fdsp model's variable). "vamp" is the sine's
+// velocity amplitude 2π·amp·freq [m/s] from those two: an MR damper's post-yield force barely grows with velocity,
+// so its apparent viscous coefficient falls roughly as 1/vamp across tests (power(vamp)).
 #include <map>
 #include <string>
 #include <string_view>

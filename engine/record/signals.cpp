@@ -44,6 +44,8 @@ Signals prepare_signals(const Dataset& data) {
     s.law_variable_source["amp"] = "record estimate (half peak-to-peak)";
   if (s.law_variables.try_emplace("freq", s.excitation_freq_hz).second)
     s.law_variable_source["freq"] = "record estimate (fdsp eq. 15)";
+  s.law_variables["vamp"] = 2 * std::numbers::pi * s.law_variables.at("amp") * s.law_variables.at("freq");
+  s.law_variable_source["vamp"] = "2π·amp·freq";
   s.law_variables["w"] = s.excitation_freq_hz;
   s.law_variable_source["w"] = "record estimate (fdsp eq. 15)";
   if (!s.F_N.empty()) {

@@ -9,7 +9,7 @@ namespace dampbench::sweep::spec_file {
 
 namespace {
 
-const char* const kVariables[] = {"I", "V", "phi", "amp", "freq", "w"};
+const char* const kVariables[] = {"I", "V", "phi", "amp", "freq", "w", "vamp"};
 
 }  // namespace
 

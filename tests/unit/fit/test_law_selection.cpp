@@ -43,6 +43,29 @@ TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
   EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss);
 }
 
+TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
+  // c0 = (500 + 2000·I)·0.05/vamp: a post-yield force that does not grow with velocity
+  const ValueLaw law{ValueLaw::Shape::linear, "vamp"};
+  EXPECT_EQ(law.text(), "prod(poly(I,1),power(vamp))");
+  EXPECT_EQ(law.coefficients(), 5);
+  std::vector<std::map<std::string, double>> vars;
+  std::vector<double> y;
+  for (double vamp : {0.0157, 0.0393, 0.0628, 0.0942})
+    for (double I : {0.0, 0.5, 1.0}) {
+      vars.push_back({{"I", I}, {"vamp", vamp}});
+      y.push_back((500 + 2000 * I) * 0.05 / vamp);
+    }
+  const ValueFit fit = fit_value_law(law, vars, y);
+  ASSERT_EQ(fit.coefficients.size(), 5u);
+  // a, b, then power's k, p, c: the factor scaled to max(|k|, |c|) = 1 (its bounds are ±1)
+  EXPECT_NEAR(fit.coefficients[2], 1.0, 1e-12);
+  EXPECT_NEAR(fit.coefficients[3], -1.0, 0.02);
+  EXPECT_NEAR(fit.coefficients[4], 0.0, 0.01);
+  for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.01 * y[i]);
+  // a linear factor in the same variable misses the 1/vamp curve by far more
+  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss + 1);
+}
+
 TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) {
   const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
   const ValueFit fit = fit_value_law({ValueLaw::Shape::linear, ""}, vars, {3.0, 2.0, 1.0});
@@ -50,7 +73,7 @@ TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) 
   EXPECT_DOUBLE_EQ(fit.coefficients[0], 2.0);
   EXPECT_EQ(ValueLaw{}.text(), "free");
   EXPECT_EQ((ValueLaw{ValueLaw::Shape::constant, "amp"}.text()), "poly(amp,1)");
-  EXPECT_EQ(value_law_candidates().size(), 12u);
+  EXPECT_EQ(value_law_candidates().size(), 16u);
 }
 
 /// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine, with f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
