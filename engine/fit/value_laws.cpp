@@ -193,9 +193,19 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
     else out.coefficients = {best.a, best.a * best.k};
     return out;
   }
-  out.coefficients = {best.a, best.b};
+  // power(vamp) as a later factor: scaled to 1 at the records' geometric-mean vamp, so that F(I) is the parameter
+  // there and k, c stay well inside their ±1 bounds (a pure 1/vamp has k ≈ vamp there, c ≈ 0); kept at
+  // max(|k|, |c|) = 1 when that scaling would leave them.
+  double scale = 1;
+  if (power_factor(law)) {
+    double log_sum = 0;
+    for (double x : v) log_sum += std::log(x);
+    const double at_mean = best.c + best.k * std::pow(std::exp(log_sum / static_cast<double>(n)), exponent);
+    if (at_mean > 0 && std::max(std::fabs(best.c), std::fabs(best.k)) / at_mean <= 1) scale = at_mean;
+  }
+  out.coefficients = {best.a * scale, best.b * scale};
   if (has_scale(law.current)) out.coefficients.push_back(best.h);
-  if (power_factor(law)) out.coefficients.insert(out.coefficients.end(), {best.k, exponent, best.c});
+  if (power_factor(law)) out.coefficients.insert(out.coefficients.end(), {best.k / scale, exponent, best.c / scale});
   else if (!law.setting.empty()) out.coefficients.insert(out.coefficients.end(), {1.0, best.k});
   return out;
 }

@@ -39,8 +39,9 @@ struct ValueFit {
 /// Least squares of `law` to values[r] at variables[r] (each with I and the setting variable): linear in (a, b)
 /// for a fixed h and q1/q0, h on a grid over 0.05–2 A, the factor by alternating least squares; b < 0 falls
 /// back to b = 0, so the fit is non-decreasing in I like the law's default bounds. power(vamp)'s exponent p is
-/// searched on a grid over [−2, 2] refined by golden section, the rest as for a linear factor in vamp^p; the
-/// factor is then scaled to max(|k|, |c|) = 1 (its default bounds are ±1, the first factor carries the size).
+/// searched on a grid over [−2, 2] refined by golden section, the rest as for a linear factor in vamp^p; as a later
+/// factor it is scaled to 1 at the records' geometric-mean vamp (its default bounds are ±1, the first factor carries
+/// the size), or to max(|k|, |c|) = 1 when that would leave the bounds.
 ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::string, double>>& variables,
                        const std::vector<double>& values);
 

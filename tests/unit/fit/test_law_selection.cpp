@@ -57,10 +57,12 @@ TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
     }
   const ValueFit fit = fit_value_law(law, vars, y);
   ASSERT_EQ(fit.coefficients.size(), 5u);
-  // a, b, then power's k, p, c: the factor scaled to max(|k|, |c|) = 1 (its bounds are ±1)
-  EXPECT_NEAR(fit.coefficients[2], 1.0, 1e-12);
+  // a, b, then power's k, p, c: the factor is 1 at the geometric-mean vamp, so F(I) is c0 there
+  const double mean_vamp = std::pow(0.0157 * 0.0393 * 0.0628 * 0.0942, 0.25);
+  EXPECT_NEAR(fit.coefficients[2], mean_vamp, 0.01 * mean_vamp);
   EXPECT_NEAR(fit.coefficients[3], -1.0, 0.02);
   EXPECT_NEAR(fit.coefficients[4], 0.0, 0.01);
+  EXPECT_NEAR(fit.coefficients[0], 500 * 0.05 / mean_vamp, 0.01 * 500 * 0.05 / mean_vamp);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.01 * y[i]);
   // a linear factor in the same variable misses the 1/vamp curve by far more
   EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss + 1);
