@@ -150,6 +150,14 @@ OptimizerFactory make_de(const OptimizerSpec& spec) {
   return factory_of<De>(read, s);
 }
 
+OptimizerFactory make_cmaes(const OptimizerSpec& spec) {
+  SettingsReader read("cmaes", spec.settings);
+  auto s = with_budget<CmaesSettings>(spec);
+  if (const std::string* t = read.text("restarts")) s.restarts = parse_cmaes_restarts(trim(*t));
+  read.apply({{"sigma0", &s.sigma0}, {"tolfun", &s.tolfun}, {"tolx", &s.tolx}});
+  return factory_of<Cmaes>(read, s);
+}
+
 OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
   SettingsReader read("ga-sqp", spec.settings);
   auto s = with_budget<GaSqpSettings>(spec);
@@ -176,8 +184,9 @@ struct Entry {
   std::string_view name;
   OptimizerFactory (*make)(const OptimizerSpec&);
 };
-constexpr Entry kOptimizers[] = {{"pso", make_pso}, {"ga", make_ga},         {"aga", make_aga},
-                                 {"de", make_de},   {"ga-sqp", make_ga_sqp}, {"ga-lm", make_ga_lm}};
+constexpr Entry kOptimizers[] = {{"pso", make_pso},     {"ga", make_ga},         {"aga", make_aga},
+                                 {"de", make_de},       {"cmaes", make_cmaes},   {"ga-sqp", make_ga_sqp},
+                                 {"ga-lm", make_ga_lm}};
 
 }  // namespace
 

@@ -3,9 +3,7 @@
 //   - the population phase is the `ga` optimizer itself (optimizers/ga/ga.hpp): ask, tell, finished and the
 //     random streams are those of a `ga` run with the same settings and run key, so a hybrid's population
 //     phase is bit for bit the GA's;
-//   - the local phase (refine) works on the free parameters (lower < upper) mapped to the unit cube,
-//     x_j = lower_j + y_j·(upper_j − lower_j), so that parameters of very different magnitudes (fdsp: β ≈ 3e5,
-//     Z0 ≈ 0.01) have comparable steps; parameters with lower == upper stay fixed;
+//   - the local phase (refine) works on the free parameters mapped to the unit cube (optimizers/unit_box.hpp);
 //   - after refine, best_position()/best_value() are the lowest metric value seen (GA best or any point
 //     the local phase evaluated), so a hybrid is never worse than its GA phase.
 // Local phases draw no random numbers: the whole run is a pure function of (settings, bounds, run key) and
@@ -18,27 +16,9 @@
 
 #include "engine/identification/optimizer.hpp"
 #include "optimizers/ga/ga.hpp"
+#include "optimizers/unit_box.hpp"
 
 namespace dampbench {
-
-/// The free parameters of a box mapped to [0, 1]^m.
-class UnitBox {
- public:
-  explicit UnitBox(const Bounds& bounds);
-  /// Number of free parameters (lower < upper).
-  [[nodiscard]] int free_dim() const { return static_cast<int>(free_.size()); }
-  [[nodiscard]] int dim() const { return static_cast<int>(lower_.size()); }
-  /// Free coordinates of x in the unit cube, clamped to [0, 1].
-  [[nodiscard]] std::vector<double> to_unit(std::span<const double> x) const;
-  /// Every parameter from unit coordinates (fixed ones at their bound); clamped to [lower, upper], so
-  /// rounding never leaves the box.
-  void to_params(std::span<const double> y, std::span<double> x) const;
-  [[nodiscard]] std::vector<double> to_params(std::span<const double> y) const;
-
- private:
-  std::vector<double> lower_, upper_;
-  std::vector<int> free_;  ///< indices of the free parameters
-};
 
 /// Lowest finite value seen and where (what a local phase hands back).
 struct BestSeen {
