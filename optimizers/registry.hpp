@@ -8,10 +8,11 @@
 //   aga   k1, k2, k3, k4, pm_min, eta_c, eta_m, tournament, elites               optimizers/ga/aga.hpp
 //   de    strategy (rand1bin | best1bin | currenttobest1bin), F, CR              optimizers/de/de.hpp
 //   cmaes restarts (none | ipop | bipop), sigma0, tolfun, tolx                   optimizers/cmaes/cmaes.hpp
-//   ga-sqp  ga's settings (no preset), constraint (fdsp eq. 11, in the run metric's units; or off),
+//   ga-sqp  global (ga | cmaes; the population phase), ga's settings (no preset) or with global = cmaes
+//           cmaes's, constraint (fdsp eq. 11, in the run metric's units; or off),
 //           sqp_iterations, fd_step, xtol, ftol                                  optimizers/hybrid/ga_sqp.hpp
-//   ga-lm   ga's settings (no preset), lm_iterations, fd_step, ftol, xtol, gtol, lambda0, geodesic,
-//           geodesic_ratio                                                       optimizers/hybrid/ga_lm.hpp
+//   ga-lm   global (ga | cmaes), ga's settings (no preset) or with global = cmaes cmaes's, lm_iterations,
+//           fd_step, ftol, xtol, gtol, lambda0, geodesic, geodesic_ratio         optimizers/hybrid/ga_lm.hpp
 // Bound narrowing over conditions (mfm §5.1) is a procedure, not an optimizer: narrow_bounds() in
 // optimizers/narrowing/narrowing.hpp, with any of these as its inner optimizer.
 //
