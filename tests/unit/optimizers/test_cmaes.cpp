@@ -15,6 +15,8 @@
 #include <Eigen/Dense>
 
 #include "engine/common/random.hpp"
+#include "engine/evaluation/batch_evaluator.hpp"
+#include "models/registry.hpp"
 #include "optimizer_test_support.hpp"
 #include "optimizers/cmaes/bound_transform.hpp"
 #include "optimizers/registry.hpp"
@@ -152,6 +154,34 @@ TEST(Cmaes, WithoutRestartsFinishesAtTheFirstStop) {
   EXPECT_EQ(r.opt->runs()[0].stop, "tolfun");
   EXPECT_LT(r.run.evaluations, 100000LL * 7);
   EXPECT_LT(r.run.best_value, 1e-12);
+}
+
+// Restarts keep the same bits for 1 and 2 threads, another grain and one-by-one evaluation (the conformance
+// suite's check, with a tolfun that ends runs early so that every run restarts within its budget).
+TEST(Cmaes, RestartsKeepTheSameBitsForAnyThreadCountAndBatchSplit) {
+  const Model& model = find_model("fvd.gv_linear_elastic");
+  Dataset record = testing::two_sine_record(400);
+  const std::vector<double> truth{300, 9e5, 0.4, 5e6};
+  record.F_N = model.simulate(truth, prepare_signals(record));
+  const Signals data = prepare_signals(record);
+  const Bounds bounds = default_bounds(model);
+  for (const char* restarts : {"ipop", "bipop"}) {
+    SCOPED_TRACE(restarts);
+    const OptimizerFactory make =
+        make_optimizer_factory({"cmaes", 6, 300, {{"restarts", restarts}, {"tolfun", "1e-3"}}});
+    testing::expect_reproducible_identification(make, model, data, bounds, 6 * 300);
+    // The same run through ask/tell restarted at least twice (with bipop, the third run is a small one).
+    const BatchEvaluator evaluator(model, data);
+    const auto opt = make(bounds, 4);
+    CandidateBatch batch(model.dim(), opt->batch_size());
+    std::vector<double> values(static_cast<std::size_t>(opt->batch_size()));
+    while (!opt->finished()) {
+      opt->ask(batch, 0);
+      evaluator.evaluate(batch, Metric::nrmse, values);
+      opt->tell(values);
+    }
+    EXPECT_GE(dynamic_cast<const Cmaes&>(*opt).runs().size(), 3u);
+  }
 }
 
 // ---- settings -----------------------------------------------------------------------------------------
