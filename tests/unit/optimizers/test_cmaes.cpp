@@ -180,7 +180,9 @@ TEST(Cmaes, RestartsKeepTheSameBitsForAnyThreadCountAndBatchSplit) {
       evaluator.evaluate(batch, Metric::nrmse, values);
       opt->tell(values);
     }
-    EXPECT_GE(dynamic_cast<const Cmaes&>(*opt).runs().size(), 3u);
+    const std::vector<CmaesRun>& runs = dynamic_cast<const Cmaes&>(*opt).runs();
+    ASSERT_GE(runs.size(), 3u);
+    EXPECT_EQ(runs[2].large, std::string(restarts) == "ipop");
   }
 }
 
