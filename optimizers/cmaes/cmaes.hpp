@@ -5,8 +5,8 @@
 //   ipop   (the default) each stopping test starts a new run from a uniform mean with the population doubled,
 //          λ_k = 2^k λ₀ (Auger & Hansen 2005, "A restart CMA evolution strategy with increasing population
 //          size", CEC 2005), until the budget is spent. The default because it is monotone and predictable: a
-//          larger population each time makes CMA-ES more global on multimodal landscapes, and fit's own
-//          populations (50 and up) are already large ones, where BIPOP's small regime adds little;
+//          larger population each time makes CMA-ES more global on multimodal landscapes; BIPOP's small regime
+//          is meant for populations near the default λ, and fit's own populations (50) are already large;
 //   bipop  Hansen 2009 ("Benchmarking a BI-population CMA-ES on the BBOB-2009 function testbed", GECCO
 //          workshops): after a first run with λ₀, the regime with the fewer evaluations so far runs next (the
 //          first run counts for neither; large on ties): the large regime with λ_l = 2^k λ₀ (k its runs so

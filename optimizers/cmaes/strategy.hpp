@@ -14,8 +14,8 @@
 // small dimensions) have passed since the last time (the tutorial's O(n²) per sample).
 // The update is the tutorial's (its "Summary"): mean, p_σ, p_c with the stall indicator h_σ, C with the
 // rank-one and the weighted rank-μ terms (negative weights rescaled by n/‖C^−1/2 y‖²), then σ by cumulative
-// step-size adaptation. The exponent of σ's change is clipped at 1 (a guard against an overflow of σ; it does
-// not bind on the tests' functions).
+// step-size adaptation, its exponent clipped at 1 (σ grows at most e-fold per generation: a guard against an
+// overflow of σ).
 // Ranking: values sorted ascending, NaN and ±inf (failed candidates) last, ties to the lower sample index.
 //
 // Stopping tests (the tutorial's Appendix B.3 and pycma's defaults), checked after each update; the first
