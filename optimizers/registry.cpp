@@ -150,10 +150,33 @@ OptimizerFactory make_de(const OptimizerSpec& spec) {
   return factory_of<De>(read, s);
 }
 
+/// The cmaes settings other than the budget (also those of a hybrid's cmaes global stage).
+void read_cmaes(SettingsReader& read, CmaesSettings& s) {
+  if (const std::string* t = read.text("restarts")) s.restarts = parse_cmaes_restarts(trim(*t));
+  read.apply({{"sigma0", &s.sigma0}, {"tolfun", &s.tolfun}, {"tolx", &s.tolx}});
+}
+
+OptimizerFactory make_cmaes(const OptimizerSpec& spec) {
+  SettingsReader read("cmaes", spec.settings);
+  auto s = with_budget<CmaesSettings>(spec);
+  read_cmaes(read, s);
+  return factory_of<Cmaes>(read, s);
+}
+
+/// A hybrid's global stage: `global` (ga, the default, or cmaes), then that stage's settings.
+void read_hybrid_global(SettingsReader& read, HybridSettings& s) {
+  if (read.choice("global", {"ga", "cmaes"}) == "cmaes") {
+    s.global = GlobalStage::cmaes;
+    read_cmaes(read, s.cmaes);
+  } else {
+    read_ga(read, s);
+  }
+}
+
 OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
   SettingsReader read("ga-sqp", spec.settings);
   auto s = with_budget<GaSqpSettings>(spec);
-  read_ga(read, s);
+  read_hybrid_global(read, s);
   if (const std::string* t = read.text("constraint"); t && (trim(*t) == "off" || trim(*t) == "none"))
     s.constraint = std::numeric_limits<double>::infinity();
   else
@@ -165,7 +188,7 @@ OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
 OptimizerFactory make_ga_lm(const OptimizerSpec& spec) {
   SettingsReader read("ga-lm", spec.settings);
   auto s = with_budget<GaLmSettings>(spec);
-  read_ga(read, s);
+  read_hybrid_global(read, s);
   read.apply({{"lm_iterations", &s.lm_iterations}, {"fd_step", &s.fd_step}, {"ftol", &s.ftol}, {"xtol", &s.xtol},
               {"gtol", &s.gtol}, {"lambda0", &s.lambda0}, {"geodesic", &s.geodesic},
               {"geodesic_ratio", &s.geodesic_ratio}});
@@ -176,8 +199,9 @@ struct Entry {
   std::string_view name;
   OptimizerFactory (*make)(const OptimizerSpec&);
 };
-constexpr Entry kOptimizers[] = {{"pso", make_pso}, {"ga", make_ga},         {"aga", make_aga},
-                                 {"de", make_de},   {"ga-sqp", make_ga_sqp}, {"ga-lm", make_ga_lm}};
+constexpr Entry kOptimizers[] = {{"pso", make_pso},     {"ga", make_ga},         {"aga", make_aga},
+                                 {"de", make_de},       {"cmaes", make_cmaes},   {"ga-sqp", make_ga_sqp},
+                                 {"ga-lm", make_ga_lm}};
 
 }  // namespace
 

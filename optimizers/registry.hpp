@@ -7,10 +7,12 @@
 //   ga    pc, pm, eta_c, eta_m, tournament, elites, preset (lssvm)               optimizers/ga/ga.hpp
 //   aga   k1, k2, k3, k4, pm_min, eta_c, eta_m, tournament, elites               optimizers/ga/aga.hpp
 //   de    strategy (rand1bin | best1bin | currenttobest1bin), F, CR              optimizers/de/de.hpp
-//   ga-sqp  ga's settings (no preset), constraint (fdsp eq. 11, in the run metric's units; or off),
+//   cmaes restarts (none | ipop | bipop), sigma0, tolfun, tolx                   optimizers/cmaes/cmaes.hpp
+//   ga-sqp  global (ga | cmaes; the population phase), ga's settings (no preset) or with global = cmaes
+//           cmaes's, constraint (fdsp eq. 11, in the run metric's units; or off),
 //           sqp_iterations, fd_step, xtol, ftol                                  optimizers/hybrid/ga_sqp.hpp
-//   ga-lm   ga's settings (no preset), lm_iterations, fd_step, ftol, xtol, gtol, lambda0, geodesic,
-//           geodesic_ratio                                                       optimizers/hybrid/ga_lm.hpp
+//   ga-lm   global (ga | cmaes), ga's settings (no preset) or with global = cmaes cmaes's, lm_iterations,
+//           fd_step, ftol, xtol, gtol, lambda0, geodesic, geodesic_ratio         optimizers/hybrid/ga_lm.hpp
 // Bound narrowing over conditions (mfm §5.1) is a procedure, not an optimizer: narrow_bounds() in
 // optimizers/narrowing/narrowing.hpp, with any of these as its inner optimizer.
 //
@@ -21,11 +23,15 @@
 // explicit settings then override the preset's rates. For ga, aga and de, `iterations` counts
 // generations (the initial population included): every optimizer costs population × iterations
 // evaluations; the hybrids add their local phase's evaluations on top (each header says how many).
+// For cmaes, `population` is the initial λ₀ and the size of every ask (0 = Hansen's default 4 + ⌊3 ln n⌋, n
+// the free parameters) and `iterations` counts asks: population × iterations evaluations, restarts included
+// (restarts = none may stop sooner); a restart's larger λ spans several asks.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "engine/identification/optimizer.hpp"
+#include "optimizers/cmaes/cmaes.hpp"
 #include "optimizers/de/de.hpp"
 #include "optimizers/ga/aga.hpp"
 #include "optimizers/ga/ga.hpp"
@@ -43,12 +49,13 @@ struct OptimizerSpec {
   std::map<std::string, std::string> settings = {};  ///< algorithm settings, e.g. {"pc", "0.6"}, {"preset", "lssvm"}
 };
 
-/// The known optimizer names, in the order of the "known:" lists of messages: pso, ga, aga, de, ga-sqp, ga-lm.
+/// The known optimizer names, in the order of the "known:" lists of messages: pso, ga, aga, de, cmaes, ga-sqp,
+/// ga-lm.
 std::vector<std::string> optimizer_names();
 
 /// Validates the spec and returns a factory that makes one run's optimizer from its bounds and run key.
-/// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de, ga-sqp, ga-lm)"), unknown setting
-/// ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known
+/// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)"),
+/// unknown setting ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known
 /// name (the message names the setting), or settings that the optimizer's validate() rejects.
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec);
 

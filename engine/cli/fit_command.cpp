@@ -31,7 +31,7 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   add_data_options(c, fit.data);
   c->add_option("--metric", fit.metric, metric_names() + " (default of_abs)");
   c->add_option("--optimizer", fit.optimizer,
-                "pso, ga, aga, de, ga-lm, ... (default: ga-lm for models with internal states, else pso)");
+                "pso, ga, aga, de, cmaes, ga-lm, ... (default: ga-lm for models with internal states, else pso)");
   c->add_option("--optimizer-settings", fit.optimizer_settings, "algorithm settings, e.g. pc=0.6,pm=0.03 or variant=constriction");
   c->add_option("--pop", fit.population, "population size (default 24 for ga-lm on internal states, else 50)");
   c->add_option("--iters", fit.iterations, "iterations (default 30 for ga-lm on internal states, else 100)");

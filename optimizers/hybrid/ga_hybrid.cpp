@@ -4,42 +4,38 @@
 
 namespace dampbench {
 
-UnitBox::UnitBox(const Bounds& bounds) : lower_(bounds.lower), upper_(bounds.upper) {
-  for (int j = 0; j < bounds.dim(); ++j)
-    if (lower_[j] < upper_[j]) free_.push_back(j);
+namespace {
+
+/// The cmaes settings of a hybrid with its population and generations.
+CmaesSettings cmaes_of(const HybridSettings& s) {
+  CmaesSettings c = s.cmaes;
+  c.population = s.population;
+  c.generations = s.generations;
+  return c;
 }
 
-std::vector<double> UnitBox::to_unit(std::span<const double> x) const {
-  std::vector<double> y(free_.size());
-  for (std::size_t i = 0; i < free_.size(); ++i) {
-    const int j = free_[i];
-    y[i] = std::clamp((x[j] - lower_[j]) / (upper_[j] - lower_[j]), 0.0, 1.0);
-  }
-  return y;
+std::unique_ptr<Optimizer> make_global(const HybridSettings& s, const Bounds& bounds, std::uint64_t run_key) {
+  if (s.global == GlobalStage::ga) return std::make_unique<Ga>(s, bounds, run_key);
+  return std::make_unique<Cmaes>(cmaes_of(s), bounds, run_key);
 }
 
-void UnitBox::to_params(std::span<const double> y, std::span<double> x) const {
-  for (int j = 0; j < dim(); ++j) x[j] = lower_[j];
-  for (std::size_t i = 0; i < free_.size(); ++i) {
-    const int j = free_[i];
-    x[j] = std::clamp(lower_[j] + y[i] * (upper_[j] - lower_[j]), lower_[j], upper_[j]);
-  }
+}  // namespace
+
+void HybridSettings::validate_global() const {
+  if (global == GlobalStage::cmaes) cmaes_of(*this).validate();
 }
 
-std::vector<double> UnitBox::to_params(std::span<const double> y) const {
-  std::vector<double> x(lower_.size());
-  to_params(y, x);
-  return x;
-}
+GaHybrid::GaHybrid(const HybridSettings& settings, const Bounds& bounds, std::uint64_t run_key)
+    : bounds_(bounds), global_(make_global(settings, bounds, run_key)) {}
 
 void GaHybrid::finish_refine(const BestSeen& seen) {
   refined_ = true;
-  if (seen.value < ga_.best_value()) {
+  if (seen.value < global_->best_value()) {
     value_ = seen.value;
     position_ = seen.position;
   } else {
-    value_ = ga_.best_value();
-    position_.assign(ga_.best_position().begin(), ga_.best_position().end());
+    value_ = global_->best_value();
+    position_.assign(global_->best_position().begin(), global_->best_position().end());
   }
 }
 

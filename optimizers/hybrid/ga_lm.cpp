@@ -13,6 +13,7 @@ namespace dampbench {
 
 void GaLmSettings::validate() const {
   GeneticSettings::validate("ga-lm");
+  validate_global();
   if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga-lm: pc must be in [0, 1], got {}", pc));
   if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga-lm: pm must be in [0, 1], got {}", *pm));
   if (lm_iterations < 1) throw InputError(fmt::format("ga-lm: lm_iterations must be at least 1, got {}", lm_iterations));
@@ -48,7 +49,7 @@ void GaLm::refine(const LocalProblem& problem) {
   const UnitBox box(bounds_);
   const int m = box.free_dim();
   BestSeen seen;
-  if (!std::isfinite(ga_.best_value()) || m == 0) {
+  if (!std::isfinite(global().best_value()) || m == 0) {
     report_.status = m == 0 ? "no free parameters" : "GA found no finite value";
     finish_refine(seen);
     return;
@@ -66,7 +67,7 @@ void GaLm::refine(const LocalProblem& problem) {
     return std::isfinite(s) ? s : std::numeric_limits<double>::infinity();
   };
 
-  const std::vector<double> start = box.to_unit(ga_.best_position());
+  const std::vector<double> start = box.to_unit(global().best_position());
   Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(start.data(), m);
   Eigen::VectorXd r;
   double S = cost_at(y, r);

@@ -47,7 +47,7 @@
 
 namespace dampbench {
 
-struct GaLmSettings : GaSettings {
+struct GaLmSettings : HybridSettings {
   /// Jacobians at most. 400: on the UTFSM records LM creeps along the Spencer and magic-formula valleys, and
   /// 100 left 5 Spencer and 10 magic-formula groups of the utfsm preset short of LM's own convergence test
   /// (runs 0.02-0.2 % apart); 400 ends every Spencer group at it, with values 0-0.06 % lower, for a few %

@@ -14,6 +14,7 @@ namespace dampbench {
 
 void GaSqpSettings::validate() const {
   GeneticSettings::validate("ga-sqp");
+  validate_global();
   if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga-sqp: pc must be in [0, 1], got {}", pc));
   if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga-sqp: pm must be in [0, 1], got {}", *pm));
   if (!(constraint > 0)) throw InputError(fmt::format("ga-sqp: constraint must be a number > 0 or off, got {}", constraint));
@@ -156,10 +157,10 @@ GaSqp::GaSqp(const GaSqpSettings& settings, const Bounds& bounds, std::uint64_t 
 
 void GaSqp::refine(const LocalProblem& problem) {
   report_ = {};
-  report_.start_value = ga_.best_value();
+  report_.start_value = global().best_value();
   const UnitBox box(bounds_);
   BestSeen none;
-  if (!std::isfinite(ga_.best_value()) || box.free_dim() == 0) {
+  if (!std::isfinite(global().best_value()) || box.free_dim() == 0) {
     report_.status = box.free_dim() == 0 ? "no free parameters" : "GA found no finite value";
     finish_refine(none);
     report_.end_value = best_value();
@@ -167,7 +168,7 @@ void GaSqp::refine(const LocalProblem& problem) {
     return;
   }
   const int m = box.free_dim();
-  SqpContext c(problem, box, settings_.fd_step, 1e6 * (1 + std::abs(ga_.best_value())), settings_.constraint);
+  SqpContext c(problem, box, settings_.fd_step, 1e6 * (1 + std::abs(global().best_value())), settings_.constraint);
   const std::unique_ptr<nlopt_opt_s, void (*)(nlopt_opt)> opt(nlopt_create(NLOPT_LD_SLSQP, static_cast<unsigned>(m)),
                                                              nlopt_destroy);
   c.opt = opt.get();
@@ -180,7 +181,7 @@ void GaSqp::refine(const LocalProblem& problem) {
   nlopt_set_xtol_abs1(c.opt, settings_.xtol);
   nlopt_set_ftol_rel(c.opt, settings_.ftol);
 
-  std::vector<double> y = box.to_unit(ga_.best_position());
+  std::vector<double> y = box.to_unit(global().best_position());
   double f_end = 0;
   const nlopt_result result = nlopt_optimize(c.opt, y.data(), &f_end);
   if (c.error) std::rethrow_exception(c.error);

@@ -44,7 +44,7 @@
 
 namespace dampbench {
 
-struct GaSqpSettings : GaSettings {
+struct GaSqpSettings : HybridSettings {
   double constraint = 4;    ///< fdsp eq. 11 threshold, in the run metric's units (+inf: no constraint)
   int sqp_iterations = 100; ///< SLSQP function calls at most (NLopt maxeval)
   double fd_step = 1e-7;    ///< forward-difference step, fraction of each parameter's box width

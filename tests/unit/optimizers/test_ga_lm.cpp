@@ -37,6 +37,36 @@ TEST(GaLm, PopulationPhaseIsTheGa) {
   testing::expect_same_run(testing::factory_of<GaLm>(s), testing::factory_of<Ga>(static_cast<const GaSettings&>(s)));
 }
 
+// With global = cmaes the population phase is the cmaes run of the hybrid's population, iterations and cmaes
+// settings, bit for bit, and LM then refines its best; the ga's settings are then unknown keys.
+TEST(GaLm, CmaesAsTheGlobalStage) {
+  GaLmSettings s = settings(8, 6);
+  s.global = GlobalStage::cmaes;
+  s.cmaes.restarts = CmaesRestarts::bipop;
+  s.cmaes.sigma0 = 0.2;
+  CmaesSettings c = s.cmaes;
+  c.population = 8;
+  c.generations = 6;
+  testing::expect_same_run(testing::factory_of<GaLm>(s), testing::factory_of<Cmaes>(c));
+  const OptimizerFactory by_name =
+      make_optimizer_factory({"ga-lm", 8, 6, {{"global", "cmaes"}, {"restarts", "bipop"}, {"sigma0", "0.2"}}});
+  testing::expect_same_run(by_name, testing::factory_of<Cmaes>(c));
+
+  const FunctionProblem problem(testing::rosenbrock_residuals, testing::box(4, -2.048, 2.048));
+  const auto h = run_hybrid(s, problem, 1);
+  EXPECT_GT(h.ga_best, 1e-3);  // 48 CMA-ES evaluations stop well short
+  EXPECT_LT(h.run.best_value, 1e-10);
+  EXPECT_TRUE(h.report.ran);
+
+  EXPECT_EQ(testing::error_of([] { (void)make_optimizer_factory({"ga-lm", 8, 6, {{"global", "cmaes"}, {"pc", "0.5"}}}); }),
+            "ga-lm: unknown setting 'pc' (known: global, restarts, sigma0, tolfun, tolx, lm_iterations, fd_step, "
+            "ftol, xtol, gtol, lambda0, geodesic, geodesic_ratio)");
+  EXPECT_EQ(testing::error_of([] { (void)make_optimizer_factory({"ga-lm", 8, 6, {{"global", "cmaes"}, {"sigma0", "2"}}}); }),
+            "cmaes: sigma0 must be in (0, 1], got 2");
+  EXPECT_EQ(testing::error_of([] { (void)make_optimizer_factory({"ga-lm", 8, 6, {{"global", "pso"}}}); }),
+            "ga-lm: unknown global 'pso' (known: ga, cmaes)");
+}
+
 // ---- least-squares optima --------------------------------------------------------------------------
 
 TEST(GaLm, RosenbrockToTheLeastSquaresOptimumWhereTheGaStops) {

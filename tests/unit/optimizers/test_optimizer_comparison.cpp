@@ -89,7 +89,7 @@ TEST(OptimizerComparison, RejectsBadEntries) {
             "--optimizer 'ga:population=2': ga: population must be at least 4, got 2");
   EXPECT_EQ(error_of([&] { p.compare({"ga:pc=1.5"}); }), "--optimizer 'ga:pc=1.5': ga: pc must be in [0, 1], got 1.5");
   EXPECT_EQ(error_of([&] { p.compare({"sa"}); }),
-            "--optimizer 'sa': unknown optimizer 'sa' (known: pso, ga, aga, de, ga-sqp, ga-lm)");
+            "--optimizer 'sa': unknown optimizer 'sa' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)");
   EXPECT_EQ(error_of([&] { p.compare({"pso:population=8", "pso:population=8"}); }),
             "--optimizer 'pso:population=8' is given twice");
   EXPECT_EQ(error_of([&] { p.compare({}); }), "compare: give at least one --optimizer");

@@ -160,6 +160,20 @@ const std::vector<SuccessCase> kDeBest1bin =
 const std::vector<SuccessCase> kDeCurrentToBest1bin =
     on_grid({{{1e-10, 1e-10, 5e-3}, {1e-10, 7.0, 15.0}, {1e-10, 1.5, 30.0}, {1e-10, 1e-10, 3.0}, {1e-10, 0.3, 0.5}}});
 
+// cmaes, ipop (the default) and bipop; population = λ₀ (N = 30/40/50, L = 100/200/400 asks). Measured over
+// seeds 1–20 and 1001–1020 (18th best of 20 in each block; worst run), the same for both restart schemes
+// on this grid (BIPOP's first small run comes after the second large one, which few of these budgets reach):
+//   sphere      1.3e-17 4.5e-17 (7.1e-17);  5.2e-15 3.2e-15 (6.7e-15);  2.1e-14 2.3e-14 (2.6e-14)
+//               (each run ends on tolfun, its values within 1e-12; later runs do not go lower)
+//   Rosenbrock  8.7e-17 2.0e-17 (0.21);  3.1e-15 4.8e-15 (8.1e-15);  2.3e-14 2.2e-14 (3.99, a run in the
+//               local minimum)
+//   Rastrigin   0.14 0.23 (1.0);  1.99 1.99 (2.98);  3.98 2.98 (9.95)
+//   Ackley      2.8e-11 3.0e-11 (2.48);  3.5e-11 3.3e-11 (4.6e-11);  4.3e-11 4.6e-11 (4.8e-11)
+//   Griewank    0.031 0.0099 (0.040);  0.025 0.027 (0.076);  3.2e-14 2.4e-14 (4.1e-8)
+// Targets: about three times the worse 18th best (1.5 times above 1), rounded up.
+const std::vector<SuccessCase> kCmaes =
+    on_grid({{{2e-16, 2e-14, 1e-13}, {3e-16, 2e-14, 1e-13}, {0.7, 3.0, 6.0}, {1e-10, 2e-10, 2e-10}, {0.1, 0.1, 1e-13}}});
+
 // ga-sqp and ga-lm: the population phase is the ga's, bit for bit (their own tests), so only what refine
 // adds, in 2-D on the ga's grid: SLSQP on f with finite-difference gradients; LM on the residuals of the
 // sphere and Rosenbrock (r = x; r = (10 (x_{i+1} − x_i²), 1 − x_i)). Measured over seeds 1–20 and
@@ -169,12 +183,16 @@ const std::vector<SuccessCase> kDeCurrentToBest1bin =
 //   ga-lm   sphere 5.29e-26 1.53e-26 (8.32e-26);  Rosenbrock (L = 200) 4.92e-25 8.53e-25 (1.54e-24)
 // where the ga alone ends near 3e-5, 4e-4, 7e-3 and 0.1. (Griewank, and ga-lm on functions without
 // residuals, gain little; in 5-D and 10-D the same holds, at several times the cost.)
+// ga-lm with global = cmaes (ipop) on the same two cases: 1.25e-23 4.24e-23 (4.97e-23); 3.21e-24 2.02e-24
+// (5.9e-24): LM stops on ftol a little higher than from the GA's end points, at far below either phase alone.
 // Targets: about three times the worse 18th best, rounded up.
 const std::vector<SuccessCase> kGaSqp = {{kSphere, 2, 30, 100, 2e-12, 18, 20},
                                          {kRosenbrock, 2, 30, 200, 5e-8, 18, 20},
                                          {kRastrigin, 2, 30, 100, 4e-10, 18, 20},
                                          {kAckley, 2, 30, 100, 3e-5, 18, 20}};
 const std::vector<SuccessCase> kGaLm = {{kSphere, 2, 30, 100, 2e-25, 18, 20}, {kRosenbrock, 2, 30, 200, 3e-24, 18, 20}};
+const std::vector<SuccessCase> kGaLmCmaes = {{kSphere, 2, 30, 100, 2e-22, 18, 20},
+                                             {kRosenbrock, 2, 30, 200, 1e-23, 18, 20}};
 
 // ---- the optimizers ---------------------------------------------------------------------------------
 
@@ -204,7 +222,10 @@ OptimizerSpec named(const char* name, std::map<std::string, std::string> setting
 // Beside failures, measured (seed 5, N = 30, L = 100), the same beside +inf, NaN and −inf: pso 8.2e-10
 // (inertia), 2.5e-11 (constriction), 8.1e-9 (linear_inertia); ga 5.6e-5; aga 7.2e-5; de 1.9e-14
 // (rand1bin), 0 (best1bin), 1.7e-25 (currenttobest1bin). The hybrids, refine included: corner 7.5 + 0 for
-// both; beside failures 3.6e-13 (ga-sqp) and 4.9e-5 (ga-lm: this function has no residual form).
+// both; beside failures 3.6e-13 (ga-sqp) and 4.9e-5 (ga-lm: this function has no residual form); ga-lm with
+// global = cmaes keeps ga-lm's two tolerances (its cmaes phase alone is within cmaes's). cmaes
+// (ipop and bipop): corner 7.5 + 0 (the boundary transformation reaches a bound exactly); beside failures
+// 2.4e-17.
 // A new optimizer: one line here (its registry name and settings, the two tolerances, its targets above).
 const Entry kOptimizers[] = {
     {"pso", named("pso"), 1e-9, 1e-6, &kPso},
@@ -215,8 +236,11 @@ const Entry kOptimizers[] = {
     {"de_rand1bin", named("de", {{"strategy", "rand1bin"}}), 1e-4, 1e-8, &kDeRand1bin},
     {"de_best1bin", named("de", {{"strategy", "best1bin"}}), 1e-4, 1e-8, &kDeBest1bin},
     {"de_currenttobest1bin", named("de", {{"strategy", "currenttobest1bin"}}), 1e-4, 1e-8, &kDeCurrentToBest1bin},
+    {"cmaes_ipop", named("cmaes"), 1e-12, 1e-15, &kCmaes},
+    {"cmaes_bipop", named("cmaes", {{"restarts", "bipop"}}), 1e-12, 1e-15, &kCmaes},
     {"ga_sqp", named("ga-sqp"), 1e-9, 1e-10, &kGaSqp},
     {"ga_lm", named("ga-lm"), 1e-9, 1e-3, &kGaLm},
+    {"ga_lm_cmaes", named("ga-lm", {{"global", "cmaes"}}), 1e-9, 1e-3, &kGaLmCmaes},
 };
 
 std::string label_of(const ::testing::TestParamInfo<Entry>& info) { return info.param.label; }
@@ -333,10 +357,10 @@ constexpr const char* kPhiOfFour =
     "pso: the constriction variant needs phi = cognitive + social > 4 (Clerc & Kennedy 2002), got 4";
 /// The hybrids take the ga's settings but its preset, and only their own local-phase settings.
 constexpr const char* kGaSqpUnknownPreset =
-    "ga-sqp: unknown setting 'preset' (known: pc, pm, eta_c, eta_m, tournament, elites, constraint, "
+    "ga-sqp: unknown setting 'preset' (known: global, pc, pm, eta_c, eta_m, tournament, elites, constraint, "
     "sqp_iterations, fd_step, xtol, ftol)";
 constexpr const char* kGaLmUnknownConstraint =
-    "ga-lm: unknown setting 'constraint' (known: pc, pm, eta_c, eta_m, tournament, elites, lm_iterations, "
+    "ga-lm: unknown setting 'constraint' (known: global, pc, pm, eta_c, eta_m, tournament, elites, lm_iterations, "
     "fd_step, ftol, xtol, gtol, lambda0, geodesic, geodesic_ratio)";
 
 // 50 and 100 are each optimizer's default population and iterations. Non-finite numbers never come through
@@ -370,6 +394,15 @@ const Rejection kRejections[] = {
     {"de", 50, 100, "F=2.5", "de: F must be in (0, 2], got 2.5"},
     {"de", 50, 100, "CR=1.2", "de: CR must be in [0, 1], got 1.2"},
     {"de", 50, 100, "F=2,CR=0", "no error"},  // both ends included
+    {"cmaes", 1, 100, "", "cmaes: population must be 0 (the default 4 + floor(3 ln n)) or at least 2, got 1"},
+    {"cmaes", 50, 0, "", "cmaes: iterations must be at least 1, got 0"},
+    {"cmaes", 50, 100, "restarts=sometimes", "cmaes: unknown restarts 'sometimes' (known: none, ipop, bipop)"},
+    {"cmaes", 50, 100, "sigma0=0", "cmaes: sigma0 must be in (0, 1], got 0"},
+    {"cmaes", 50, 100, "sigma0=1.5", "cmaes: sigma0 must be in (0, 1], got 1.5"},
+    {"cmaes", 50, 100, "tolfun=-1", "cmaes: tolfun must be a finite number >= 0, got -1"},
+    {"cmaes", 50, 100, "tolx=-1e-3", "cmaes: tolx must be a finite number >= 0, got -0.001"},
+    {"cmaes", 50, 100, "lambda=10", "cmaes: unknown setting 'lambda' (known: restarts, sigma0, tolfun, tolx)"},
+    {"cmaes", 0, 100, "restarts=none,sigma0=1,tolx=0", "no error"},
     {"ga-sqp", 3, 10, "", "ga-sqp: population must be at least 4, got 3"},
     {"ga-sqp", 20, 10, "pc=1.5", "ga-sqp: pc must be in [0, 1], got 1.5"},
     {"ga-sqp", 20, 10, "pm=-0.1", "ga-sqp: pm must be in [0, 1], got -0.1"},

@@ -37,7 +37,7 @@ OptimizerFactory make_de(int population, int iterations) { return make_optimizer
 // ---- names ------------------------------------------------------------------------------------------
 
 TEST(OptimizerRegistry, ListsEveryOptimizer) {
-  EXPECT_EQ(optimizer_names(), (std::vector<std::string>{"pso", "ga", "aga", "de", "ga-sqp", "ga-lm"}));
+  EXPECT_EQ(optimizer_names(), (std::vector<std::string>{"pso", "ga", "aga", "de", "cmaes", "ga-sqp", "ga-lm"}));
 }
 
 TEST(OptimizerRegistry, EveryNameConstructsAndRuns) {
@@ -65,9 +65,9 @@ TEST(OptimizerRegistry, DefaultSpecIsTheFvdPaperPso) {
 }
 
 TEST(OptimizerRegistry, RejectsUnknownNames) {
-  EXPECT_EQ(spec_error({"sa", 50, 100}), "unknown optimizer 'sa' (known: pso, ga, aga, de, ga-sqp, ga-lm)");
-  EXPECT_EQ(spec_error({"GA", 50, 100}), "unknown optimizer 'GA' (known: pso, ga, aga, de, ga-sqp, ga-lm)");
-  EXPECT_EQ(spec_error({"", 50, 100}), "unknown optimizer '' (known: pso, ga, aga, de, ga-sqp, ga-lm)");
+  EXPECT_EQ(spec_error({"sa", 50, 100}), "unknown optimizer 'sa' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)");
+  EXPECT_EQ(spec_error({"GA", 50, 100}), "unknown optimizer 'GA' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)");
+  EXPECT_EQ(spec_error({"", 50, 100}), "unknown optimizer '' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)");
 }
 
 TEST(OptimizerRegistry, ValidatesPopulationAndIterations) {

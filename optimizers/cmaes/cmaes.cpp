@@ -1,0 +1,144 @@
+#include "optimizers/cmaes/cmaes.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "optimizers/cmaes/bound_transform.hpp"
+
+namespace dampbench {
+
+CmaesRestarts parse_cmaes_restarts(std::string_view name) {
+  if (name == "none") return CmaesRestarts::none;
+  if (name == "ipop") return CmaesRestarts::ipop;
+  if (name == "bipop") return CmaesRestarts::bipop;
+  throw InputError(fmt::format("cmaes: unknown restarts '{}' (known: none, ipop, bipop)", name));
+}
+
+std::string_view cmaes_restarts_name(CmaesRestarts restarts) {
+  switch (restarts) {
+    case CmaesRestarts::none: return "none";
+    case CmaesRestarts::ipop: return "ipop";
+    case CmaesRestarts::bipop: return "bipop";
+  }
+  return "?";
+}
+
+void CmaesSettings::validate() const {
+  if (population != 0 && population < 2)
+    throw InputError(fmt::format(
+        "cmaes: population must be 0 (the default 4 + floor(3 ln n)) or at least 2, got {}", population));
+  if (generations < 1) throw InputError(fmt::format("cmaes: iterations must be at least 1, got {}", generations));
+  if (!(sigma0 > 0 && sigma0 <= 1)) throw InputError(fmt::format("cmaes: sigma0 must be in (0, 1], got {}", sigma0));
+  if (!(tolfun >= 0) || !std::isfinite(tolfun))
+    throw InputError(fmt::format("cmaes: tolfun must be a finite number >= 0, got {}", tolfun));
+  if (!(tolx >= 0) || !std::isfinite(tolx))
+    throw InputError(fmt::format("cmaes: tolx must be a finite number >= 0, got {}", tolx));
+}
+
+namespace {
+
+/// Hansen's default population 4 + ⌊3 ln n⌋.
+int default_population(int n) { return 4 + static_cast<int>(std::floor(3 * std::log(static_cast<double>(n)))); }
+
+}  // namespace
+
+Cmaes::Cmaes(const CmaesSettings& settings, const Bounds& bounds, std::uint64_t run_key)
+    : settings_(validated(settings)), box_(bounds), run_key_(run_key), dim_(bounds.dim()),
+      n_(std::max(1, box_.free_dim())),
+      batch_(settings.population > 0 ? settings.population : default_population(n_)) {
+  if (static_cast<int>(bounds.start.size()) == dim_) start_ = bounds.start;
+  best_position_.resize(static_cast<std::size_t>(dim_));
+  start_run();
+  std::vector<double> y(static_cast<std::size_t>(n_));
+  for (int i = 0; i < n_; ++i) y[i] = to_phenotype(strategy_->mean()[i]);
+  box_.to_params(y, best_position_);  // the first mean, until a value is told
+}
+
+Eigen::VectorXd Cmaes::initial_mean(RandomStream& rng) const {
+  std::vector<double> y(static_cast<std::size_t>(n_));
+  for (double& v : y) v = rng.uniform();  // drawn also when start_ replaces them: later draws keep their place
+  if (runs_.empty() && !start_.empty()) {
+    const std::vector<double> unit = box_.to_unit(start_);
+    std::copy(unit.begin(), unit.end(), y.begin());
+  }
+  Eigen::VectorXd g(n_);
+  for (int i = 0; i < n_; ++i) g[i] = to_genotype(y[i]);
+  return g;
+}
+
+void Cmaes::start_run() {
+  const auto r = static_cast<std::uint64_t>(runs_.size());
+  RandomStream rng(hash_key({run_key_, r, 0}));
+  const Eigen::VectorXd mean = initial_mean(rng);
+  // λ never needs to exceed the whole budget: a generation larger than it is never completed.
+  const auto capped = [&](double lambda) {
+    const double asks = std::min(std::ceil(lambda / batch_), static_cast<double>(settings_.generations));
+    return batch_ * static_cast<int>(asks);
+  };
+  const double lambda_large = batch_ * std::pow(2.0, large_runs_);
+  CmaesRun run{capped(lambda_large), settings_.sigma0, true, 0, {}};
+  CmaTolerances tol{settings_.tolfun, settings_.tolx, 0};
+  if (settings_.restarts == CmaesRestarts::bipop && r > 0 && small_evaluations_ < large_evaluations_) {
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    run = {capped(std::floor(batch_ * std::pow(0.5 * lambda_large / batch_, u1 * u1))),
+           settings_.sigma0 * std::pow(10.0, -2 * u2), false, 0, {}};
+    for (auto it = runs_.rbegin(); it != runs_.rend(); ++it)
+      if (it->large) {
+        tol.max_evaluations = std::max(1LL, it->evaluations / 2);
+        break;
+      }
+  } else {
+    ++large_runs_;
+  }
+  runs_.push_back(run);
+  strategy_.emplace(mean, run.sigma0, run.lambda, tol);
+  values_.assign(static_cast<std::size_t>(run.lambda), 0.0);
+  told_ = 0;
+}
+
+void Cmaes::ask(CandidateBatch& batch, int first) {
+  if (told_ == 0) {
+    const auto r = static_cast<std::uint64_t>(runs_.size() - 1);
+    strategy_->sample(hash_key({run_key_, r, static_cast<std::uint64_t>(strategy_->generation() + 1)}), samples_);
+  }
+  asked_.resize(static_cast<std::size_t>(batch_) * dim_);
+  std::vector<double> y(static_cast<std::size_t>(n_));
+  for (int i = 0; i < batch_; ++i) {
+    for (int j = 0; j < n_; ++j) y[j] = to_phenotype(samples_(j, told_ + i));
+    const std::span<double> x(asked_.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_));
+    box_.to_params(y, x);
+    for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x[j];
+  }
+}
+
+void Cmaes::tell(std::span<const double> values) {
+  assert(static_cast<int>(values.size()) == batch_);
+  for (int i = 0; i < batch_; ++i) {
+    values_[static_cast<std::size_t>(told_ + i)] = values[i];
+    if (std::isfinite(values[i]) && values[i] < best_value_) {
+      best_value_ = values[i];
+      std::copy_n(asked_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, best_position_.begin());
+    }
+  }
+  told_ += batch_;
+  ++asks_;
+  if (told_ == strategy_->lambda()) end_generation();
+}
+
+void Cmaes::end_generation() {
+  strategy_->update(samples_, values_);
+  told_ = 0;
+  CmaesRun& run = runs_.back();
+  run.evaluations += run.lambda;
+  if (strategy_->stop().empty()) return;
+  run.stop = strategy_->stop();
+  if (runs_.size() > 1) (run.large ? large_evaluations_ : small_evaluations_) += run.evaluations;
+  if (settings_.restarts == CmaesRestarts::none) ended_ = true;
+  else start_run();
+}
+
+}  // namespace dampbench
