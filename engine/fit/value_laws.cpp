@@ -133,7 +133,7 @@ Fitted fit_over_scales(const ValueLaw& law, const std::vector<double>& I, const 
 }  // namespace
 
 std::string ValueLaw::text() const {
-  const char* shapes[] = {"", "poly(I,1)", "hill(I,2)", "sat(I)"};
+  const char* shapes[] = {"", "mono(I,0,1)", "hill(I,2)", "sat(I)"};
   const std::string f = shapes[static_cast<int>(current)];
   if (setting.empty()) return f.empty() ? "free" : f;
   const std::string g = power_factor(*this) ? "power(vamp)" : fmt::format("poly({},1)", setting);

@@ -4,8 +4,10 @@
 // variable:
 //   F(I) · G,  F ∈ {a, a + b·I, a + b·I²/(h² + I²), a + b·(1 − e^(−I/h))},
 //              G ∈ {1, q0 + q1·amp, q0 + q1·freq, k·vamp^p + c}
-// written in the law grammar (engine/model/parameter_law.hpp) as free, poly(I,1), hill(I,2), sat(I),
+// written in the law grammar (engine/model/parameter_law.hpp) as free, mono(I,0,1), hill(I,2), sat(I),
 // poly(amp,1), prod(hill(I,2),poly(freq,1)), prod(sat(I),power(vamp)), ... b ≥ 0 keeps F non-decreasing in I.
+// The linear shape is mono(I,0,1) (a + d·I over 0–1 A) rather than poly(I,1): its rise is bounded by twice the
+// parameter's range, poly's slope by 2/3 of it, which a viscous coefficient rising fivefold over 1 A exceeds.
 // A law in a setting variable has at most three coefficients (six settings would otherwise become a lookup
 // table); the power law in the velocity amplitude follows an MR damper's viscous coefficients, which fall
 // roughly as 1/vamp across tests whose post-yield force hardly changes (parameter_law.hpp).

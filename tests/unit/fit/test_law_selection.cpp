@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -46,7 +47,7 @@ TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
 TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
   // c0 = (500 + 2000·I)·0.05/vamp: a post-yield force that does not grow with velocity
   const ValueLaw law{ValueLaw::Shape::linear, "vamp"};
-  EXPECT_EQ(law.text(), "prod(poly(I,1),power(vamp))");
+  EXPECT_EQ(law.text(), "prod(mono(I,0,1),power(vamp))");
   EXPECT_EQ(law.coefficients(), 5);
   std::vector<std::map<std::string, double>> vars;
   std::vector<double> y;
@@ -66,6 +67,27 @@ TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.01 * y[i]);
   // a linear factor in the same variable misses the 1/vamp curve by far more
   EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss + 1);
+}
+
+TEST(ValueLaws, EachFamilysCoefficientsMeanTheSameInTheLawGrammar) {
+  // a law model evaluates the law text with the fitted coefficients: both must give the same parameter values
+  std::vector<std::map<std::string, double>> vars;
+  std::vector<double> y;
+  for (auto [amp, freq] : {std::pair{0.025, 0.1}, {0.01, 1.0}, {0.002, 5.0}})
+    for (double I : {0.0, 0.5, 1.0}) {
+      vars.push_back({{"I", I}, {"amp", amp}, {"freq", freq}, {"vamp", 2 * std::numbers::pi * amp * freq}});
+      y.push_back((100 + 900 * I / (0.3 + I)) * (1 + 0.2 * freq + 0.01 / vars.back().at("vamp")));
+    }
+  for (const ValueLaw& law : value_law_candidates()) {
+    const ValueFit fit = fit_value_law(law, vars, y);
+    const ParameterLaw parsed = parse_law(law.text(), "test");
+    ASSERT_EQ(static_cast<int>(fit.coefficients.size()), law.coefficients()) << law.text();
+    ASSERT_EQ(static_cast<int>(parsed.coefficient_names("p").size()), law.coefficients()) << law.text();
+    for (const auto& v : vars) {
+      const double expected = fit.predict(law, v);
+      EXPECT_NEAR(parsed.evaluate(fit.coefficients.data(), v), expected, 1e-9 * std::fabs(expected)) << law.text();
+    }
+  }
 }
 
 TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) {
@@ -107,7 +129,7 @@ TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
   ResolvedModel fitted;
   LawSelection selection;
   const FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
-  EXPECT_EQ(selection.laws, "f_c=hill(I,2);c0=poly(I,1)");
+  EXPECT_EQ(selection.laws, "f_c=hill(I,2);c0=mono(I,0,1)");
   EXPECT_LT(selection.score, 0.1 * selection.shared_score);
   const auto& c = outcome.best().best_params;
   ASSERT_EQ(c.size(), 6u);  // f_c: a, b, h; c0: two; f0
