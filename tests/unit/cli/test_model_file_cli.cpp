@@ -182,7 +182,7 @@ TEST(ModelFileCli, FitPrintsWhereEachOperatingVariableComesFrom) {
                     csv.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("Operating variables (source):\n- 10mm1Hz0x5A: I = 0.5 (file name), amp = 0.01 (file name), "
-                          "freq = 1.25 (--set), w = "),
+                          "freq = 1.25 (--set), vamp = 0.0785398 (2π·amp·freq), w = "),  // 2π·0.01·1.25
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find(" (record estimate (fdsp eq. 15))\n"), std::string::npos) << r.output;

@@ -231,7 +231,7 @@ TEST(MonotoneLaws, BadInputIsReported) {
             "--laws c1: expected hill(VAR) or hill(VAR,P), got 'hill(I,2,3)'");
   EXPECT_EQ(error_of([] { parse_law("sat(I,1)", "--laws c1"); }), "--laws c1: expected sat(VAR), got 'sat(I,1)'");
   EXPECT_EQ(error_of([] { parse_law("tanh(T)", "--laws c1"); }),
-            "--laws c1: unknown operating variable 'T' (known: I, V, phi, amp, freq, w)");
+            "--laws c1: unknown operating variable 'T' (known: I, V, phi, amp, freq, w, vamp)");
   EXPECT_EQ(error_of([] { parse_law("mono(I,0,1,0.5)", "--laws c1"); }),
             "--laws c1: mono knots must be strictly increasing (no repeats), got 0.5 after 1 in 'mono(I,0,1,0.5)'");
   EXPECT_EQ(error_of([] { parse_law("mono(I,0,0.5,0.5)", "--laws c1"); }),

@@ -56,7 +56,7 @@ TEST(ParameterLaw, ParsesLists) {
 
 TEST(ParameterLaw, BadLawsAreReported) {
   EXPECT_EQ(error_of([] { parse_law("poly(T,1)", "--laws c0"); }),
-            "--laws c0: unknown operating variable 'T' (known: I, V, phi, amp, freq, w)");
+            "--laws c0: unknown operating variable 'T' (known: I, V, phi, amp, freq, w, vamp)");
   EXPECT_EQ(error_of([] { parse_law("poly(I,1.5)", "--laws c0"); }),
             "--laws c0: polynomial degree must be a whole number from 0 to 6, got '1.5'");
   EXPECT_EQ(error_of([] { parse_law("spline(I)", "--laws c0"); }),

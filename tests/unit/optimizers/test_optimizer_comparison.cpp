@@ -256,7 +256,10 @@ std::filesystem::path temp_dir() {
 
 std::string record_file() {
   static const std::string path = [] {
-    const auto file = std::filesystem::temp_directory_path() / "dampbench_compare_record.csv";
+    // named by the test that writes it: ctest runs the tests of this file in parallel processes
+    const auto file = std::filesystem::temp_directory_path() /
+                      (std::string("dampbench_compare_record_") +
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv");
     std::ofstream out(file);
     out << "t,x,v,a,F\n";
     const Signals& d = problem().data;
