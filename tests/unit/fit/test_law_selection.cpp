@@ -114,11 +114,9 @@ Signals bingham_record(double amp, double freq, double current) {
   return prepare_signals(d);
 }
 
-TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
-  std::vector<Signals> records;
-  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
-    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) records.push_back(bingham_record(amp, freq, I));
-  const OptimizerFactory factory = make_optimizer_factory({"ga-lm", 24, 30});
+/// The search of a Bingham law model on `records` with ga-lm 24 × 30, two runs, nrmse.
+LawSearch bingham_search(const std::vector<Signals>& records) {
+  static const OptimizerFactory factory = make_optimizer_factory({"ga-lm", 24, 30});
   LawSearch search;
   search.base = &find_model("mrd.bingham");
   for (const auto& r : records) search.records.push_back(&r);
@@ -126,6 +124,14 @@ TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
   search.optimizer_name = "ga-lm";
   search.settings.runs = 2;
   search.settings.metric = Metric::nrmse;
+  return search;
+}
+
+TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
+  std::vector<Signals> records;
+  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) records.push_back(bingham_record(amp, freq, I));
+  const LawSearch search = bingham_search(records);
   ResolvedModel fitted;
   LawSelection selection;
   const FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
@@ -174,14 +180,7 @@ TEST(RecordStart, FitsEachLawToValuesItWasGeneratedFrom) {
 TEST(RecordStart, LawsFittedToEachRecordsOwnFitStartAtTheTrueCoefficients) {
   std::vector<Signals> records;
   for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) records.push_back(bingham_record(0.01, 1.0, I));
-  const OptimizerFactory factory = make_optimizer_factory({"ga-lm", 24, 30});
-  LawSearch search;
-  search.base = &find_model("mrd.bingham");
-  for (const auto& r : records) search.records.push_back(&r);
-  search.optimizer = &factory;
-  search.optimizer_name = "ga-lm";
-  search.settings.runs = 2;
-  search.settings.metric = Metric::nrmse;
+  const LawSearch search = bingham_search(records);
   ModelChoice choice;
   choice.model = "mrd.bingham";
   choice.laws = "f_c=hill(I,2);c0=poly(I,1)";
