@@ -27,7 +27,7 @@ struct Scoring {
   std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
   Metric metric;
   /// Law fits by (fold, parameter, law): a coordinate step changes one parameter's law, the others' fits stay.
-  mutable std::map<std::tuple<std::size_t, int, std::string>, ValueFit> fits_made;
+  mutable std::map<std::tuple<std::size_t, int, std::string>, ValueFit> fits_made = {};
 
   const ValueFit& law_fit(std::size_t fold, int j, const ValueLaw& law) const {
     const auto key = std::make_tuple(fold, j, law.text());

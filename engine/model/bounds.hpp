@@ -11,8 +11,9 @@ namespace dampbench {
 struct Bounds {
   std::vector<double> lower, upper;
   /// A known good point, or empty: population optimizers make it the first member of their initial population
-  /// (optimizers/population.hpp), so a search refines what an earlier stage found (`fit --laws auto`).
-  std::vector<double> start;
+  /// (optimizers/population.hpp), so a search refines what an earlier stage found (`fit --laws auto`,
+  /// `fit --start per-file`). Defaulted, so that brace-initialized boxes may leave it out.
+  std::vector<double> start = {};
   [[nodiscard]] int dim() const { return static_cast<int>(lower.size()); }
 };
 
