@@ -107,7 +107,7 @@ struct HeldOutPlan {
   /// `--laws auto` and `--start per-file`: each --data record's own fit (LawSearch::record_fits), made by the fit on
   /// all of them and reused by the folds.
   std::map<const Signals*, std::vector<double>> record_fits;
-  /// Told one line per step of a `--laws auto` fold (law_selection.hpp LawSearch::progress); may be empty.
+  /// Told one line per step of a `--laws auto` or `--start per-file` fold (LawSearch::progress); may be empty.
   std::function<void(const std::string&)> progress;
 };
 

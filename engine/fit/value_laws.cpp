@@ -171,7 +171,6 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
     if (law.current != ValueLaw::Shape::constant) I[i] = variable(variables[i], "I");
     if (!law.setting.empty()) v[i] = variable(variables[i], law.setting);
   }
-  double exponent = 1;  // power(vamp)'s p
   Fitted best;
   if (!power_factor(law)) {
     best = fit_over_scales(law, I, v, values);
@@ -183,13 +182,12 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
       f.p = p;
       return f;
     });
-    exponent = best.p;
   }
   ValueFit out;
   out.rss = best.rss;
   if (law.current == ValueLaw::Shape::constant) {
     if (law.setting.empty()) out.coefficients = {best.a};
-    else if (power_factor(law)) out.coefficients = {best.a * best.k, exponent, best.a * best.c};
+    else if (power_factor(law)) out.coefficients = {best.a * best.k, best.p, best.a * best.c};
     else out.coefficients = {best.a, best.a * best.k};
     return out;
   }
@@ -200,12 +198,12 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
   if (power_factor(law)) {
     double log_sum = 0;
     for (double x : v) log_sum += std::log(x);
-    const double at_mean = best.c + best.k * std::pow(std::exp(log_sum / static_cast<double>(n)), exponent);
+    const double at_mean = best.c + best.k * std::pow(std::exp(log_sum / static_cast<double>(n)), best.p);
     if (at_mean > 0 && std::max(std::fabs(best.c), std::fabs(best.k)) / at_mean <= 1) scale = at_mean;
   }
   out.coefficients = {best.a * scale, best.b * scale};
   if (has_scale(law.current)) out.coefficients.push_back(best.h);
-  if (power_factor(law)) out.coefficients.insert(out.coefficients.end(), {best.k / scale, exponent, best.c / scale});
+  if (power_factor(law)) out.coefficients.insert(out.coefficients.end(), {best.k / scale, best.p, best.c / scale});
   else if (!law.setting.empty()) out.coefficients.insert(out.coefficients.end(), {1.0, best.k});
   return out;
 }
