@@ -36,6 +36,14 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--pop", fit.population, "population size (default 24 for ga-lm on internal states, else 50)");
   c->add_option("--iters", fit.iterations, "iterations (default 30 for ga-lm on internal states, else 100)");
   c->add_option("--runs", fit.runs, "independent runs (default 4 for internal states, else 50)");
+  c->add_option("--budget", fit.budget,
+                "auto (default unless --pop, --iters or --runs is given: restart the runs with a doubled population "
+                "until they converge) or fixed");
+  c->add_option("--max-evals", fit.max_evaluations,
+                "cap of the automatic budget, in evaluations over every run and restart (default 64 x the first "
+                "round's runs x pop x iters)");
+  c->add_option("--max-seconds", fit.max_seconds,
+                "wall-clock cap of the automatic budget (a fit it stops is not reproducible bit for bit)");
   c->add_option("--seed", fit.seed, "seed (default 1)");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--start", fit.start,
@@ -162,6 +170,20 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
           {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
 }
 
+/// What to do about a fit that did not converge, by what stopped it.
+std::string not_converged_advice(const FitOutcome& fit) {
+  if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
+  if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
+  return ": do not trust this fit; raise --max-evals";
+}
+
+nlohmann::ordered_json budget_json(const FitOutcome& fit) {
+  if (!fit.auto_budget) return {{"kind", "fixed"}};
+  const AutoBudgetReport& b = *fit.auto_budget;
+  return {{"kind", "auto"}, {"rounds", b.populations.size()}, {"populations", b.populations},
+          {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop}};
+}
+
 void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t,
                 const LawSelection* selection, const std::optional<HeldOut>& held_out) {
   const Model& model = *p.model.model;
@@ -187,6 +209,7 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["runs"] = {{"count", s.count}, {"best", json_number(s.min)}, {"worst", json_number(s.max)},
                {"mean", json_number(s.mean)}, {"std", json_number(s.std)}};
   j["convergence"] = convergence_json(fit.convergence);
+  j["budget"] = budget_json(fit);
   // Best-so-far history of every run: [evaluations, value] where it improved, and at its end.
   nlohmann::ordered_json history = nlohmann::ordered_json::array();
   for (const RunResult& r : fit.identification.runs) {
@@ -216,7 +239,8 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
                            100 * c.median_above_best_rel, 100 * c.worst_above_best_rel, 100 * c.late_gain_rel,
                            100 * rule.late_fraction,
                            c.best_at_local_optimum ? ", in its local stage, which ended at its optimum" : "",
-                           c.converged ? "" : ": do not trust this fit; raise --runs, --pop or --iters");
+                           c.converged ? "" : not_converged_advice(fit));
+  if (fit.auto_budget) std::cout << "Budget: " << fit.auto_budget->summary() << "\n";
   const Identification& id = fit.identification;
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", t.evaluations,
                            p.records.samples(), id.wall_time_s, id.candidate_samples / id.wall_time_s);

@@ -24,7 +24,13 @@ FitOutcome run_fit(const FitRequest& request) {
       throw InputError(fmt::format("fit: a start point of {} values for {} parameters", request.start.size(), model.dim()));
     out.bounds.start = request.start;
   }
-  out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
+  if (request.auto_budget) {
+    out.auto_budget.emplace();
+    out.identification = identify_until_converged(model, request.records, out.bounds, *request.auto_budget,
+                                                  request.settings, *out.auto_budget);
+  } else {
+    out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
+  }
   out.convergence = assess_convergence(out.identification);
   const RunResult& best = out.best();
   if (request.assess_failed_fit || std::isfinite(best.best_value))

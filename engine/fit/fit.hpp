@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/fit/auto_budget.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/identification/convergence.hpp"
 #include "engine/identification/identifiability.hpp"
@@ -29,6 +30,9 @@ struct FitRequest {
   bool assess_failed_fit = false;
   /// A start point for the search (Bounds::start), in the model's parameter order; empty: none.
   std::vector<double> start;
+  /// Restarts until the runs converge (auto_budget.hpp), its optimizer the one `optimizer` makes; absent: the
+  /// fixed budget of `optimizer` and `settings`.
+  std::optional<AutoBudget> auto_budget;
 };
 
 struct FitOutcome {
@@ -36,6 +40,7 @@ struct FitOutcome {
   Identification identification;
   Convergence convergence;                        ///< the verdict on the runs (convergence.hpp)
   std::optional<Identifiability> identifiability; ///< at the best run's parameters
+  std::optional<AutoBudgetReport> auto_budget;    ///< what the restarts did, with an automatic budget
 
   [[nodiscard]] const RunResult& best() const { return identification.runs[identification.best_run()]; }
 };

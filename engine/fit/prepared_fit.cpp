@@ -17,8 +17,31 @@ FitRequest PreparedFit::request() const {
   r.settings.metric = metric;
   r.settings.task_key = task_key(model.model->id(), records.names, plan.optimizer);
   r.assess_failed_fit = true;
+  r.auto_budget = auto_budget;
   return r;
 }
+
+namespace {
+
+/// The automatic budget the spec asks for (FitSpec::budget), or none; InputError for a cap it cannot have.
+std::optional<AutoBudget> auto_budget_of(const FitSpec& spec, const OptimizerSpec& optimizer) {
+  if (!spec.budget.empty() && spec.budget != "auto" && spec.budget != "fixed")
+    throw InputError(fmt::format("--budget: expected auto or fixed, got '{}'", spec.budget));
+  const bool fixed_given = spec.population || spec.iterations || spec.runs;
+  const bool automatic = spec.budget == "auto" || (spec.budget.empty() && !fixed_given);
+  if (!automatic && (spec.max_evaluations || spec.max_seconds))
+    throw InputError(fmt::format("--max-evals and --max-seconds cap the automatic budget, and this fit's budget is "
+                                 "fixed ({}): add --budget auto, or drop the caps",
+                                 spec.budget == "fixed" ? "--budget fixed" : "--pop, --iters or --runs given"));
+  if (spec.max_evaluations && *spec.max_evaluations < 1)
+    throw InputError(fmt::format("--max-evals: expected a whole number >= 1, got {}", *spec.max_evaluations));
+  if (spec.max_seconds && !(*spec.max_seconds > 0))
+    throw InputError(fmt::format("--max-seconds: expected a number > 0, got {}", *spec.max_seconds));
+  if (!automatic) return std::nullopt;
+  return AutoBudget{optimizer, spec.max_evaluations.value_or(0), spec.max_seconds.value_or(0)};
+}
+
+}  // namespace
 
 PreparedFit prepare_fit(const FitSpec& spec) {
   PreparedFit p;
@@ -43,6 +66,14 @@ PreparedFit prepare_fit(const FitSpec& spec) {
   for (const auto& [key, value] : parse_key_values(spec.optimizer_settings, "--optimizer-settings"))
     p.optimizer.settings[key] = value;
   p.factory = make_optimizer_factory(p.optimizer);
+  p.auto_budget = auto_budget_of(spec, p.optimizer);
+  if (p.auto_budget)
+    p.plan.why += fmt::format("{}automatic budget: the runs restart with a doubled population until they converge, "
+                              "within {} evaluations (--max-evals; --budget fixed or --pop, --iters, --runs for a "
+                              "fixed budget)",
+                              p.plan.why.empty() ? "" : "; ",
+                              p.auto_budget->max_evaluations > 0 ? fmt::format("{}", p.auto_budget->max_evaluations)
+                                                                 : std::string("64 × the first round's"));
   if (spec.paths.empty()) throw InputError("fit: give at least one --data FILE");
   p.records = load_fit_records(model, spec.paths, spec.data);
   p.seed = spec.seed;

@@ -24,6 +24,11 @@ struct FitSpec {
   std::optional<std::string> optimizer;  ///< not given: by the model's class (fit_defaults.hpp)
   std::string optimizer_settings;        ///< "pc=0.6,pm=0.03" or "preset=lssvm" (optimizers/registry.hpp)
   std::optional<int> population, iterations, runs;
+  /// "auto", "fixed", or "" for the default: auto, unless population, iterations or runs is given (then those,
+  /// with the class defaults for the others, are a fixed budget). Auto with some of them given starts from them.
+  std::string budget;
+  std::optional<long long> max_evaluations;  ///< the automatic budget's cap (auto_budget.hpp)
+  std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
   std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
 };
@@ -38,6 +43,7 @@ struct PreparedFit {
   FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults
   OptimizerSpec optimizer;  ///< the plan's with the settings given
   OptimizerFactory factory;
+  std::optional<AutoBudget> auto_budget;  ///< the restarts (auto_budget.hpp); absent: the plan is a fixed budget
   FitRecords records;
   std::uint64_t seed = 1;
 

@@ -68,6 +68,9 @@ struct OptimizerEntry {
   OptimizerSpec spec;
   Budget budget;      ///< max_evaluations, target, stall_iterations (no wall-time rule: it is not reproducible)
   int runs = 0;       ///< runs per task group (0: the part's runs)
+  /// Restarts until the runs converge (engine/fit/auto_budget.hpp): `budget = "auto"`, or no budget key given.
+  bool auto_budget = false;
+  long long max_total_evaluations = 0;  ///< the automatic budget's cap (0: its default)
 };
 
 /// One condition: every listed variable takes one of its values and the dataset name is one of `names`

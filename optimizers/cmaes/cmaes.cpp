@@ -39,17 +39,14 @@ void CmaesSettings::validate() const {
     throw InputError(fmt::format("cmaes: tolx must be a finite number >= 0, got {}", tolx));
 }
 
-namespace {
-
-/// Hansen's default population 4 + ⌊3 ln n⌋.
-int default_population(int n) { return 4 + static_cast<int>(std::floor(3 * std::log(static_cast<double>(n)))); }
-
-}  // namespace
+int cmaes_default_population(int free_parameters) {
+  return 4 + static_cast<int>(std::floor(3 * std::log(static_cast<double>(std::max(1, free_parameters)))));
+}
 
 Cmaes::Cmaes(const CmaesSettings& settings, const Bounds& bounds, std::uint64_t run_key)
     : settings_(validated(settings)), box_(bounds), run_key_(run_key), dim_(bounds.dim()),
       n_(std::max(1, box_.free_dim())),
-      batch_(settings.population > 0 ? settings.population : default_population(n_)) {
+      batch_(settings.population > 0 ? settings.population : cmaes_default_population(n_)) {
   if (static_cast<int>(bounds.start.size()) == dim_) start_ = bounds.start;
   best_position_.resize(static_cast<std::size_t>(dim_));
   start_run();

@@ -49,6 +49,9 @@ enum class CmaesRestarts { none, ipop, bipop };
 CmaesRestarts parse_cmaes_restarts(std::string_view name);
 std::string_view cmaes_restarts_name(CmaesRestarts restarts);
 
+/// Hansen's default population λ₀ = 4 + ⌊3 ln n⌋ for n free parameters (Hansen 2016, Table 1).
+int cmaes_default_population(int free_parameters);
+
 struct CmaesSettings {
   int population = 0;     ///< λ₀ and the size of every ask; 0 = 4 + ⌊3 ln n⌋ (Hansen 2016, Table 1)
   int generations = 100;  ///< asks; the budget is population × generations evaluations, restarts included

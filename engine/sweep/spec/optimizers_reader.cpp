@@ -15,9 +15,27 @@ std::string setting_text(const Reader& r, const toml::node& v, const std::string
   r.fail(&v, key, "expected a string, number or boolean");
 }
 
-OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::string& key) {
+/// `budget`: "auto" or "fixed"; by default auto when the entry sets none of the budget's keys (as `fit` does).
+void read_budget_kind(const Reader& r, const toml::table& t, const std::string& key, int part_runs, OptimizerEntry& o) {
+  const bool fixed_given = t.contains("population") || t.contains("iterations") || t.contains("max_evaluations") ||
+                           t.contains("target") || t.contains("stall_iterations");
+  const auto kind = r.string(t, "budget", key);
+  if (kind && *kind != "auto" && *kind != "fixed")
+    r.fail(t.get("budget"), Reader::join(key, "budget"), fmt::format("expected \"auto\" or \"fixed\", got '{}'", *kind));
+  o.auto_budget = kind ? *kind == "auto" : !fixed_given;
+  o.max_total_evaluations = r.integer(t, "max_total_evaluations", key, 0, 1);
+  if (t.contains("max_total_evaluations") && !o.auto_budget)
+    r.fail(t.get("max_total_evaluations"), Reader::join(key, "max_total_evaluations"),
+           "caps the automatic budget, and this entry's budget is fixed (it sets population, iterations or a stopping "
+           "rule, or budget = \"fixed\"): add budget = \"auto\" or drop it");
+  if (o.auto_budget && (o.runs > 0 ? o.runs : part_runs) < 2)
+    r.fail(&t, key, "the automatic budget (no population, iterations or stopping rule given) needs runs >= 2, "
+                    "since one run cannot show that runs agree: set runs, or budget = \"fixed\"");
+}
+
+OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::string& key, int part_runs) {
   r.only_keys(t, key, {"label", "name", "population", "iterations", "runs", "settings", "max_evaluations", "target",
-                       "stall_iterations"});
+                       "stall_iterations", "budget", "max_total_evaluations"});
   OptimizerEntry o;
   o.spec.name = r.string(t, "name", key).value_or("pso");
   o.label = r.string(t, "label", key).value_or(o.spec.name);
@@ -27,6 +45,7 @@ OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::
   o.budget.max_evaluations = r.integer(t, "max_evaluations", key, 0, 0);
   o.budget.stall_iterations = static_cast<int>(r.integer(t, "stall_iterations", key, 0, 0));
   if (auto target = r.number(t, "target", key)) o.budget.target = *target;
+  read_budget_kind(r, t, key, part_runs, o);
   if (const toml::node* s = t.get("settings")) {
     if (!s->is_table()) r.fail(s, Reader::join(key, "settings"), "expected a table of settings, e.g. { pc = 0.6 }");
     for (const auto& [k, v] : *s->as_table())
@@ -44,20 +63,24 @@ void read_optimizers(const Reader& r, const toml::table& root, PartSpec& part) {
   if (one && many) r.fail(many, "optimizers", "give either [optimizer] or [[optimizers]], not both");
   if (one) {
     if (!one->is_table()) r.fail(one, "optimizer", "expected a table [optimizer]");
-    part.optimizers.push_back(read_optimizer(r, *one->as_table(), "optimizer"));
+    part.optimizers.push_back(read_optimizer(r, *one->as_table(), "optimizer", part.runs));
   } else if (many) {
     if (!many->is_array_of_tables() || many->as_array()->empty())
       r.fail(many, "optimizers", "expected one or more [[optimizers]] tables");
     const auto& a = *many->as_array();
     for (std::size_t i = 0; i < a.size(); ++i) {
       const std::string key = fmt::format("optimizers[{}]", i);
-      OptimizerEntry o = read_optimizer(r, *a.get(i)->as_table(), key);
+      OptimizerEntry o = read_optimizer(r, *a.get(i)->as_table(), key, part.runs);
       if (part.optimizer_index(o.label) >= 0)
         r.fail(a.get(i), key, fmt::format("optimizer label '{}' is used twice (give each a 'label')", o.label));
       part.optimizers.push_back(std::move(o));
     }
   } else {
-    part.optimizers.push_back(OptimizerEntry{"pso", OptimizerSpec{}, Budget{}, 0});
+    if (part.runs < 2)
+      r.fail(root.get("runs"), "runs",
+             "the default optimizer (pso with the automatic budget) needs runs >= 2, since one run cannot show that "
+             "runs agree: set runs, or give an [optimizer] with a population");
+    part.optimizers.push_back(OptimizerEntry{"pso", OptimizerSpec{}, Budget{}, 0, true, 0});
   }
   const toml::node* models = root.get("models");
   for (std::size_t i = 0; i < part.models.size(); ++i)

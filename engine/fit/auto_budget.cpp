@@ -1,0 +1,145 @@
+#include "engine/fit/auto_budget.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
+#include "engine/common/random.hpp"
+#include "engine/identification/convergence.hpp"
+#include "optimizers/cmaes/cmaes.hpp"
+
+namespace dampbench {
+
+std::string AutoBudgetReport::summary() const {
+  std::string sizes;
+  for (int p : populations) sizes += fmt::format("{}{}", sizes.empty() ? "" : ", ", p);
+  const std::string why = stop == "converged" ? "converged"
+                          : stop == "time cap" ? "stopped by the time cap (not reproducible bit for bit)"
+                                               : "stopped at the cap before converging";
+  return fmt::format("{} round{} (population {}), {} of {} evaluations: {}", populations.size(),
+                     populations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
+}
+
+long long default_cap(int runs, int population, int iterations) {
+  return 64LL * runs * population * iterations;
+}
+
+int round_population(const OptimizerSpec& optimizer, int free_parameters, int round) {
+  if (optimizer.population == 0 && round == 0) return 0;
+  const int base = optimizer.population > 0 ? optimizer.population : cmaes_default_population(free_parameters);
+  return base << round;
+}
+
+namespace {
+
+/// The chain's best-so-far: its history's last value, or a better best from a local phase after it.
+double chain_best(const RunResult& chain) {
+  const double last = chain.trace.empty() ? std::numeric_limits<double>::infinity() : chain.trace.back();
+  return std::isnan(chain.best_value) ? last : std::min(last, chain.best_value);
+}
+
+/// Makes the chain's history end where the chain ends, so that a local phase's gain after its last population
+/// iteration is not lost when the next round's history is appended (convergence.cpp's improvement_points).
+void close_history(RunResult& chain) {
+  const double best = chain_best(chain);
+  if (chain.trace.empty() || best < chain.trace.back() || chain.trace_evaluations.back() != chain.evaluations) {
+    chain.trace.push_back(best);
+    chain.trace_evaluations.push_back(chain.evaluations);
+  }
+}
+
+void append_run(RunResult& chain, const RunResult& next) {
+  close_history(chain);
+  const double before = chain_best(chain);
+  const long long offset = chain.evaluations;
+  for (std::size_t i = 0; i < next.trace.size(); ++i) {
+    chain.trace.push_back(std::min(before, next.trace[i]));
+    chain.trace_evaluations.push_back(offset + next.trace_evaluations[i]);
+  }
+  chain.evaluations += next.evaluations;
+  chain.wall_time_s += next.wall_time_s;
+  chain.stop_reason = next.stop_reason;
+  const bool better = std::isnan(chain.best_value) ? !std::isnan(next.best_value) : next.best_value < chain.best_value;
+  if (better) {
+    chain.best_params = next.best_params;
+    chain.best_value = next.best_value;
+    chain.best_metrics = next.best_metrics;
+    chain.at_local_optimum = next.at_local_optimum;
+  }
+}
+
+int free_parameters(const Bounds& bounds) {
+  int n = 0;
+  for (int i = 0; i < bounds.dim(); ++i) n += bounds.lower[i] < bounds.upper[i];
+  return n;
+}
+
+/// The smaller of a rule's limit and `limit`, where 0 switches the rule off.
+template <class T>
+T tighter(T rule, T limit) {
+  return rule > 0 ? std::min(rule, limit) : limit;
+}
+
+}  // namespace
+
+void append_round(Identification& chains, const Identification& round) {
+  if (chains.runs.empty()) {
+    chains = round;
+    return;
+  }
+  if (chains.runs.size() != round.runs.size())
+    throw std::logic_error(fmt::format("append_round: {} chains, {} runs", chains.runs.size(), round.runs.size()));
+  chains.wall_time_s += round.wall_time_s;
+  chains.candidate_samples += round.candidate_samples;
+  for (std::size_t r = 0; r < round.runs.size(); ++r) append_run(chains.runs[r], round.runs[r]);
+}
+
+Identification identify_until_converged(const Model& model, const std::vector<const Signals*>& data,
+                                        const Bounds& bounds, const AutoBudget& budget,
+                                        const IdentificationSettings& settings, AutoBudgetReport& report) {
+  const int runs = settings.runs;
+  if (runs < 2)
+    throw InputError(fmt::format("the automatic budget needs at least 2 runs (one run cannot show that runs agree), "
+                                 "got {}",
+                                 runs));
+  const int free = free_parameters(bounds);
+  const int population = round_population(budget.optimizer, free, 0) > 0 ? budget.optimizer.population
+                                                                           : cmaes_default_population(free);
+  const long long nominal = static_cast<long long>(runs) * population * budget.optimizer.iterations;
+  report = {};
+  report.cap = budget.max_evaluations > 0 ? budget.max_evaluations : default_cap(runs, population,
+                                                                                 budget.optimizer.iterations);
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  Identification chains;
+  for (int k = 0;; ++k) {
+    OptimizerSpec spec = budget.optimizer;
+    spec.population = round_population(budget.optimizer, free, k);
+    IdentificationSettings s = settings;
+    if (k > 0) s.task_key = hash_key({settings.task_key, static_cast<std::uint64_t>(k)});
+    if (k == 0 && nominal > report.cap)  // a starved cap cuts round 0's runs to their share of it
+      s.budget.max_evaluations = tighter(s.budget.max_evaluations, std::max<long long>(1, report.cap / runs));
+    if (budget.max_seconds > 0) s.budget.max_wall_time_s = tighter(s.budget.max_wall_time_s, budget.max_seconds - elapsed());
+    const Identification round = identify(model, data, bounds, make_optimizer_factory(spec), s);
+    long long spent = 0;
+    bool timed_out = false;
+    for (const RunResult& r : round.runs) {
+      spent += r.evaluations;
+      timed_out = timed_out || r.stop_reason == "wall_time";
+    }
+    report.evaluations += spent;
+    report.populations.push_back(spec.population > 0 ? spec.population : population);
+    append_round(chains, round);
+    if (assess_convergence(chains).converged) report.stop = "converged";
+    else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
+    else if (spent == 0 || report.evaluations + 2 * spent > report.cap) report.stop = "cap";
+    if (!report.stop.empty()) return chains;
+  }
+}
+
+}  // namespace dampbench

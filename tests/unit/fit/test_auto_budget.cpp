@@ -1,0 +1,220 @@
+// The automatic budget (engine/fit/auto_budget.hpp): chains of restarts judged by the convergence verdict, a cap
+// that is flagged when it starves the fit, round 0 equal to the fixed budget, and fit's rules for when it applies.
+#include "engine/fit/auto_budget.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <tbb/global_control.h>
+
+#include "engine/common/error.hpp"
+#include "engine/fit/prepared_fit.hpp"
+#include "engine/identification/convergence.hpp"
+#include "models/registry.hpp"
+#include "engine/record/signals.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+RunResult run_of(double best, std::vector<double> trace, std::vector<long long> at, long long evaluations,
+                 std::vector<double> params) {
+  RunResult r;
+  r.best_value = best;
+  r.trace = std::move(trace);
+  r.trace_evaluations = std::move(at);
+  r.evaluations = evaluations;
+  r.best_params = std::move(params);
+  r.stop_reason = "iterations";
+  return r;
+}
+
+// Hand-made rounds: the chain's history continues where it ended (evaluations offset by what it had spent,
+// values never above its best so far), a local phase's gain at the end of a round is kept as a point, and the
+// chain's best is the better round's.
+TEST(AutoBudget, AppendRoundChainsEachRunsHistory) {
+  Identification chains, round0, round1;
+  // Run 0: population phase to 5 at 100 evaluations, then a local phase to 4 at 130.
+  round0.runs.push_back(run_of(4.0, {9, 5}, {50, 100}, 130, {1.0}));
+  round0.runs.push_back(run_of(3.0, {6, 3}, {50, 100}, 100, {2.0}));
+  round1.runs.push_back(run_of(2.0, {7, 2}, {100, 200}, 200, {3.0}));  // better than round 0
+  round1.runs.push_back(run_of(8.0, {9, 8}, {100, 200}, 200, {4.0}));  // worse than round 0
+  round0.wall_time_s = 1.5;
+  round1.wall_time_s = 2.5;
+  append_round(chains, round0);
+  append_round(chains, round1);
+  ASSERT_EQ(chains.runs.size(), 2u);
+  const RunResult& a = chains.runs[0];
+  EXPECT_EQ(a.trace, (std::vector<double>{9, 5, 4, 4, 2}));
+  EXPECT_EQ(a.trace_evaluations, (std::vector<long long>{50, 100, 130, 230, 330}));
+  EXPECT_EQ(a.evaluations, 330);
+  EXPECT_EQ(a.best_value, 2.0);
+  EXPECT_EQ(a.best_params, std::vector<double>{3.0});
+  const RunResult& b = chains.runs[1];
+  EXPECT_EQ(b.trace, (std::vector<double>{6, 3, 3, 3}));
+  EXPECT_EQ(b.trace_evaluations, (std::vector<long long>{50, 100, 200, 300}));
+  EXPECT_EQ(b.best_value, 3.0);
+  EXPECT_EQ(b.best_params, std::vector<double>{2.0});
+  EXPECT_DOUBLE_EQ(chains.wall_time_s, 4.0);
+}
+
+TEST(AutoBudget, RoundPopulationsDouble) {
+  EXPECT_EQ(round_population({"ga", 50, 100}, 6, 0), 50);
+  EXPECT_EQ(round_population({"ga", 50, 100}, 6, 3), 400);
+  // cmaes's default λ₀ stays 0 in round 0 (the fixed budget's bits), then 4 + ⌊3 ln 6⌋ = 9 doubled.
+  EXPECT_EQ(round_population({"cmaes", 0, 100}, 6, 0), 0);
+  EXPECT_EQ(round_population({"cmaes", 0, 100}, 6, 2), 36);
+  EXPECT_EQ(default_cap(4, 50, 100), 64LL * 4 * 50 * 100);
+}
+
+/// The noisy Kwok rotary-damper record of the optimizer tests: 6 parameters, 0.5 % noise.
+struct KwokProblem {
+  const Model& model = find_model("crfd.kwok");
+  Signals data;
+  KwokProblem() {
+    Dataset d = testing::two_sine_record(300, 250.0);
+    d.F_N = model.simulate(std::vector<double>{3.0, 25.0, 0.5, 6.0, 0.8, 0.011}, prepare_signals(d));
+    testing::add_force_noise(d, 0.005, 13);
+    data = prepare_signals(d);
+  }
+  IdentificationSettings settings(int runs) const {
+    IdentificationSettings s;
+    s.runs = runs;
+    s.seed = 3;
+    s.metric = Metric::rmse;
+    s.task_key = task_key("crfd.kwok", "two_sine", "ga");
+    return s;
+  }
+  Identification run(const AutoBudget& budget, int runs, AutoBudgetReport& report) const {
+    return identify_until_converged(model, {&data}, default_bounds(model), budget, settings(runs), report);
+  }
+};
+
+// GA at its defaults (50 × 100) does not converge on this record in 10 runs:
+// restarts with larger populations make its runs agree within the default cap, and the report says so; a cap too
+// small for round 0 cuts it and is flagged. (A GA of 15 generations never converges this way, whatever its
+// population: its runs are still improving at their end, which only more generations cure.)
+TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
+  const KwokProblem p;
+  const OptimizerSpec ga{"ga", 50, 100};
+  const Identification fixed =
+      identify(p.model, {&p.data}, default_bounds(p.model), make_optimizer_factory(ga), p.settings(10));
+  ASSERT_FALSE(assess_convergence(fixed).converged) << "the fixed budget converges: the case tests nothing";
+
+  AutoBudgetReport generous;
+  const Identification chains = p.run({ga, 0, 0}, 10, generous);
+  EXPECT_EQ(generous.stop, "converged") << generous.summary();
+  EXPECT_TRUE(assess_convergence(chains).converged);
+  EXPECT_GT(generous.populations.size(), 1u);
+  EXPECT_EQ(generous.populations[1], 100);
+  EXPECT_LE(generous.evaluations, generous.cap);
+  long long spent = 0;
+  for (const RunResult& r : chains.runs) spent += r.evaluations;
+  EXPECT_EQ(spent, generous.evaluations);
+  EXPECT_LE(chains.runs[chains.best_run()].best_value, fixed.runs[fixed.best_run()].best_value);
+
+  AutoBudgetReport starved;
+  const Identification cut = p.run({ga, 300, 0}, 10, starved);
+  EXPECT_EQ(starved.stop, "cap");
+  EXPECT_EQ(starved.populations.size(), 1u);
+  // Each run stops at the end of the iteration (50 evaluations) that reaches its share of 30.
+  EXPECT_EQ(starved.evaluations, 10 * 50);
+  EXPECT_FALSE(assess_convergence(cut).converged);
+  EXPECT_NE(starved.summary().find("stopped at the cap before converging"), std::string::npos) << starved.summary();
+}
+
+// Round 0 is the fixed budget: when it converges, the automatic budget stops there with the same bits.
+TEST(AutoBudget, RoundZeroIsTheFixedBudget) {
+  const KwokProblem p;
+  const OptimizerSpec de{"de", 30, 100};
+  const Identification fixed =
+      identify(p.model, {&p.data}, default_bounds(p.model), make_optimizer_factory(de), p.settings(4));
+  ASSERT_TRUE(assess_convergence(fixed).converged) << "de at 30 x 100 does not converge: the case tests nothing";
+  AutoBudgetReport report;
+  const Identification chains = p.run({de, 0, 0}, 4, report);
+  EXPECT_EQ(report.populations, std::vector<int>{30});
+  for (std::size_t r = 0; r < chains.runs.size(); ++r) {
+    EXPECT_EQ(chains.runs[r].best_value, fixed.runs[r].best_value);
+    EXPECT_EQ(chains.runs[r].best_params, fixed.runs[r].best_params);
+  }
+}
+
+// Same bits on one and two threads, through every round.
+TEST(AutoBudget, SameBitsForAnyThreadCount) {
+  const KwokProblem p;
+  const AutoBudget budget{{"ga", 10, 15}, 0, 0};
+  AutoBudgetReport one, two;
+  Identification a, b;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    a = p.run(budget, 6, one);
+  }
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
+    b = p.run(budget, 6, two);
+  }
+  EXPECT_EQ(one.populations, two.populations);
+  ASSERT_EQ(a.runs.size(), b.runs.size());
+  for (std::size_t r = 0; r < a.runs.size(); ++r) {
+    EXPECT_EQ(a.runs[r].best_params, b.runs[r].best_params);
+    EXPECT_EQ(a.runs[r].trace, b.runs[r].trace);
+  }
+}
+
+TEST(AutoBudget, OneRunIsRefused) {
+  const KwokProblem p;
+  AutoBudgetReport report;
+  const std::string e = testing::error_of([&] { p.run({{"ga", 10, 15}, 0, 0}, 1, report); });
+  EXPECT_NE(e.find("at least 2 runs"), std::string::npos) << e;
+}
+
+// fit's rules: auto unless --pop, --iters or --runs is given; --budget says which explicitly; the caps belong to
+// the automatic budget only.
+TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
+  const auto dir = testing::test_temp_dir("auto_budget");
+  const std::string path = (dir / "r.csv").string();
+  {
+    std::ofstream f(path);
+    f << "t,x,v,F\n";
+    for (int i = 0; i < 50; ++i) f << i * 0.01 << "," << std::sin(i * 0.1) << "," << std::cos(i * 0.1) << "," << i << "\n";
+  }
+  const auto spec = [&](auto&& edit) {
+    FitSpec s;
+    s.model.model = "fvd.linear_viscous";
+    s.model.option_prefix = "--";
+    s.paths = {path};
+    edit(s);
+    return s;
+  };
+  EXPECT_TRUE(prepare_fit(spec([](FitSpec&) {})).auto_budget.has_value());
+  EXPECT_FALSE(prepare_fit(spec([](FitSpec& s) { s.population = 20; })).auto_budget.has_value());
+  EXPECT_FALSE(prepare_fit(spec([](FitSpec& s) { s.runs = 5; })).auto_budget.has_value());
+  EXPECT_FALSE(prepare_fit(spec([](FitSpec& s) { s.budget = "fixed"; })).auto_budget.has_value());
+  const PreparedFit with_pop = prepare_fit(spec([](FitSpec& s) {
+    s.budget = "auto";
+    s.population = 20;
+    s.max_evaluations = 12345;
+  }));
+  ASSERT_TRUE(with_pop.auto_budget.has_value());
+  EXPECT_EQ(with_pop.auto_budget->optimizer.population, 20);
+  EXPECT_EQ(with_pop.auto_budget->max_evaluations, 12345);
+  EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.budget = "some"; })); })
+                .find("--budget: expected auto or fixed, got 'some'"),
+            std::string::npos);
+  EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) {
+              s.iterations = 10;
+              s.max_evaluations = 1000;
+            })); }).find("add --budget auto"),
+            std::string::npos);
+  EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.max_evaluations = 0; })); })
+                .find("--max-evals: expected a whole number >= 1, got 0"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dampbench
