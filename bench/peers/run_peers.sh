@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Peer comparison, side by side in one run: dampbench vs scipy's vectorized differential_evolution
-# and vs pagmo2 (de, sga, pso_gen), on the same data, metric (of_abs), default bounds and budget
+# and vs pagmo2 (de, sga, pso_gen, cmaes), on the same data, metric (of_abs), default bounds and budget
 # (population × generations × runs). Prints the table and writes it as Markdown (bench/peers/README.md).
 #
 # usage: bench/peers/run_peers.sh            (from anywhere; root needed only if packages must be installed)
@@ -17,6 +17,9 @@
 #   LOAD_WAIT [180]     the cores, for at most LOAD_WAIT s (then measure anyway; load and share are reported)
 #   START_WAIT [900]    the same wait, once, before the first measurement
 #   PROBLEMS ["fvd bw"] OUT [bench/peers/results/peers.md]
+#   PEER_ALGOS ["de ga pso cmaes"]  dampbench optimizers to compare (spaces or commas), each against its peers:
+#                       de: scipy differential_evolution and pagmo2 de; ga: pagmo2 sga; pso: pagmo2 pso_gen;
+#                       cmaes: pagmo2 cmaes. PEER_ALGOS=cmaes measures only the CMA-ES pair.
 #   SKIP_BUILD=1        measure the dampbench binary already in BUILD_DIR
 #   NATIVE=1            dampbench built with -DDAMPBENCH_NATIVE=ON in BUILD_DIR/native and the pagmo2 program
 #                       with -march=native (table: bench/peers/results/peers-native.md)
@@ -34,6 +37,8 @@ SCIPY_BW_RUNS="${SCIPY_BW_RUNS:-5}" THREADS="${THREADS:-2}" REPEAT="${REPEAT:-2}
 BUSY_MAX="${BUSY_MAX:-0.25}" LOAD_WAIT="${LOAD_WAIT:-180}" START_WAIT="${START_WAIT:-900}"
 SHORT_S="${SHORT_S:-30}" REPEAT_SHORT="${REPEAT_SHORT:-5}"
 PROBLEMS="${PROBLEMS:-fvd bw}"
+PEER_ALGOS="${PEER_ALGOS:-de ga pso cmaes}"
+PEER_ALGOS="${PEER_ALGOS//,/ }"
 if [[ "${NATIVE:-0}" == 1 ]]; then OUT="${OUT:-$HERE/results/peers-native.md}"; else OUT="${OUT:-$HERE/results/peers.md}"; fi
 PY=/usr/bin/python3
 F=0.5 CR=0.9
@@ -45,6 +50,12 @@ BW_SINE="amp=0.01,freq=1,cycles=3,fs=500"
 
 log() { echo "[run_peers $(date +%H:%M:%S)] $*" >&2; }
 load1() { cut -d' ' -f1 /proc/loadavg; }
+# pagmo2's counterpart of each dampbench optimizer (scipy joins de); checked before anything is built.
+declare -A PAGMO_ALG=([de]=de [ga]=sga [pso]=pso_gen [cmaes]=cmaes)
+for opt in $PEER_ALGOS; do
+  [[ -n "${PAGMO_ALG[$opt]:-}" ]] || { log "PEER_ALGOS: unknown optimizer '$opt' (known: de ga pso cmaes)"; exit 1; }
+done
+[[ -n "${PEER_ALGOS// /}" ]] || { log "PEER_ALGOS is empty (known: de ga pso cmaes)"; exit 1; }
 
 # ---------------------------------------------------------------- dependencies
 # dampbench's own build dependencies and the peers' packages, installed with apt-get where missing (a fresh
@@ -104,9 +115,14 @@ declare -A DB_DATA=([fvd]="$FVD_RECORD" [bw]="$WORK/bw/bw_sine_10mm_1hz.csv")
 declare -A PEER_DATA=([fvd]="$WORK/fvd/$(basename "$FVD_RECORD")" [bw]="$WORK/bw/bw_sine_10mm_1hz.csv")
 
 # Check that the peers' input is bit-for-bit what dampbench uses: fitting the merged file (same stem, so the
-# same random streams) must give the same results as fitting the record.
+# same random streams) must give the same results as fitting the record. Left out: the paths, the timings and
+# the operating variables, which fit reads from the record's "# operating:" comment and estimates from the
+# signals for the merged file, which has no comments (scipy's reader would take one for its header).
 check_fit() { "$DB" fit --model fvd.gv_linear_elastic --data "$1" --optimizer de --pop 20 --iters 10 --runs 2 \
-  --format json | grep -v -e wall_time -e per_s -e '\.csv'; }
+  --format json | "$PY" -c 'import json,sys
+j = json.load(sys.stdin)
+for k in ("data", "operating", "wall_time_s", "candidate_samples_per_s"): del j[k]
+print(json.dumps(j, indent=1))'; }
 if [[ "$(check_fit "$FVD_RECORD")" != "$(check_fit "${PEER_DATA[fvd]}")" ]]; then
   log "the merged fvd signals differ from what dampbench fit reads"; exit 1
 fi
@@ -218,7 +234,7 @@ if ((START_WAIT > 0)); then
   log "waiting up to $START_WAIT s for a quiet machine (others' CPU share < $BUSY_MAX)"
   LOAD_WAIT=$START_WAIT wait_quiet
 fi
-log "start: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; budget pop $POP × $GENS generations × $RUNS runs"
+log "start: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; budget pop $POP × $GENS generations × $RUNS runs; optimizers: $PEER_ALGOS"
 for prob in $PROBLEMS; do
   lo=$(bounds "${MODEL[$prob]}" lower)
   hi=$(bounds "${MODEL[$prob]}" upper)
@@ -228,15 +244,12 @@ for prob in $PROBLEMS; do
   [[ $prob == bw ]] && scipy_runs=$SCIPY_BW_RUNS
   # Each peer measurement is followed at once by dampbench's timed fits of the matching optimizer, so the
   # two sides of a ratio see the same machine state as far as possible.
-  for opt in de ga pso; do
-    case $opt in
-      de)
-        log "$prob: scipy differential_evolution ($scipy_runs runs)"
-        peer "$PY" "$HERE/scipy_peer.py" "${common[@]}" --F "$F" --CR "$CR" --runs "$scipy_runs"
-        palg=de ;;
-      ga) palg=sga ;;
-      pso) palg=pso_gen ;;
-    esac
+  for opt in $PEER_ALGOS; do
+    if [[ $opt == de ]]; then
+      log "$prob: scipy differential_evolution ($scipy_runs runs)"
+      peer "$PY" "$HERE/scipy_peer.py" "${common[@]}" --F "$F" --CR "$CR" --runs "$scipy_runs"
+    fi
+    palg=${PAGMO_ALG[$opt]}
     log "$prob: pagmo2 $palg ($RUNS runs, $THREADS threads)"
     peer "$PG" "${common[@]}" --F "$F" --CR "$CR" --runs "$RUNS" --threads "$THREADS" --algorithms "$palg"
     log "$prob: dampbench $opt"
@@ -248,12 +261,13 @@ cpu=$(sed -n 's/^model name\s*:\s*//p' /proc/cpuinfo | head -1)
 header="## dampbench vs peers — $(date -u +'%Y-%m-%d %H:%M UTC')
 
 Budget: population $POP × $GENS generations (initial one included) × $RUNS runs (scipy on bw: $SCIPY_BW_RUNS runs); \
-metric of_abs; dampbench default bounds; DE rand/1/bin F = $F, CR = $CR. dampbench $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo "?") \
+metric of_abs; dampbench default bounds; optimizers: $PEER_ALGOS; DE rand/1/bin F = $F, CR = $CR; CMA-ES λ = $POP, σ₀ = 0.3 of each range \
+(dampbench ipop restarts, its default; pagmo2 cmaes without restarts, ftol = xtol = 0, force_bounds). dampbench $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo "?") \
 built Release ($([[ "${NATIVE:-0}" == 1 ]] && echo "DAMPBENCH_NATIVE=ON, -march=native; pagmo2 program -march=native too" || echo "portable x86-64, no -march=native")), --threads $THREADS; pagmo2 $(dpkg-query -W -f='${Version}' libpagmo-dev 2>/dev/null) on $THREADS threads; \
 scipy $("$PY" -c 'import scipy; print(scipy.__version__)'), numpy $("$PY" -c 'import numpy; print(numpy.__version__)'). \
 CPU: $cpu, $(nproc) cores. Candidate-samples/s = evaluations × samples / wall time."
 header+="
-Script settings: RUNS=$RUNS POP=$POP GENS=$GENS SEED=$SEED SCIPY_BW_RUNS=$SCIPY_BW_RUNS THREADS=$THREADS REPEAT=$REPEAT \
+Script settings: RUNS=$RUNS POP=$POP GENS=$GENS SEED=$SEED PEER_ALGOS=\"$PEER_ALGOS\" SCIPY_BW_RUNS=$SCIPY_BW_RUNS THREADS=$THREADS REPEAT=$REPEAT \
 SHORT_S=$SHORT_S REPEAT_SHORT=$REPEAT_SHORT ONE_THREAD=$ONE_THREAD BUSY_MAX=$BUSY_MAX LOAD_WAIT=$LOAD_WAIT START_WAIT=$START_WAIT \
 SKIP_BUILD=${SKIP_BUILD:-0} (dampbench binary built $(date -r "$DB" +'%F %T'))."
 "$PY" "$HERE/make_table.py" "$RESULTS" --out "$OUT" --header "$header" \

@@ -1,5 +1,5 @@
 // pagmo2 peer of dampbench: the problem written as a pagmo user would — a user-defined problem
-// whose fitness() simulates ONE candidate with plain scalar C++ — and pagmo's `de`, `sga` and `pso_gen`.
+// whose fitness() simulates ONE candidate with plain scalar C++ — and pagmo's `de`, `sga`, `pso_gen` and `cmaes`.
 //
 // Problems (same equations, metric and RK4 sub-step rule as dampbench; bench/peers/README.md):
 //   fvd  fvd.gv_linear_elastic  F = m·a + C·sgn(v)|v|^α + K1·x
@@ -8,9 +8,9 @@
 //   metric of_abs: trapezoid ∫|F_m − F|dt / (σ(F_m)·T)
 //
 // Parallelism on the 2 cores (`--threads`, default 2): pagmo 2.18 gives batch fitness evaluation
-// (set_bfe, here thread_bfe) to pso_gen only — de and sga evaluate one candidate at a time inside
-// evolve(). So pso_gen runs its 50 runs one after the other with thread_bfe over the swarm, and de and sga
-// run whole runs on `--threads` worker threads at once (what an archipelago of independent islands does),
+// (set_bfe, here thread_bfe) to pso_gen only — de, sga and cmaes evaluate one candidate at a time inside
+// evolve(). So pso_gen runs its 50 runs one after the other with thread_bfe over the swarm, and de, sga and
+// cmaes run whole runs on `--threads` worker threads at once (what an archipelago of independent islands does),
 // each run's initial population evaluated by that worker. `--parallel bfe|runs` overrides this choice.
 //
 // Output: one JSON object per algorithm on stdout.
@@ -33,6 +33,7 @@
 
 #include <oneapi/tbb/global_control.h>
 #include <pagmo/algorithm.hpp>
+#include <pagmo/algorithms/cmaes.hpp>
 #include <pagmo/algorithms/de.hpp>
 #include <pagmo/algorithms/pso_gen.hpp>
 #include <pagmo/algorithms/sga.hpp>
@@ -187,7 +188,7 @@ std::vector<double> parse_list(const std::string& s) {
 }
 
 struct Options {
-  std::string problem, data, algorithms = "de,sga,pso_gen", parallel;
+  std::string problem, data, algorithms = "de,sga,pso_gen,cmaes", parallel;
   std::vector<double> lower, upper;
   unsigned pop = 50, gens = 100, runs = 50, seed = 1, threads = 2;
   double F = 0.5, CR = 0.9, substeps_per_stroke = 600;
@@ -201,6 +202,13 @@ pagmo::algorithm make_algorithm(const std::string& name, const Options& o, unsig
     return pagmo::algorithm{pagmo::sga(gen, 0.9, 15.0, 1.0 / dim, 20.0, 2u, "sbx", "polynomial", "tournament", seed)};
   if (name == "pso_gen")  // dampbench pso defaults: inertia form w 0.7298, c1 = c2 = 1.49618, vmax 0.5, gbest
     return pagmo::algorithm{pagmo::pso_gen(gen, 0.7298, 1.49618, 1.49618, 0.5, 1u, 1u, 4u, false, seed)};
+  // Classic CMA-ES, λ = --pop, without restarts; learning rates automatic (-1). sigma0 0.3 of every range, as
+  // dampbench's cmaes (pagmo scales its steps by the box widths). ftol = xtol = 0: its only early stops are
+  // "best − worst of the generation < ftol" and "last step's norm < xtol", so it spends the whole budget.
+  // force_bounds clips the samples into the box: otherwise fitness() runs, and the champion may lie, outside
+  // the bounds dampbench keeps. memory has no effect with one evolve() per run.
+  if (name == "cmaes")
+    return pagmo::algorithm{pagmo::cmaes(gen, -1.0, -1.0, -1.0, -1.0, 0.3, 0.0, 0.0, false, true, seed)};
   throw std::runtime_error("unknown algorithm " + name);
 }
 
