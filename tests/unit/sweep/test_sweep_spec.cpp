@@ -114,6 +114,39 @@ TEST_F(SpecErrors, NamesFileLineKeyAndExpectation) {
             std::string::npos);
 }
 
+// The automatic budget: the default of an entry without budget keys, `budget` to say so, its cap only with it,
+// and never with one run.
+TEST_F(SpecErrors, BudgetKindAndCap) {
+  expect(kHead + "[optimizer]\nbudget = \"some\"\n" + kData,
+         x() + ":4: key 'optimizer.budget': expected \"auto\" or \"fixed\", got 'some'");
+  expect(kHead + "[optimizer]\npopulation = 20\nmax_total_evaluations = 1000\n" + kData,
+         x() + ":5: key 'optimizer.max_total_evaluations': caps the automatic budget, and this entry's budget is fixed");
+  expect(kHead + "runs = 1\n[optimizer]\nname = \"de\"\n" + kData,
+         "key 'optimizer': the automatic budget (no population, iterations or stopping rule given) needs runs >= 2");
+  expect(kHead + "runs = 1\n" + kData, x() + ":3: key 'runs': the default optimizer (pso with the automatic budget) "
+                                           "needs runs >= 2");
+  const auto entries = [&](const std::string& optimizers) {
+    write(dir_ / "x.toml", kHead + kData + optimizers);
+    return load_sweep(x()).parts.at(0).optimizers;
+  };
+  const auto e = entries(
+      "[[optimizers]]\nlabel = \"a\"\n"
+      "[[optimizers]]\nlabel = \"b\"\niterations = 20\n"
+      "[[optimizers]]\nlabel = \"c\"\ntarget = 0.1\n"
+      "[[optimizers]]\nlabel = \"d\"\npopulation = 20\nbudget = \"auto\"\nmax_total_evaluations = 5000\n"
+      "[[optimizers]]\nlabel = \"e\"\nbudget = \"fixed\"\n");
+  ASSERT_EQ(e.size(), 5u);
+  EXPECT_TRUE(e[0].auto_budget);
+  EXPECT_FALSE(e[1].auto_budget);
+  EXPECT_FALSE(e[2].auto_budget);
+  EXPECT_TRUE(e[3].auto_budget);
+  EXPECT_EQ(e[3].max_total_evaluations, 5000);
+  EXPECT_EQ(e[3].spec.population, 20);
+  EXPECT_FALSE(e[4].auto_budget);
+  write(dir_ / "x.toml", kHead + kData);
+  EXPECT_TRUE(load_sweep(x()).parts.at(0).optimizers.at(0).auto_budget);
+}
+
 TEST_F(SpecErrors, BoundsAreCheckedBeforeFiles) {
   // Nothing runs until the whole file is valid; a bad bound is reported even when a file is missing too.
   expect(kHead + "[[datasets]]\nname = \"a\"\nfile = \"gone.csv\"\n[bounds]\n\"mrd.bingham\" = \"c0=5:1\"\n",
