@@ -49,10 +49,40 @@ Cmaes::Cmaes(const CmaesSettings& settings, const Bounds& bounds, std::uint64_t 
       batch_(settings.population > 0 ? settings.population : cmaes_default_population(n_)) {
   if (static_cast<int>(bounds.start.size()) == dim_) start_ = bounds.start;
   best_position_.resize(static_cast<std::size_t>(dim_));
-  start_run();
-  std::vector<double> y(static_cast<std::size_t>(n_));
-  for (int i = 0; i < n_; ++i) y[i] = to_phenotype(strategy_->mean()[i]);
-  box_.to_params(y, best_position_);  // the first mean, until a value is told
+  sampling_ = start_.empty();
+  std::vector<double> y(static_cast<std::size_t>(n_), 0.5);
+  if (!sampling_) {
+    start_run();
+    for (int i = 0; i < n_; ++i) y[i] = to_phenotype(strategy_->mean()[i]);
+  }
+  box_.to_params(y, best_position_);  // the first mean (or the box's centre), until a value is told
+}
+
+void Cmaes::ask_uniform_sample(CandidateBatch& batch, int first) {
+  RandomStream rng(hash_key({run_key_, ~std::uint64_t{0}}));
+  sample_unit_.resize(static_cast<std::size_t>(batch_) * n_);
+  for (double& u : sample_unit_) u = rng.uniform();
+  asked_.resize(static_cast<std::size_t>(batch_) * dim_);
+  for (int i = 0; i < batch_; ++i) {
+    const std::span<const double> y(sample_unit_.data() + static_cast<std::size_t>(i) * n_, static_cast<std::size_t>(n_));
+    const std::span<double> x(asked_.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_));
+    box_.to_params(y, x);
+    for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x[j];
+  }
+}
+
+void Cmaes::start_from_sample(std::span<const double> values) {
+  sampling_ = false;
+  int best = -1;
+  for (int i = 0; i < batch_; ++i)
+    if (std::isfinite(values[i]) && (best < 0 || values[i] < values[best])) best = i;
+  if (best < 0) {  // every point failed: the drawn mean is as good a start as any
+    start_run();
+    return;
+  }
+  Eigen::VectorXd mean(n_);
+  for (int j = 0; j < n_; ++j) mean[j] = to_genotype(sample_unit_[static_cast<std::size_t>(best) * n_ + j]);
+  start_run(&mean);
 }
 
 Eigen::VectorXd Cmaes::initial_mean(RandomStream& rng) const {
@@ -67,10 +97,11 @@ Eigen::VectorXd Cmaes::initial_mean(RandomStream& rng) const {
   return g;
 }
 
-void Cmaes::start_run() {
+void Cmaes::start_run(const Eigen::VectorXd* given_mean) {
   const auto r = static_cast<std::uint64_t>(runs_.size());
   RandomStream rng(hash_key({run_key_, r, 0}));
-  const Eigen::VectorXd mean = initial_mean(rng);
+  Eigen::VectorXd mean = initial_mean(rng);  // drawn also when replaced: later draws keep their place
+  if (given_mean) mean = *given_mean;
   // λ never needs to exceed the whole budget: a generation larger than it is never completed.
   const auto capped = [&](double lambda) {
     const double asks = std::min(std::ceil(lambda / batch_), static_cast<double>(settings_.generations));
@@ -98,6 +129,10 @@ void Cmaes::start_run() {
 }
 
 void Cmaes::ask(CandidateBatch& batch, int first) {
+  if (sampling_) {
+    ask_uniform_sample(batch, first);
+    return;
+  }
   if (told_ == 0) {
     const auto r = static_cast<std::uint64_t>(runs_.size() - 1);
     strategy_->sample(hash_key({run_key_, r, static_cast<std::uint64_t>(strategy_->generation() + 1)}), samples_);
@@ -115,14 +150,18 @@ void Cmaes::ask(CandidateBatch& batch, int first) {
 void Cmaes::tell(std::span<const double> values) {
   assert(static_cast<int>(values.size()) == batch_);
   for (int i = 0; i < batch_; ++i) {
-    values_[static_cast<std::size_t>(told_ + i)] = values[i];
+    if (!sampling_) values_[static_cast<std::size_t>(told_ + i)] = values[i];
     if (std::isfinite(values[i]) && values[i] < best_value_) {
       best_value_ = values[i];
       std::copy_n(asked_.begin() + static_cast<std::ptrdiff_t>(i) * dim_, dim_, best_position_.begin());
     }
   }
-  told_ += batch_;
   ++asks_;
+  if (sampling_) {
+    start_from_sample(values);
+    return;
+  }
+  told_ += batch_;
   if (told_ == strategy_->lambda()) end_generation();
 }
 

@@ -16,7 +16,10 @@
 // sigma0 (0.3 of every range by default) and C₀ = I. Bounds: pycma's boundary transformation
 // (optimizers/cmaes/bound_transform.hpp): samples are unbounded genotypes, the candidates asked their images in
 // the box, and the update uses the genotypes. The first run's mean is Bounds::start when given (an earlier
-// stage's point), else a uniform draw in the box; every restart's mean is a uniform draw.
+// stage's point); else the first ask is λ₀ uniform points in the box and the first run starts from the best
+// of them (as pagmo2's cmaes starts from its initial population's best: on wide damper boxes a uniform mean
+// often lies where every nearby candidate fails or the landscape is flat). Every restart's mean is a uniform
+// draw.
 //
 // Batches and budget: every ask is `population` candidates (λ₀; 0 = Hansen's default λ₀ = 4 + ⌊3 ln n⌋ for n
 // free parameters), so the identification's lockstep batch keeps its size across restarts. A generation of
@@ -25,8 +28,9 @@
 // evaluations (restarts included; the last generation may be cut short by the budget, and is then evaluated
 // but not updated), except with restarts = none (fewer when it stops first).
 // Failed candidates (+inf, NaN, −inf) rank behind every finite value and are never the best.
-// Random numbers: run r's draws (r = 0 first) from stream (run_key, r, 0): the mean's n uniforms, then for a
-// small BIPOP run U₁ and U₂; sample k of run r's generation g ≥ 1 from (run_key, r, g, k), n normals.
+// Random numbers: the first ask's uniform points from stream (run_key, 2⁶⁴ − 1); run r's draws (r = 0 first)
+// from stream (run_key, r, 0): the mean's n uniforms, then for a small BIPOP run U₁ and U₂; sample k of run r's
+// generation g ≥ 1 from (run_key, r, g, k), n normals.
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -88,8 +92,11 @@ class Cmaes final : public Optimizer {
   [[nodiscard]] const std::vector<CmaesRun>& runs() const { return runs_; }
 
  private:
-  void start_run();
+  /// Starts the next run of the restart sequence; `mean` (genotype) replaces its drawn mean when given.
+  void start_run(const Eigen::VectorXd* mean = nullptr);
   void end_generation();
+  void ask_uniform_sample(CandidateBatch& batch, int first);
+  void start_from_sample(std::span<const double> values);
   [[nodiscard]] Eigen::VectorXd initial_mean(RandomStream& rng) const;
 
   CmaesSettings settings_;
@@ -99,6 +106,8 @@ class Cmaes final : public Optimizer {
   int dim_, n_, batch_;        ///< parameters, CMA-ES dimension (free parameters, at least 1), ask size
   int asks_ = 0;
   bool ended_ = false;
+  bool sampling_ = false;      ///< the first ask is the uniform sample the first run starts from
+  std::vector<double> sample_unit_;  ///< that sample's points in the unit box, row-major (batch_ × n_)
   std::optional<CmaStrategy> strategy_;
   Eigen::MatrixXd samples_;    ///< the current generation's genotypes (columns)
   std::vector<double> values_, asked_;  ///< the generation's values; the last ask's candidates, row-major

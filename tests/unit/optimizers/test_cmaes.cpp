@@ -168,8 +168,8 @@ TEST(Cmaes, RestartsKeepTheSameBitsForAnyThreadCountAndBatchSplit) {
   for (const char* restarts : {"ipop", "bipop"}) {
     SCOPED_TRACE(restarts);
     const OptimizerFactory make =
-        make_optimizer_factory({"cmaes", 6, 300, {{"restarts", restarts}, {"tolfun", "1e-3"}}});
-    testing::expect_reproducible_identification(make, model, data, bounds, 6 * 300);
+        make_optimizer_factory({"cmaes", 6, 600, {{"restarts", restarts}, {"tolfun", "1e-3"}}});
+    testing::expect_reproducible_identification(make, model, data, bounds, 6 * 600);
     // The same run through ask/tell restarted at least twice (with bipop, the third run is a small one).
     const BatchEvaluator evaluator(model, data);
     const auto opt = make(bounds, 4);
