@@ -48,7 +48,16 @@ void ert_cells(const GroupRecord& g, int optimizer, double target, Runtimes& rt,
   row.push_back(std::isnan(per_evaluation) ? none() : num(t.ert * per_evaluation));
 }
 
-Table ert_table(const Context& c, const std::string& suffix, const std::set<int>& optimizers,
+/// "Split kwok, nrmse: " when the request holds several splits or metrics (their tables' ids differ by it).
+std::string split_metric_head(const Context& c, int split, Metric metric) {
+  std::string head;
+  if (c.many_splits) head = fmt::format("Split {}", c.split_name(split));
+  if (c.many_metrics) head += fmt::format("{}{}", head.empty() ? "" : ", ", metric_name(metric));
+  return head.empty() ? head : head + ": ";
+}
+
+/// One row per problem (fit set, model): its target from the best known, then each optimizer's cells.
+Table ert_table(const Context& c, const std::string& suffix, const std::string& head, const std::set<int>& optimizers,
                 const std::map<std::pair<int, int>, ByOptimizer>& problems, Runtimes& rt) {
   std::vector<std::string> cols{"Condition", "Model", "target"};
   for (int o : optimizers) {
@@ -57,12 +66,12 @@ Table ert_table(const Context& c, const std::string& suffix, const std::set<int>
     cols.push_back(fmt::format("{} ERT s", c.optimizer_label(o)));
   }
   Table r = c.table("runtime" + suffix,
-                    fmt::format("Fixed-target runtime: evaluations to reach best known + {:g} × |best known| (best known: "
+                    fmt::format("{}Fixed-target runtime: evaluations to reach best known + {:g} × |best known| (best known: "
                                 "the lowest value of any run of the optimizers in this table; ERT = evaluations spent by "
                                 "all runs, restarts included, until the target or their end / successes). ERT s = ERT × "
                                 "the group's wall seconds per evaluation as measured in this sweep: they depend on the "
                                 "machine, its threads and the groups run beside it, so compare them within one store only",
-                                c.t.target_rel),
+                                head, c.t.target_rel),
                     cols);
   for (const auto& [pk, by_opt] : problems) {
     double best = std::numeric_limits<double>::infinity();
@@ -83,7 +92,8 @@ Table ert_table(const Context& c, const std::string& suffix, const std::set<int>
 }
 
 /// The ECDF over conditions and runs, at budgets spaced evenly in log scale.
-Table ecdf_table(const Context& c, const std::string& suffix, const std::set<int>& optimizers, Runtimes& rt) {
+Table ecdf_table(const Context& c, const std::string& suffix, const std::string& head, const std::set<int>& optimizers,
+                 Runtimes& rt) {
   if (rt.min_evals == std::numeric_limits<long long>::max()) rt.min_evals = 1;
   std::vector<double> budgets;
   const int points = 12;
@@ -93,9 +103,9 @@ Table ecdf_table(const Context& c, const std::string& suffix, const std::set<int
   std::vector<std::string> ecols{"evaluations"};
   for (int o : optimizers) ecols.push_back(c.optimizer_label(o));
   Table e = c.table("runtime_ecdf" + suffix,
-                    fmt::format("ECDF of fixed-target runtimes over conditions and runs (target: best known + {:g} × "
+                    fmt::format("{}ECDF of fixed-target runtimes over conditions and runs (target: best known + {:g} × "
                                 "|best known|)",
-                                c.t.target_rel),
+                                head, c.t.target_rel),
                     ecols);
   e.paper = "";
   std::map<int, std::vector<double>> fractions;
@@ -112,7 +122,9 @@ Table ecdf_table(const Context& c, const std::string& suffix, const std::set<int
 
 void runtime_tables(const Context& c, std::vector<Table>& out) {
   for (const auto& [key, list] : by_split_metric(c.series())) {
-    const auto suffix = split_metric_suffix(c, key.first, static_cast<Metric>(key.second));
+    const auto metric = static_cast<Metric>(key.second);
+    const auto suffix = split_metric_suffix(c, key.first, metric);
+    const auto head = split_metric_head(c, key.first, metric);
     std::set<int> optimizers;
     std::map<std::pair<int, int>, ByOptimizer> problems;  // (fitset, model) → optimizer → group
     for (const auto& s : list)
@@ -121,8 +133,8 @@ void runtime_tables(const Context& c, std::vector<Table>& out) {
         optimizers.insert(g->optimizer);
       }
     Runtimes rt;
-    out.push_back(ert_table(c, suffix, optimizers, problems, rt));
-    out.push_back(ecdf_table(c, suffix, optimizers, rt));
+    out.push_back(ert_table(c, suffix, head, optimizers, problems, rt));
+    out.push_back(ecdf_table(c, suffix, head, optimizers, rt));
   }
 }
 

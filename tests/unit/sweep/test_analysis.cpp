@@ -593,6 +593,10 @@ TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {
   EXPECT_EQ(value(r, 0, 8), kInf);  // never at the target: infinite seconds too
   EXPECT_EQ(r.rows[1][6].text, "-");  // b did not run d1
   EXPECT_NE(r.title.find("depend on the machine"), std::string::npos) << r.title;
+  // Several splits: each table's title names its split, as its id does.
+  const auto both = tables("runtime", [](TableSpec& t) { t.models = {"mrd.bingham"}; });
+  EXPECT_TRUE(find(both, "runtime_each").title.starts_with("Split each: Fixed-target runtime")) << find(both, "runtime_each").title;
+  EXPECT_TRUE(find(both, "runtime_ecdf_joint").title.starts_with("Split joint: ECDF")) << find(both, "runtime_ecdf_joint").title;
   const Table& e = find(rt, "runtime_ecdf");
   // Budgets from 10 (first trace point) to 100; a solves 3 of 9 (problem, run) pairs (one per condition) by 40.
   EXPECT_DOUBLE_EQ(value(e, 0, 0), 10.0);
