@@ -322,9 +322,10 @@ json law_figures(const ReportInput& in) {
   return out;
 }
 
-json tables(const ReportInput& in) {
+/// Tables as text cells, as `dampbench table` prints them.
+json tables(const std::vector<Table>& list) {
   json out = json::array();
-  for (const Table& r : in.tables) {
+  for (const Table& r : list) {
     json rows = json::array();
     for (const auto& row : r.rows) {
       json cells = json::array();
@@ -372,7 +373,7 @@ json report_data(const ReportInput& in, const HtmlOptions& options) {
   return {{"title", in.title},          {"fingerprint", std::move(fingerprint)}, {"notes", in.notes},
           {"records", records(in, options)}, {"conditions", std::move(conditions)},
           {"held_out", prediction_figures(in, options)}, {"distributions", distributions(in)}, {"ecdfs", ecdf_figures(in)},
-          {"laws", law_figures(in)},    {"tables", tables(in)}};
+          {"runtimes", tables(in.runtimes)}, {"laws", law_figures(in)}, {"tables", tables(in.tables)}};
 }
 
 std::string render_html(const ReportInput& input, const HtmlOptions& options) {

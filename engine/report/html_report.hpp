@@ -12,7 +12,8 @@
 //     and interquartile band over runs (sweep::convergence_band);
 //   - per model: the final metric of every run per condition and optimizer (box and points; relative to the
 //     best run when the runs agree to more digits than an axis label holds, one line when they agree to 1e-9);
-//   - fixed-target runtime ECDFs where a split compares optimizers (the `runtime` tables' numbers);
+//   - where a split compares optimizers, fixed-target runtime ECDFs and the runtime tables they come from (success,
+//     ERT in evaluations and in seconds);
 //   - identified parameters against operating variables with the fitted law drawn through them;
 //   - the sweep's tables and the store's fingerprint.
 #include <string>

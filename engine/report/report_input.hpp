@@ -62,6 +62,7 @@ struct ReportInput {
   std::vector<LawFigureInput> laws;
   std::vector<PredictionInput> predictions;  ///< held-out records, grouped by fold in the order of their first record
   std::vector<Table> ecdfs;   ///< fixed-target runtime ECDF tables (column 0: evaluations, then one per optimizer)
+  std::vector<Table> runtimes;  ///< the fixed-target runtime tables (success, ERT, ERT s) those ECDFs come from
   std::vector<Table> tables;  ///< the sweep's tables, as `dampbench table --kind sweep` prints them
 };
 

@@ -65,13 +65,7 @@ class StoreSources {
         for (sweep::LawRegression& law : r.laws)
           input_.laws.push_back({fmt::format("{}{} ({}) — {}", prefix(p), r.spec->name, r.spec->model, law.parameter),
                                  r.conditions, r.variables, std::move(law)});
-      sweep::TableSpec runtime;
-      runtime.kind = "runtime";
-      for (Table& r : sweep::make_tables(results_, p, runtime))
-        if (r.id.starts_with("runtime_ecdf") && r.columns.size() > 2) {  // only where optimizers are compared
-          r.title = prefix(p) + r.title;
-          input_.ecdfs.push_back(std::move(r));
-        }
+      add_runtimes(p, prefix(p));
       for (Table& r : sweep::sweep_tables(results_, p)) {
         r.title = prefix(p) + r.title;
         input_.tables.push_back(std::move(r));
@@ -82,6 +76,28 @@ class StoreSources {
   [[nodiscard]] const ReportInput& input() const { return input_; }
 
  private:
+  /// The fixed-target runtime (ERT) tables and their ECDFs where a split compares optimizers: those of the part's
+  /// own `runtime` tables (their targets and filters), else of one runtime request with the defaults.
+  void add_runtimes(int part, const std::string& prefix) {
+    std::vector<sweep::TableSpec> requests;
+    for (const sweep::TableSpec& t : results_.parts.at(static_cast<std::size_t>(part)).tables)
+      if (t.kind == "runtime") requests.push_back(t);
+    if (requests.empty()) requests.emplace_back().kind = "runtime";
+    for (const sweep::TableSpec& request : requests) {
+      // The kind gives its tables in pairs: the ERT table of a (split, metric), then its ECDF.
+      std::vector<Table> made = sweep::make_tables(results_, part, request);
+      for (std::size_t i = 0; i + 1 < made.size(); i += 2) {
+        Table& ert = made[i];
+        Table& ecdf = made[i + 1];
+        if (ecdf.columns.size() <= 2) continue;  // one optimizer: nothing is compared
+        ert.title = prefix + ert.title;
+        ecdf.title = prefix + ecdf.title;
+        input_.runtimes.push_back(std::move(ert));
+        input_.ecdfs.push_back(std::move(ecdf));
+      }
+    }
+  }
+
   /// Re-reads every dataset the store names, from the (re-parsed) sweep file of its part.
   void load_records(const sweep::Loader& loader) {
     const sweep::StoreHeader& h = results_.header;

@@ -21,8 +21,9 @@
 //   sensitivity   SP_z per parameter and condition and their mean (crfd eqs. 4.1–4.3, Fig. 9)
 //   ranksum       Mann–Whitney p-values between optimizers (same model and condition) and between models
 //   bootstrap     bootstrap 95 % interval of the mean metric per condition
-//   runtime       fixed-target runtime: success rate and expected running time per optimizer and problem,
-//                 and the ECDF of runtimes over conditions and runs
+//   runtime       fixed-target runtime: success rate and expected running time per optimizer and problem, in
+//                 evaluations and in seconds (× the group's wall seconds per evaluation), and the ECDF of
+//                 runtimes over conditions and runs
 //   failures      failed task groups and datasets that did not load, with their messages
 //   overview      groups, tasks, failures, wall time and candidate-samples/s
 //   sweep         (command line) every table the sweep file asks for

@@ -7,6 +7,8 @@ known parameters, writes `dampbench report`, renders it in headless Chromium and
   - no message on the browser console (the page logs nothing unless something fails) and no drawing error;
   - every figure the data calls for is present and drawn: a loop has a path with one vertex per drawn sample
     for the measured force and for each model, every other figure has at least one drawn path or point;
+  - the fixed-target runtime section holds, under the ECDFs, the runtime tables with the cells of
+    `dampbench table --kind runtime` (its rows and columns: success, ERT and ERT in seconds per optimizer);
   - the loops' model forces equal `dampbench simulate` of the best run's parameters read from the SQLite store
     (not from the report), at the drawn samples;
   - an empty store, a file that is not a store and a missing store are refused with a message and leave no file;
@@ -73,6 +75,7 @@ class Dom(html.parser.HTMLParser):
         self._depth, self._in_data, self._in_errors, self._errors_text = 0, False, False, ""
         self._axis_depth, self._text = 0, None
         self.section, self.sections = None, []
+        self.tables = []  # {"id", "section"} of every drawn table
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -81,6 +84,8 @@ class Dom(html.parser.HTMLParser):
         if tag == "h2":
             self.section = a.get("id")
             self.sections.append(self.section)
+        if tag == "table" and a.get("data-id"):
+            self.tables.append({"id": a.get("data-id"), "section": self.section})
         if tag == "figure":
             self.figures.append({"kind": a.get("data-kind"), "paths": [], "points": 0, "ticks": [], "texts": [],
                                  "section": self.section})
@@ -299,6 +304,22 @@ def main():
     for i, f in enumerate(dom.figures):
         drawn = sum(1 for d in f["paths"] if vertices(d) >= 2) + f["points"]
         check(drawn > 0, f"figure {i} ({f['kind']}) is empty")
+
+    # Runtime tables under the ECDFs: one per ECDF, drawn in that section, the cells `dampbench table` prints.
+    runtimes = data["runtimes"]
+    check(len(runtimes) == len(data["ecdfs"]), f"{len(runtimes)} runtime tables for {len(data['ecdfs'])} ECDFs")
+    drawn = [t["id"] for t in dom.tables if t["section"] == "ecdf"]
+    check(drawn == [t["id"] for t in runtimes], f"runtime tables drawn in the ECDF section: {drawn}")
+    printed = json.loads(run("table", "out/store.sqlite", "--kind", "runtime", "--format", "json").stdout)["tables"]
+    for t in runtimes:
+        same = [p for p in printed if p["id"] == t["id"]]
+        check(len(same) == 1 and same[0]["columns"] == t["columns"], f"runtime table {t['id']}: columns {t['columns']}")
+        check("pso ERT s" in t["columns"] and "de ERT s" in t["columns"], f"no seconds columns in {t['columns']}")
+        if same:
+            conditions = [row[0] for row in same[0]["rows"]]
+            check(conditions == [row[0] for row in t["rows"]], f"runtime table {t['id']}: rows {t['rows']}, printed {conditions}")
+            ratios = [row[3] for row in same[0]["rows"]]  # pso's share of runs at the target, as a number
+            check(all(isinstance(x, (int, float)) and 0 <= x <= 1 for x in ratios), f"pso success shares {ratios}")
 
     # Loops: one path per series with a vertex per drawn sample.
     loops = [f for f in dom.figures if f["kind"] == "loop-displacement"]

@@ -138,7 +138,7 @@
     ['held-out', 'Held-out predictions', data.held_out.length > 0],
     ['convergence', 'Convergence', data.conditions.length > 0],
     ['runs', 'Run distributions', data.distributions.length > 0],
-    ['ecdf', 'Fixed-target runtime ECDFs', data.ecdfs.length > 0],
+    ['ecdf', 'Fixed-target runtime', data.ecdfs.length > 0 || data.runtimes.length > 0],
     ['laws', 'Parameters against operating variables', data.laws.length > 0],
     ['tables', 'Tables', data.tables.length > 0],
     ['fingerprint', 'Fingerprint', true]];
@@ -335,11 +335,25 @@
     });
   }
 
-  // Fixed-target runtime ECDFs (COCO / IOHprofiler style), from the runtime tables.
-  if (data.ecdfs.length) {
-    el(root, 'h2', 'Fixed-target runtime ECDFs').attr('id', 'ecdf');
-    el(root, 'p', 'Share of (condition, run) pairs whose best-so-far reached the target (best known + 1 % of it) within ' +
-      'the evaluations on the x axis; the runtime table gives the numbers.', 'help');
+  // A table with its title, paper and note; `open` shows it unfolded.
+  function drawTable(parent, t, open) {
+    var box = el(parent, 'details', undefined, 'table');
+    if (open) box.attr('open', '');
+    el(box, 'summary', t.title + (t.paper ? ' — ' + t.paper : ''));
+    var table = box.append('table').attr('data-id', t.id);
+    var tr = table.append('thead').append('tr');
+    t.columns.forEach(function (c) { el(tr, 'th', c); });
+    var body = table.append('tbody');
+    t.rows.forEach(function (r) { var row = body.append('tr'); r.forEach(function (c) { el(row, 'td', c); }); });
+    if (t.note) el(box, 'p', t.note, 'note');
+  }
+
+  // Fixed-target runtime (COCO / IOHprofiler style): the ECDFs, then the ERT tables they come from.
+  if (data.ecdfs.length || data.runtimes.length) {
+    el(root, 'h2', 'Fixed-target runtime').attr('id', 'ecdf');
+    el(root, 'p', 'Share of (condition, run) pairs whose best-so-far reached the target (each title gives it) within ' +
+      'the evaluations on the x axis; the runtime tables below give success, ERT (evaluations, restarts included, ' +
+      'per success) and ERT in seconds of this machine.', 'help');
     var erow = el(root, 'div', undefined, 'row');
     data.ecdfs.forEach(function (e) {
       later(function () {
@@ -349,6 +363,7 @@
                      })});
       });
     });
+    data.runtimes.forEach(function (t) { drawTable(root, t, true); });
   }
 
   // Identified parameters against the operating variable of their law, with the fitted law.
@@ -375,16 +390,7 @@
   // Tables: the same cells as `dampbench table --kind sweep`.
   if (data.tables.length) {
     el(root, 'h2', 'Tables').attr('id', 'tables');
-    data.tables.forEach(function (t) {
-      var box = el(root, 'details', undefined, 'table');
-      el(box, 'summary', t.title + (t.paper ? ' — ' + t.paper : ''));
-      var table = box.append('table').attr('data-id', t.id);
-      var tr = table.append('thead').append('tr');
-      t.columns.forEach(function (c) { el(tr, 'th', c); });
-      var body = table.append('tbody');
-      t.rows.forEach(function (r) { var row = body.append('tr'); r.forEach(function (c) { el(row, 'td', c); }); });
-      if (t.note) el(box, 'p', t.note, 'note');
-    });
+    data.tables.forEach(function (t) { drawTable(root, t, false); });
   }
 
   el(root, 'h2', 'Fingerprint').attr('id', 'fingerprint');

@@ -284,6 +284,39 @@ TEST(Cli, FitReportDrawsEachHeldOutRecordAgainstItsFoldsPrediction) {
   EXPECT_EQ(p.at("tables").size(), 3u);
 }
 
+TEST(Cli, StoreReportShowsTheRuntimeTablesOfItsOwnTargetBesideTheEcdfs) {
+  const auto dir = temp_dir();
+  const std::string root = DAMPBENCH_SOURCE_DIR;
+  const std::string fvd = root + "/datasets/fvd/";
+  auto sweep = [&](const std::string& top, const std::string& tail) {
+    return "name = \"rt\"\nseed = 3\nruns = 3\nmodels = [\"fvd.linear_viscous\"]\n" + top +
+           "[[optimizers]]\nname = \"pso\"\npopulation = 10\niterations = 5\n"
+           "[[optimizers]]\nname = \"de\"\npopulation = 10\niterations = 5\n"
+           "[[datasets]]\nname = \"t\"\nfiles = [\"" + fvd + "test1_20mm_92mms.csv\", \"" + fvd +
+           "test2_20mm_230mms.csv\"]\n" + tail;
+  };
+  // The sweep's own runtime table sets the target: the report's tables and ECDF use it.
+  write(dir / "rt.toml", sweep("", "[[tables]]\nkind = \"runtime\"\ntarget_rel = 0.05\n"));
+  ASSERT_EQ(run_dampbench("run " + (dir / "rt.toml").string() + " -o " + (dir / "out").string() + " --quiet").exit_code, 0);
+  const auto j = report_data_of(dir / "out" / "report.html");
+  ASSERT_FALSE(j.is_null());
+  ASSERT_EQ(j.at("runtimes").size(), 1u);
+  ASSERT_EQ(j.at("ecdfs").size(), 1u);
+  const auto& t = j.at("runtimes")[0];
+  EXPECT_EQ(t.at("columns"), nlohmann::json({"Condition", "Model", "target", "pso success", "pso ERT", "pso ERT s",
+                                             "de success", "de ERT", "de ERT s"}));
+  EXPECT_EQ(t.at("rows").size(), 2u);  // two records, one model
+  EXPECT_NE(t.at("title").get<std::string>().find("best known + 0.05 ×"), std::string::npos) << t.at("title");
+  EXPECT_NE(j.at("ecdfs")[0].at("title").get<std::string>().find("best known + 0.05 ×"), std::string::npos);
+  // Without a runtime table in the file, the report still shows one, at the default target.
+  write(dir / "plain.toml", sweep("tables = [\"runs\"]\n", ""));
+  ASSERT_EQ(run_dampbench("run " + (dir / "plain.toml").string() + " -o " + (dir / "plain").string() + " --quiet").exit_code,
+            0);
+  const auto p = report_data_of(dir / "plain" / "report.html");
+  ASSERT_EQ(p.at("runtimes").size(), 1u);
+  EXPECT_NE(p.at("runtimes")[0].at("title").get<std::string>().find("best known + 0.01 ×"), std::string::npos);
+}
+
 TEST(Cli, ReportOfAStoreAndItsErrors) {
   const auto dir = temp_dir();
   expect_error("report " + (dir / "missing.sqlite").string(), "dampbench: error:");

@@ -313,6 +313,9 @@ class TinyStore : public ::testing::Test {
     // c0 = 2 + d², f0 over runs {−1, 0, 1}.
     for (int d = 0; d < 3; ++d) {
       GroupRecord g = group(d, 0, d, 0, 0);
+      // Wall times for the runtime table's seconds: 1.5 s at d0, 1 s at d1, none kept at d2.
+      if (d == 0) g.wall_time_s = 1.5;
+      if (d == 2) g.wall_time_s = 0;
       for (int r = 0; r < 3; ++r)
         g.run_results.push_back(run(r, 1.0 + r + d, {10.0 + 5 * d + 10 * r, 2.0 + d * d, r - 1.0},
                                     {{10, 10.0 + r + d}, {40, 1.0 + r + d}, {100, 1.0 + r + d}}));
@@ -574,10 +577,26 @@ TEST_F(TinyStore, RanksumBootstrapRuntimeFailuresOverview) {
   // ERT = (40 + 100 + 100)/1 = 240; b never (4, 5, 6): 0/3, ERT inf.
   EXPECT_EQ(r.rows[0][0].text, "d0");
   EXPECT_DOUBLE_EQ(value(r, 0, 2), 1.01);
+  EXPECT_EQ(r.columns, (std::vector<std::string>{"Condition", "Model", "target", "a success", "a ERT", "a ERT s",
+                                                 "b success", "b ERT", "b ERT s"}));
   EXPECT_EQ(r.rows[0][3].text, "1/3");
   EXPECT_DOUBLE_EQ(value(r, 0, 4), 240.0);
-  EXPECT_EQ(r.rows[0][5].text, "0/3");
-  EXPECT_EQ(value(r, 0, 6), kInf);
+  // Seconds: ERT × the group's wall seconds per evaluation, 240 × 1.5 s / 300 = 1.2 s at d0; at d1 (ERT 240 again,
+  // run 0 reaches its best 2 at 40) 240 × 1 s / 300 = 0.8 s; at d2 the group kept no wall time: no seconds.
+  EXPECT_DOUBLE_EQ(value(r, 0, 5), 1.2);
+  EXPECT_DOUBLE_EQ(value(r, 1, 4), 240.0);
+  EXPECT_DOUBLE_EQ(value(r, 1, 5), 0.8);
+  EXPECT_DOUBLE_EQ(value(r, 2, 4), 240.0);
+  EXPECT_EQ(r.rows[2][5].text, "-");
+  EXPECT_EQ(r.rows[0][6].text, "0/3");
+  EXPECT_EQ(value(r, 0, 7), kInf);
+  EXPECT_EQ(value(r, 0, 8), kInf);  // never at the target: infinite seconds too
+  EXPECT_EQ(r.rows[1][6].text, "-");  // b did not run d1
+  EXPECT_NE(r.title.find("depend on the machine"), std::string::npos) << r.title;
+  // Several splits: each table's title names its split, as its id does.
+  const auto both = tables("runtime", [](TableSpec& t) { t.models = {"mrd.bingham"}; });
+  EXPECT_TRUE(find(both, "runtime_each").title.starts_with("Split each: Fixed-target runtime")) << find(both, "runtime_each").title;
+  EXPECT_TRUE(find(both, "runtime_ecdf_joint").title.starts_with("Split joint: ECDF")) << find(both, "runtime_ecdf_joint").title;
   const Table& e = find(rt, "runtime_ecdf");
   // Budgets from 10 (first trace point) to 100; a solves 3 of 9 (problem, run) pairs (one per condition) by 40.
   EXPECT_DOUBLE_EQ(value(e, 0, 0), 10.0);
