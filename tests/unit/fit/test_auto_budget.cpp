@@ -89,20 +89,22 @@ struct KwokProblem {
     s.task_key = task_key("crfd.kwok", "two_sine", "ga");
     return s;
   }
+  Identification fixed(const OptimizerSpec& optimizer, int runs) const {
+    return identify(model, {&data}, default_bounds(model), make_optimizer_factory(optimizer), settings(runs));
+  }
   Identification run(const AutoBudget& budget, int runs, AutoBudgetReport& report) const {
     return identify_until_converged(model, {&data}, default_bounds(model), budget, settings(runs), report);
   }
 };
 
-// GA at its defaults (50 × 100) does not converge on this record in 10 runs:
-// restarts with larger populations make its runs agree within the default cap, and the report says so; a cap too
-// small for round 0 cuts it and is flagged. (A GA of 15 generations never converges this way, whatever its
-// population: its runs are still improving at their end, which only more generations cure.)
+// GA at its defaults (50 × 100) does not converge on this record in 10 runs: restarts with larger populations
+// make its runs agree within the default cap, and the report says so; a cap too small for round 0 cuts it and
+// is flagged. (A GA of 15 generations never converges this way, whatever its population: its runs are still
+// improving at their end, which only more generations cure.)
 TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   const KwokProblem p;
   const OptimizerSpec ga{"ga", 50, 100};
-  const Identification fixed =
-      identify(p.model, {&p.data}, default_bounds(p.model), make_optimizer_factory(ga), p.settings(10));
+  const Identification fixed = p.fixed(ga, 10);
   ASSERT_FALSE(assess_convergence(fixed).converged) << "the fixed budget converges: the case tests nothing";
 
   AutoBudgetReport generous;
@@ -131,8 +133,7 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
 TEST(AutoBudget, RoundZeroIsTheFixedBudget) {
   const KwokProblem p;
   const OptimizerSpec de{"de", 30, 100};
-  const Identification fixed =
-      identify(p.model, {&p.data}, default_bounds(p.model), make_optimizer_factory(de), p.settings(4));
+  const Identification fixed = p.fixed(de, 4);
   ASSERT_TRUE(assess_convergence(fixed).converged) << "de at 30 x 100 does not converge: the case tests nothing";
   AutoBudgetReport report;
   const Identification chains = p.run({de, 0, 0}, 4, report);
