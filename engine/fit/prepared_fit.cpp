@@ -67,6 +67,12 @@ PreparedFit prepare_fit(const FitSpec& spec) {
     p.optimizer.settings[key] = value;
   p.factory = make_optimizer_factory(p.optimizer);
   p.auto_budget = auto_budget_of(spec, p.optimizer);
+  if (p.auto_laws && p.auto_budget) {  // its many fits keep the fixed budget (docs/guide.md, fit)
+    if (spec.budget == "auto" || spec.max_evaluations || spec.max_seconds)
+      throw InputError("--budget auto, --max-evals and --max-seconds do not apply to --laws auto, whose fits use the "
+                       "fixed budget (--pop, --iters, --runs)");
+    p.auto_budget.reset();
+  }
   if (p.auto_budget)
     p.plan.why += fmt::format("{}automatic budget: the runs restart with a doubled population until they converge, "
                               "within {} evaluations (--max-evals; --budget fixed or --pop, --iters, --runs for a "

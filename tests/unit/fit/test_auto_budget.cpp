@@ -211,6 +211,13 @@ TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
               s.max_evaluations = 1000;
             })); }).find("add --budget auto"),
             std::string::npos);
+  // --laws auto fits many models at the fixed budget.
+  EXPECT_FALSE(prepare_fit(spec([](FitSpec& s) { s.model.laws = "auto"; })).auto_budget.has_value());
+  EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) {
+              s.model.laws = "auto";
+              s.budget = "auto";
+            })); }).find("do not apply to --laws auto"),
+            std::string::npos);
   EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.max_evaluations = 0; })); })
                 .find("--max-evals: expected a whole number >= 1, got 0"),
             std::string::npos);
