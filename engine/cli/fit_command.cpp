@@ -174,6 +174,9 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
 std::string not_converged_advice(const FitOutcome& fit) {
   if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
   if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
+  if (fit.auto_budget->stop == "population limit")
+    return ": do not trust this fit; its runs do not agree even at the largest population: try another "
+           "--optimizer, or more --iters with --budget auto";
   return ": do not trust this fit; raise --max-evals";
 }
 

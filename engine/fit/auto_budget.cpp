@@ -17,9 +17,12 @@ namespace dampbench {
 std::string AutoBudgetReport::summary() const {
   std::string sizes;
   for (int p : populations) sizes += fmt::format("{}{}", sizes.empty() ? "" : ", ", p);
-  const std::string why = stop == "converged" ? "converged"
-                          : stop == "time cap" ? "stopped by the time cap (not reproducible bit for bit)"
-                                               : "stopped at the cap before converging";
+  const std::string why =
+      stop == "converged"          ? "converged"
+      : stop == "time cap"         ? "stopped by the time cap (not reproducible bit for bit)"
+      : stop == "population limit" ? fmt::format("stopped at the population limit ({}) before converging",
+                                                 max_population)
+                                   : "stopped at the cap before converging";
   return fmt::format("{} round{} (population {}), {} of {} evaluations: {}", populations.size(),
                      populations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
 }
@@ -111,6 +114,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
                                                                            : cmaes_default_population(free);
   const long long nominal = static_cast<long long>(runs) * population * budget.optimizer.iterations;
   report = {};
+  report.max_population = budget.max_population;
   report.cap = budget.max_evaluations > 0 ? budget.max_evaluations : default_cap(runs, population,
                                                                                  budget.optimizer.iterations);
   const auto start = std::chrono::steady_clock::now();
@@ -138,6 +142,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     if (assess_convergence(chains).converged) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
     else if (spent == 0 || report.evaluations + 2 * spent > report.cap) report.stop = "cap";
+    else if (round_population(budget.optimizer, free, k + 1) > budget.max_population) report.stop = "population limit";
     if (!report.stop.empty()) return chains;
   }
 }

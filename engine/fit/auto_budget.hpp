@@ -21,18 +21,25 @@
 
 namespace dampbench {
 
+/// The largest population a restart may have: a round's lockstep batch holds runs × population candidates, so a
+/// cap far above the default must not grow it without bound.
+inline constexpr int kMaxAutoPopulation = 1 << 16;
+
 struct AutoBudget {
   OptimizerSpec optimizer;        ///< round 0's optimizer; later rounds double its population
   long long max_evaluations = 0;  ///< cap over every round and run (local phases included); 0 = default_cap
   double max_seconds = 0;         ///< wall-clock cap; 0 = none
+  int max_population = kMaxAutoPopulation;  ///< no round beyond this population
 };
 
 /// What the restarts did, for the output.
 struct AutoBudgetReport {
   std::vector<int> populations;  ///< of each round run, in order
+  int max_population = 0;        ///< the population limit in force
   long long evaluations = 0;     ///< spent over every round and run
   long long cap = 0;             ///< the evaluation cap in force
-  /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap".
+  /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap";
+  /// "population limit" (the next round's population would pass AutoBudget::max_population).
   std::string stop;
   /// "3 rounds (population 50, 100, 200), 1750000 of 16000000 evaluations: converged".
   [[nodiscard]] std::string summary() const;

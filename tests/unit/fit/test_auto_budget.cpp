@@ -129,6 +129,19 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   EXPECT_NE(starved.summary().find("stopped at the cap before converging"), std::string::npos) << starved.summary();
 }
 
+// A population limit stops the restarts before the cap, whatever the cap, and says so.
+TEST(AutoBudget, PopulationLimitStopsTheRestarts) {
+  const KwokProblem p;
+  AutoBudget budget{{"ga", 10, 15}, 1LL << 40, 0};
+  budget.max_population = 40;
+  AutoBudgetReport report;
+  p.run(budget, 6, report);
+  EXPECT_EQ(report.stop, "population limit");
+  EXPECT_EQ(report.populations, (std::vector<int>{10, 20, 40}));
+  EXPECT_NE(report.summary().find("stopped at the population limit (40) before converging"), std::string::npos)
+      << report.summary();
+}
+
 // Round 0 is the fixed budget: when it converges, the automatic budget stops there with the same bits.
 TEST(AutoBudget, RoundZeroIsTheFixedBudget) {
   const KwokProblem p;
