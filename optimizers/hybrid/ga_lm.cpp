@@ -50,7 +50,7 @@ void GaLm::refine(const LocalProblem& problem) {
   const int m = box.free_dim();
   BestSeen seen;
   if (!std::isfinite(global().best_value()) || m == 0) {
-    report_.status = m == 0 ? "no free parameters" : "GA found no finite value";
+    report_.status = m == 0 ? "no free parameters" : "the population phase found no finite value";
     finish_refine(seen);
     return;
   }
@@ -73,7 +73,7 @@ void GaLm::refine(const LocalProblem& problem) {
   double S = cost_at(y, r);
   report_.start_cost = S;
   if (!std::isfinite(S)) {
-    report_.status = "GA best has non-finite residuals";
+    report_.status = "the population phase's best has non-finite residuals";
     report_.end_cost = S;
     finish_refine(seen);
     return;

@@ -161,7 +161,7 @@ void GaSqp::refine(const LocalProblem& problem) {
   const UnitBox box(bounds_);
   BestSeen none;
   if (!std::isfinite(global().best_value()) || box.free_dim() == 0) {
-    report_.status = box.free_dim() == 0 ? "no free parameters" : "GA found no finite value";
+    report_.status = box.free_dim() == 0 ? "no free parameters" : "the population phase found no finite value";
     finish_refine(none);
     report_.end_value = best_value();
     report_.feasible = best_value() <= settings_.constraint;
