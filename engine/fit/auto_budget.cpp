@@ -110,8 +110,9 @@ Identification identify_until_converged(const Model& model, const std::vector<co
                                  "got {}",
                                  runs));
   const int free = free_parameters(bounds);
-  const int population = round_population(budget.optimizer, free, 0) > 0 ? budget.optimizer.population
-                                                                           : cmaes_default_population(free);
+  // Round 0's population as evaluated (cmaes's 0 is its default λ₀), for the cap and the report.
+  const int population =
+      budget.optimizer.population > 0 ? budget.optimizer.population : cmaes_default_population(free);
   const long long nominal = static_cast<long long>(runs) * population * budget.optimizer.iterations;
   report = {};
   report.max_population = budget.max_population;
