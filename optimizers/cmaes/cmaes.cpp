@@ -58,13 +58,16 @@ Cmaes::Cmaes(const CmaesSettings& settings, const Bounds& bounds, std::uint64_t 
   box_.to_params(y, best_position_);  // the first mean (or the box's centre), until a value is told
 }
 
-void Cmaes::ask_uniform_sample(CandidateBatch& batch, int first) {
+void Cmaes::draw_uniform_sample() {
   RandomStream rng(hash_key({run_key_, ~std::uint64_t{0}}));
   sample_unit_.resize(static_cast<std::size_t>(batch_) * n_);
   for (double& u : sample_unit_) u = rng.uniform();
+}
+
+void Cmaes::write_asked(std::span<const double> unit, CandidateBatch& batch, int first) {
   asked_.resize(static_cast<std::size_t>(batch_) * dim_);
   for (int i = 0; i < batch_; ++i) {
-    const std::span<const double> y(sample_unit_.data() + static_cast<std::size_t>(i) * n_, static_cast<std::size_t>(n_));
+    const std::span<const double> y = unit.subspan(static_cast<std::size_t>(i) * n_, static_cast<std::size_t>(n_));
     const std::span<double> x(asked_.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_));
     box_.to_params(y, x);
     for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x[j];
@@ -130,21 +133,18 @@ void Cmaes::start_run(const Eigen::VectorXd* given_mean) {
 
 void Cmaes::ask(CandidateBatch& batch, int first) {
   if (sampling_) {
-    ask_uniform_sample(batch, first);
+    draw_uniform_sample();
+    write_asked(sample_unit_, batch, first);
     return;
   }
   if (told_ == 0) {
     const auto r = static_cast<std::uint64_t>(runs_.size() - 1);
     strategy_->sample(hash_key({run_key_, r, static_cast<std::uint64_t>(strategy_->generation() + 1)}), samples_);
   }
-  asked_.resize(static_cast<std::size_t>(batch_) * dim_);
-  std::vector<double> y(static_cast<std::size_t>(n_));
-  for (int i = 0; i < batch_; ++i) {
-    for (int j = 0; j < n_; ++j) y[j] = to_phenotype(samples_(j, told_ + i));
-    const std::span<double> x(asked_.data() + static_cast<std::size_t>(i) * dim_, static_cast<std::size_t>(dim_));
-    box_.to_params(y, x);
-    for (int j = 0; j < dim_; ++j) batch.at(first + i, j) = x[j];
-  }
+  std::vector<double> unit(static_cast<std::size_t>(batch_) * n_);
+  for (int i = 0; i < batch_; ++i)
+    for (int j = 0; j < n_; ++j) unit[static_cast<std::size_t>(i) * n_ + j] = to_phenotype(samples_(j, told_ + i));
+  write_asked(unit, batch, first);
 }
 
 void Cmaes::tell(std::span<const double> values) {

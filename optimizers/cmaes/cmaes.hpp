@@ -95,7 +95,9 @@ class Cmaes final : public Optimizer {
   /// Starts the next run of the restart sequence; `mean` (genotype) replaces its drawn mean when given.
   void start_run(const Eigen::VectorXd* mean = nullptr);
   void end_generation();
-  void ask_uniform_sample(CandidateBatch& batch, int first);
+  void draw_uniform_sample();  ///< the first ask's points, into sample_unit_
+  /// Writes the candidates of unit-box points (row-major batch_ × n_) into asked_ and rows first… of `batch`.
+  void write_asked(std::span<const double> unit, CandidateBatch& batch, int first);
   void start_from_sample(std::span<const double> values);
   [[nodiscard]] Eigen::VectorXd initial_mean(RandomStream& rng) const;
 

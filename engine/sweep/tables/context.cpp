@@ -139,6 +139,13 @@ std::string split_metric_suffix(const Context& c, int split, Metric metric) {
   return file_stem(out);
 }
 
+std::string split_metric_head(const Context& c, int split, Metric metric) {
+  std::string head;
+  if (c.many_splits) head = fmt::format("Split {}", c.split_name(split));
+  if (c.many_metrics) head += fmt::format("{}{}", head.empty() ? "" : ", ", metric_name(metric));
+  return head.empty() ? head : head + ": ";
+}
+
 std::string series_column(const Context& c, const Series& s) {
   return c.many_optimizers ? fmt::format("{} ({})", c.model_name(s.model), c.optimizer_label(s.optimizer))
                            : c.model_name(s.model);

@@ -85,7 +85,10 @@ inline constexpr const char* kAtBoundMark = "⊥";
 
 /// Series grouped by (split, metric) for tables with one column or row per model.
 std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all);
+/// The id suffix of a (split, metric)'s tables: "_METRIC", "_SPLIT" for what the request holds several of.
 std::string split_metric_suffix(const Context& c, int split, Metric metric);
+/// The same in a title's words: "Split kwok, nrmse: " when the request holds several splits or metrics, else "".
+std::string split_metric_head(const Context& c, int split, Metric metric);
 /// A series' column head: its model, and its optimizer when the table compares optimizers.
 std::string series_column(const Context& c, const Series& s);
 

@@ -48,14 +48,6 @@ void ert_cells(const GroupRecord& g, int optimizer, double target, Runtimes& rt,
   row.push_back(std::isnan(per_evaluation) ? none() : num(t.ert * per_evaluation));
 }
 
-/// "Split kwok, nrmse: " when the request holds several splits or metrics (their tables' ids differ by it).
-std::string split_metric_head(const Context& c, int split, Metric metric) {
-  std::string head;
-  if (c.many_splits) head = fmt::format("Split {}", c.split_name(split));
-  if (c.many_metrics) head += fmt::format("{}{}", head.empty() ? "" : ", ", metric_name(metric));
-  return head.empty() ? head : head + ": ";
-}
-
 /// One row per problem (fit set, model): its target from the best known, then each optimizer's cells.
 Table ert_table(const Context& c, const std::string& suffix, const std::string& head, const std::set<int>& optimizers,
                 const std::map<std::pair<int, int>, ByOptimizer>& problems, Runtimes& rt) {
