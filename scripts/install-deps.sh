@@ -11,6 +11,7 @@ packages=(
   chromium python3    # the report test renders a report in headless Chromium (tests/e2e/report_browser_test.py)
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (tests/fuzz)
   libopenmpi-dev openmpi-bin  # mpirun -np K dampbench run (engine/distributed; tests/e2e/mpi_test.py)
+  python3-dev pybind11-dev python3-numpy python3-pandas python3-pytest  # the Python module (python/) and its tests
   "$@"
 )
 missing=()

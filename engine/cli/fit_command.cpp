@@ -187,14 +187,25 @@ nlohmann::ordered_json budget_json(const FitOutcome& fit) {
           {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop}};
 }
 
-void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit, const FitTables& t,
-                const LawSelection* selection, const std::optional<HeldOut>& held_out) {
+}  // namespace
+
+nlohmann::ordered_json fit_json(const FitOptions& o, const FitRun& run) {
+  const PreparedFit& p = run.prepared;
+  const FitOutcome& fit = run.outcome;
+  const FitTables t = fit_tables(p, fit, o.fit.metric);
+  const LawSelection* selection = p.auto_laws ? &run.selection : nullptr;
   const Model& model = *p.model.model;
   const RunResult& best = fit.best();
   const Summary& s = t.spread;
   nlohmann::ordered_json j;
   j["model"] = model.id();
-  j["data"] = o.fit.paths;
+  if (!o.fit.paths.empty()) {
+    j["data"] = o.fit.paths;
+  } else {
+    std::vector<std::string> names;
+    for (const Dataset& d : o.fit.records) names.push_back(d.name);
+    j["data"] = names;
+  }
   j["samples"] = p.records.samples();
   const std::string laws = selection ? selection->laws : o.fit.model.laws;
   if (!laws.empty()) j["laws"] = laws;
@@ -203,14 +214,22 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["optimizer"] = {{"name", p.plan.optimizer}, {"population", p.plan.population}, {"iterations", p.plan.iterations},
                     {"settings", p.optimizer.settings}};
   j["seed"] = o.fit.seed;
-  nlohmann::ordered_json bp = nlohmann::ordered_json::object();
-  for (int i = 0; i < model.dim(); ++i) bp[model.parameters()[i].name] = best.best_params[i];
-  j["best_params"] = bp;
+  const auto named = [&](const std::vector<double>& values) {
+    nlohmann::ordered_json named_values = nlohmann::ordered_json::object();
+    for (int i = 0; i < model.dim(); ++i) named_values[model.parameters()[i].name] = values[i];
+    return named_values;
+  };
+  j["best_params"] = named(best.best_params);
   nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
   for (int i = 0; i < kMetricCount; ++i) metrics[std::string(metric_name(kAllMetrics[i]))] = json_number(best.best_metrics[i]);
   j["metrics"] = metrics;
   j["runs"] = {{"count", s.count}, {"best", json_number(s.min)}, {"worst", json_number(s.max)},
                {"mean", json_number(s.mean)}, {"std", json_number(s.std)}};
+  nlohmann::ordered_json each = nlohmann::ordered_json::array();
+  for (const RunResult& r : fit.identification.runs)
+    each.push_back({{"best_value", json_number(r.best_value)}, {"evaluations", r.evaluations},
+                    {"stop", r.stop_reason}, {"best_params", named(r.best_params)}});
+  j["run_results"] = each;
   j["convergence"] = convergence_json(fit.convergence);
   j["budget"] = budget_json(fit);
   // Best-so-far history of every run: [evaluations, value] where it improved, and at its end.
@@ -223,12 +242,14 @@ void print_json(const FitOptions& o, const PreparedFit& p, const FitOutcome& fit
   j["history"] = history;
   j["identifiability"] = identifiability_json(model, *fit.identifiability);
   j["operating"] = operating_records_json(p.records);
-  if (held_out) j["held_out"] = held_out_json(*held_out, model);
+  if (run.held_out) j["held_out"] = held_out_json(*run.held_out, model);
   j["evaluations"] = t.evaluations;
   j["wall_time_s"] = fit.identification.wall_time_s;
   j["candidate_samples_per_s"] = fit.identification.candidate_samples / fit.identification.wall_time_s;
-  std::cout << j.dump(2) << "\n";
+  return j;
 }
+
+namespace {
 
 void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables& t) {
   const Convergence& c = fit.convergence;
@@ -251,7 +272,7 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
 
 }  // namespace
 
-int fit_command(const FitOptions& o) {
+FitRun run_fit_options(const FitOptions& o) {
   check_format(o.format);
   if (!o.report.empty()) {  // before the fit, not after it
     const auto folder = std::filesystem::absolute(o.report).parent_path();
@@ -260,36 +281,43 @@ int fit_command(const FitOptions& o) {
   }
   if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
     throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
-  FitSpec spec = o.fit;
-  PreparedFit prepared = prepare_fit(spec);
-  LawSelection selection;
+  FitRun run{o.fit, prepare_fit(o.fit), {}, {}, {}};
+  PreparedFit& prepared = run.prepared;
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   FitRequest seeded = prepared.request();
   seed_from_record_fits(prepared, seeded, &held_out_plan.record_fits, held_out_plan.progress);
-  const FitOutcome fit = prepared.auto_laws ? fit_with_chosen_laws(prepared, spec, held_out_plan, selection) : run_fit(seeded);
+  run.outcome = prepared.auto_laws ? fit_with_chosen_laws(prepared, run.spec, held_out_plan, run.selection)
+                                   : run_fit(seeded);
+  const FitOutcome& fit = run.outcome;
   const FitRequest request = prepared.request();
-  std::optional<HeldOut> held_out;
-  if (o.held_out.any()) held_out = run_held_out(prepared, fit, held_out_plan);
-  const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
+  if (o.held_out.any()) run.held_out = run_held_out(prepared, fit, held_out_plan);
   if (!o.report.empty()) {
+    const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
     FitReport report{prepared.model.model, prepared.plan.optimizer,
                      std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", prepared.metric,
                      request.records, &fit.identification, {tables.params, tables.metrics, tables.runs},
-                     held_out ? &*held_out : nullptr, o.held_out.folds};
+                     run.held_out ? &*run.held_out : nullptr, o.held_out.folds};
     write_fit_report(o.report, report);
   }
   if (!o.save_model.empty())
-    write_model_file(o.save_model, model_file_of_fit(spec, prepared, fit, DAMPBENCH_VERSION));
+    write_model_file(o.save_model, model_file_of_fit(run.spec, prepared, fit, DAMPBENCH_VERSION));
+  return run;
+}
+
+int fit_command(const FitOptions& o) {
+  const FitRun run = run_fit_options(o);
+  const PreparedFit& prepared = run.prepared;
   if (o.format == "json") {
-    print_json(o, prepared, fit, tables, prepared.auto_laws ? &selection : nullptr, held_out);
+    std::cout << fit_json(o, run).dump(2) << "\n";
   } else {
     if (prepared.auto_laws)
-      std::cout << fmt::format("Laws chosen: {}\n\n", selection.laws.empty() ? "none (every parameter shared)" : selection.laws)
-                << selection.choices.to_markdown() << "\n" << selection.folds.to_markdown() << "\n";
-    print_markdown(prepared, fit, tables);
-    if (held_out)
-      for (const Table& t : held_out_tables(*held_out, o.held_out.folds, per_file_model(*prepared.model.model).id()))
+      std::cout << fmt::format("Laws chosen: {}\n\n", run.selection.laws.empty() ? "none (every parameter shared)"
+                                                                                 : run.selection.laws)
+                << run.selection.choices.to_markdown() << "\n" << run.selection.folds.to_markdown() << "\n";
+    print_markdown(prepared, run.outcome, fit_tables(prepared, run.outcome, o.fit.metric));
+    if (run.held_out)
+      for (const Table& t : held_out_tables(*run.held_out, o.held_out.folds, per_file_model(*prepared.model.model).id()))
         std::cout << "\n" << t.to_markdown();
   }
   return 0;

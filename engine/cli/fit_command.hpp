@@ -2,9 +2,13 @@
 // `dampbench fit`: a model's parameters identified on one or more records by repeated optimizer runs (engine/fit),
 // printed as Markdown or JSON with the runs' convergence and the parameters' identifiability, and optionally an
 // HTML report.
+#include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/fit/held_out.hpp"
+#include "engine/fit/law_selection.hpp"
 #include "engine/fit/prepared_fit.hpp"
 
 namespace CLI {
@@ -21,7 +25,23 @@ struct FitOptions {
   std::string save_model;     ///< model file of the best run (engine/fit/model_file.hpp; "" = none)
 };
 
+/// A finished fit as `dampbench fit` makes it, before it is printed.
+struct FitRun {
+  FitSpec spec;                     ///< the options' spec; with --laws auto, the laws chosen
+  PreparedFit prepared;             ///< the model (with --laws auto: the chosen one), plan and records
+  FitOutcome outcome;
+  LawSelection selection;           ///< with --laws auto
+  std::optional<HeldOut> held_out;  ///< with --predict or --folds
+};
+
 void add_fit_options(CLI::App* cmd, FitOptions& options);
+
+/// Checks the options, fits, and writes the report and model file they ask for (the Python module's fit too).
+FitRun run_fit_options(const FitOptions& options);
+
+/// What `fit --format json` prints: parameters, metrics, convergence, budget, history, identifiability, each run.
+nlohmann::ordered_json fit_json(const FitOptions& options, const FitRun& run);
+
 int fit_command(const FitOptions& options);
 
 }  // namespace dampbench::cli

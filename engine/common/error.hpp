@@ -26,6 +26,12 @@ class StoreError : public InputError {
   using InputError::InputError;
 };
 
+/// The user stopped the work (Ctrl-C in the Python module); what finished before is kept by the caller.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Exit codes of the command line, one per class of outcome.
 enum ExitCode : int {
   kExitOk = 0,

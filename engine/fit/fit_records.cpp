@@ -1,5 +1,8 @@
 #include "engine/fit/fit_records.hpp"
 
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
 #include "engine/fit/fit.hpp"
 #include "engine/record/record_options.hpp"
 
@@ -17,15 +20,33 @@ double FitRecords::samples() const {
   return n;
 }
 
+namespace {
+
+void add_record(const Model& model, const Dataset& record, FitRecords& r) {
+  r.signals.push_back(prepare_signals(record));
+  check_record(model, r.signals.back());
+  r.names += (r.names.empty() ? "" : "+") + r.signals.back().name;
+}
+
+}  // namespace
+
 FitRecords load_fit_records(const Model& model, const std::vector<std::string>& paths, const RecordOptions& data) {
   FitRecords r;
   r.signals.reserve(paths.size());  // pointers() point into it
   for (const std::string& path : paths) {
     RecordOptions d = data;
     d.path = path;
-    r.signals.push_back(prepare_signals(load_record(d, true)));
-    check_record(model, r.signals.back());
-    r.names += (r.names.empty() ? "" : "+") + r.signals.back().name;
+    add_record(model, load_record(d, true), r);
+  }
+  return r;
+}
+
+FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& records) {
+  FitRecords r;
+  r.signals.reserve(records.size());
+  for (const Dataset& record : records) {
+    if (!record.has_force()) throw InputError(fmt::format("record '{}' has no force F: a fit needs one", record.name));
+    add_record(model, record, r);
   }
   return r;
 }

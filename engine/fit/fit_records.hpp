@@ -21,4 +21,7 @@ struct FitRecords {
 /// (check_record) as soon as it is read. Every record needs a force column.
 FitRecords load_fit_records(const Model& model, const std::vector<std::string>& paths, const RecordOptions& data);
 
+/// The same from records already loaded (the Python module's): each prepared and checked against the model.
+FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& records);
+
 }  // namespace dampbench

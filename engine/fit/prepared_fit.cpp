@@ -14,6 +14,7 @@ FitRequest PreparedFit::request() const {
   r.optimizer = &factory;
   r.settings.runs = plan.runs;
   r.settings.seed = seed;
+  r.settings.stop = stop;
   r.settings.metric = metric;
   r.settings.task_key = task_key(model.model->id(), records.names, plan.optimizer);
   r.assess_failed_fit = true;
@@ -80,9 +81,11 @@ PreparedFit prepare_fit(const FitSpec& spec) {
                               p.plan.why.empty() ? "" : "; ",
                               p.auto_budget->max_evaluations > 0 ? fmt::format("{}", p.auto_budget->max_evaluations)
                                                                  : std::string("64 × the first round's"));
-  if (spec.paths.empty()) throw InputError("fit: give at least one --data FILE");
-  p.records = load_fit_records(model, spec.paths, spec.data);
+  if (spec.paths.empty() && spec.records.empty()) throw InputError("fit: give at least one --data FILE");
+  if (!spec.paths.empty() && !spec.records.empty()) throw InputError("fit: give records as files or as loaded records, not both");
+  p.records = spec.records.empty() ? load_fit_records(model, spec.paths, spec.data) : fit_records_of(model, spec.records);
   p.seed = spec.seed;
+  p.stop = spec.stop;
   return p;
 }
 

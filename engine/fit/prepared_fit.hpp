@@ -2,6 +2,7 @@
 // A fit named the way `dampbench fit` names it (model, laws, bounds, files, metric, optimizer, budget, runs,
 // seed), made into a request: the model resolved, the class defaults filled in (fit_defaults.hpp), the optimizer
 // built and the records loaded. The command only parses its options into a FitSpec and prints the outcome.
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -19,6 +20,7 @@ namespace dampbench {
 struct FitSpec {
   ModelChoice model;                ///< model id, laws (one set of coefficients for every record), bounds
   std::vector<std::string> paths;   ///< one or more records (the metric is averaged over them)
+  std::vector<Dataset> records;     ///< records already loaded, instead of paths (the Python module's)
   RecordOptions data;               ///< loader options shared by every record (path unused)
   std::string metric = "of_abs";
   std::optional<std::string> optimizer;  ///< not given: by the model's class (fit_defaults.hpp)
@@ -31,6 +33,8 @@ struct FitSpec {
   std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
   std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
+  /// Once set, the fit stops at the next generation with Interrupted (the Python module's Ctrl-C); may be null.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Everything a FitSpec names, built and loaded; its request points into it.
@@ -46,6 +50,7 @@ struct PreparedFit {
   std::optional<AutoBudget> auto_budget;  ///< the restarts (auto_budget.hpp); absent: the plan is a fixed budget
   FitRecords records;
   std::uint64_t seed = 1;
+  const std::atomic<bool>* stop = nullptr;
 
   /// The request of this fit; its task key names the model id, the records' names and the optimizer
   /// (task_key), so that the same command line gives the same runs.

@@ -76,20 +76,28 @@ std::string budget_stop(const Budget& b, const RunResult& run, int stalled, doub
   return "";
 }
 
+/// Interrupted once the caller's stop flag is set.
+void check_stop(const std::atomic<bool>* stop) {
+  if (stop && stop->load(std::memory_order_relaxed)) throw Interrupted("interrupted");
+}
+
 /// The problem one run's refinement sees: batch metric through the evaluator, residuals through simulate.
 class RunProblem final : public LocalProblem {
  public:
-  RunProblem(const BatchEvaluator& evaluator, Metric metric, const Bounds& bounds)
-      : evaluator_(evaluator), metric_(metric), bounds_(bounds) {}
+  RunProblem(const BatchEvaluator& evaluator, Metric metric, const Bounds& bounds, const std::atomic<bool>* stop)
+      : evaluator_(evaluator), metric_(metric), bounds_(bounds), stop_(stop) {}
   void evaluate(const CandidateBatch& batch, std::span<double> values) const override {
+    check_stop(stop_);
     evaluator_.evaluate(batch, metric_, values);
     evaluations_ += batch.count();
   }
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
+    check_stop(stop_);
     ++evaluations_;
     return scaled_residuals(evaluator_.model(), evaluator_.datasets(), params);
   }
   [[nodiscard]] std::vector<std::vector<double>> residuals_batch(std::span<const std::vector<double>> candidates) const override {
+    check_stop(stop_);
     evaluations_ += static_cast<long long>(candidates.size());
     return scaled_residuals(evaluator_.model(), evaluator_.datasets(), candidates);
   }
@@ -100,6 +108,7 @@ class RunProblem final : public LocalProblem {
   const BatchEvaluator& evaluator_;
   Metric metric_;
   const Bounds& bounds_;
+  const std::atomic<bool>* stop_;
   mutable long long evaluations_ = 0;
 };
 
@@ -124,6 +133,7 @@ long long lockstep(const Model& model, const BatchEvaluator& evaluator, Runs& ru
   long long evaluations = 0;
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   for (;;) {
+    check_stop(settings.stop);
     active.clear();
     first_row.clear();
     int rows = 0;
@@ -181,7 +191,7 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
 
   // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
   tbb::parallel_for(0, R, [&](int r) {
-    RunProblem problem(evaluator, settings.metric, bounds);
+    RunProblem problem(evaluator, settings.metric, bounds, settings.stop);
     runs[r]->refine(problem);
     result.runs[r].evaluations += problem.evaluations();
     result.runs[r].at_local_optimum = runs[r]->at_local_optimum();

@@ -2,6 +2,7 @@
 // Repeated identification runs of one (model, dataset): R independent optimizer runs advance in
 // lockstep, each iteration's R·N candidates evaluated as one batch across cores (docs/design.md, data flow).
 #include <array>
+#include <atomic>
 #include <string>
 #include <cstdint>
 #include <limits>
@@ -34,6 +35,9 @@ struct IdentificationSettings {
   Metric metric = Metric::of_abs;
   int grain_blocks = 1;         ///< lane blocks per oneTBB task; results do not depend on it
   Budget budget;
+  /// Checked every generation and every local-stage evaluation: once set, identify throws Interrupted (the
+  /// Python module's Ctrl-C). Null: never stops early.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Stable key of a (model, dataset, optimizer) task, from their names.

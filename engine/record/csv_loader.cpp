@@ -320,6 +320,41 @@ Dataset parse_csv(std::istream& in, const std::string& source, const CsvOptions&
   return data;
 }
 
+Dataset dataset_from_columns(const std::map<std::string, std::vector<double>>& si_columns, const std::string& name,
+                             const CsvOptions& options) {
+  const std::string source = fmt::format("record '{}'", name);
+  std::vector<ColumnInfo> columns;
+  std::vector<std::vector<double>> values;
+  for (const auto& [column, data] : si_columns) {
+    columns.push_back({column, "", "", 1.0});
+    values.push_back(data);
+  }
+  check_names(columns, source);
+  check_required(columns, options, source);
+  const std::size_t samples = values[*index_of(columns, "t")].size();
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (values[i].size() != samples)
+      throw InputError(fmt::format("{}: column '{}' has {} samples and column 't' {}", source, columns[i].name,
+                                   values[i].size(), samples));
+    for (std::size_t k = 0; k < samples; ++k)
+      if (!std::isfinite(values[i][k]))
+        throw InputError(fmt::format("{}: column '{}', sample {}: value is not finite ({})", source, columns[i].name,
+                                     k, values[i][k]));
+  }
+  const std::vector<double>& t_s = values[*index_of(columns, "t")];
+  for (std::size_t k = 1; k < samples; ++k)
+    if (!(t_s[k] > t_s[k - 1]))
+      throw InputError(fmt::format("{}: time must increase strictly ({:g} s at sample {} after {:g} s)", source, t_s[k],
+                                   k, t_s[k - 1]));
+  const std::size_t needed = std::max(options.min_samples, kMinSamplesForDerivatives);
+  if (samples < needed) throw InputError(fmt::format("{}: {} samples; at least {} are needed", source, samples, needed));
+  Dataset data = make_dataset(columns, values, source);
+  data.name = name;
+  data.source = "arrays";
+  for (auto& [variable, where] : data.operating_source) where = "array mean";
+  return data;
+}
+
 Dataset load_csv(const std::string& path, const CsvOptions& options) {
   std::ifstream file(path);
   if (!file) throw InputError(fmt::format("cannot open data file '{}'", path));

@@ -37,4 +37,11 @@ Dataset load_csv(const std::string& path, const CsvOptions& options);
 /// Same, from a stream; `source` is the name used in messages (and its stem the dataset name).
 Dataset parse_csv(std::istream& in, const std::string& source, const CsvOptions& options);
 
+/// A record from columns already in SI units, named by `name` (the Python module's arrays): t and x required (F
+/// with options.require_force), the same column names, checks (finite values, time strictly increasing, enough
+/// samples) and derivatives as a file. options.units and options.columns are not used. Messages start with
+/// "record 'NAME'".
+Dataset dataset_from_columns(const std::map<std::string, std::vector<double>>& si_columns, const std::string& name,
+                             const CsvOptions& options);
+
 }  // namespace dampbench

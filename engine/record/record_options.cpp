@@ -22,18 +22,17 @@ void set_operating(Dataset& data, const std::string& text, std::string_view opti
   }
 }
 
-static Dataset load_record_as_given(const RecordOptions& options, bool require_force);
-
 Dataset load_record(const RecordOptions& options, bool require_force) {
-  return as_data_error([&] { return load_record_as_given(options, require_force); });
+  return as_data_error([&] {
+    CsvOptions csv;
+    csv.require_force = require_force;
+    if (!options.units.empty()) csv.units = parse_units_option(options.units);
+    if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
+    return prepare_record(load_csv(options.path, csv), options);
+  });
 }
 
-static Dataset load_record_as_given(const RecordOptions& options, bool require_force) {
-  CsvOptions csv;
-  csv.require_force = require_force;
-  if (!options.units.empty()) csv.units = parse_units_option(options.units);
-  if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
-  Dataset data = load_csv(options.path, csv);
+Dataset prepare_record(Dataset data, const RecordOptions& options) {
   if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
     SliderCrank rig;
     rig.printed_torque = options.transform == "slider-crank-printed";
@@ -53,7 +52,7 @@ static Dataset load_record_as_given(const RecordOptions& options, bool require_f
     data = average_cycles(data, cycles, drop);
   }
   if (options.conditions == "utfsm") {
-    for (const auto& [k, v] : utfsm_conditions(std::filesystem::path(options.path).stem().string())) {
+    for (const auto& [k, v] : utfsm_conditions(data.name)) {
       data.operating[k] = v;
       data.operating_source[k] = "file name";
       data.operating_refused.erase(k);

@@ -24,6 +24,11 @@ struct RecordOptions {
 /// Throws InputError naming the option or the file and line.
 Dataset load_record(const RecordOptions& options, bool require_force);
 
+/// The preparation steps of load_record after the file is read: slider-crank transform → cycle averaging →
+/// operating variables (utfsm conditions from the record's name, then --set). Records made from arrays take them
+/// too.
+Dataset prepare_record(Dataset data, const RecordOptions& options);
+
 /// Applies "I=1,amp=0.01" to a dataset's operating variables (InputError for unknown names).
 void set_operating(Dataset& data, const std::string& text, std::string_view option = "--set");
 
