@@ -47,7 +47,9 @@ ModelFile model_file_of_fit(const FitSpec& spec, const PreparedFit& prepared, co
     const Signals& s = prepared.records.signals[r];
     std::vector<MetricRow> row(1);
     BatchEvaluator(model, s).evaluate_all(batch, row);  // as `evaluate` does, so that it reproduces these bits
-    f.records.push_back({s.name, spec.paths.at(r), row[0][metric_at], operating_json(s)});
+    // A record loaded beforehand (the Python module's) names its file, or "arrays", as its source.
+    const std::string& path = spec.paths.empty() ? spec.records.at(r).source : spec.paths.at(r);
+    f.records.push_back({s.name, path, row[0][metric_at], operating_json(s)});
   }
   return f;
 }
