@@ -8,8 +8,12 @@ Every command in a fenced code block of README.md is run, in the order shown, ag
     to the repository's). No budget flags are appended: the README shows each command in a form cheap enough
     to run here, and a command that takes longer than TIMEOUT_S fails.
   - `NAME=value` lines set a shell variable for the rest of their block.
-  - The set-up commands (`bash scripts/fvd.sh`, `bash scripts/test.sh`, with `DAMPBENCH_QUICK=1` or not) are
-    not run: they install packages and build, and this test runs under the build they make.
+  - The set-up commands (`bash scripts/fvd.sh`, `bash scripts/test.sh`, with `DAMPBENCH_QUICK=1` or not, and
+    `cmake --install build --component python`) are not run: they install packages, build and install, and this
+    test runs under the build they make.
+  - A ```python block runs as one script under /usr/bin/python3 in the same folder, with the build's Python
+    package (the folder `python` beside the binary) on PYTHONPATH; without it (a build without the module) the
+    block is skipped with a message.
   - Anything else is an unknown command and fails the test, so a new kind of README command needs a rule here.
 
 `../shared/data` in a command is the real data beside the repository: WORK_DIR/shared/data links to DATA_DIR
@@ -35,7 +39,7 @@ TIMEOUT_S = 300          # per command; the README's commands take seconds in a 
 MAX_README_LINES = 200
 MIN_COMMANDS = 5         # the README shows five examples: fewer run commands means the parser lost some
 
-SETUP = re.compile(r"^(DAMPBENCH_QUICK=1\s+)?bash scripts/(fvd|test)\.sh(\s|$)")
+SETUP = re.compile(r"^((DAMPBENCH_QUICK=1\s+)?bash scripts/(fvd|test)\.sh|cmake --install build --component python)(\s|$)")
 ASSIGNMENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*=\S*$")
 DAMPBENCH_CMD = re.compile(r"^\./build/dampbench(\s|$)")
 SHARED_DATA = "../shared/data"
@@ -49,14 +53,14 @@ def fail(message):
 
 
 def fenced_blocks(lines):
-    """(first line number, [lines]) of each fenced code block; also the lines outside any fence."""
-    blocks, outside, current, start = [], [], None, 0
+    """(first line number, language, [lines]) of each fenced code block; also the lines outside any fence."""
+    blocks, outside, current, start, language = [], [], None, 0, ""
     for number, line in enumerate(lines, 1):
         if line.lstrip().startswith("```"):
             if current is None:
-                current, start = [], number
+                current, start, language = [], number, line.strip()[3:].strip()
             else:
-                blocks.append((start, current))
+                blocks.append((start, language, current))
                 current = None
         elif current is not None:
             current.append(line)
@@ -170,6 +174,27 @@ def run_command(command, variables, root, env):
     print(f"ok ({seconds:.1f} s): {command}", flush=True)
 
 
+def run_python(start, block, root, env, package_dir):
+    """A ```python block as one script; False when it failed."""
+    if not os.path.isdir(package_dir):
+        print(f"SKIP (no Python module at {package_dir}: a build without it): the Python block at line {start}")
+        return False
+    began = time.monotonic()
+    script = "\n".join(block) + "\n"
+    python_env = dict(env, PYTHONPATH=package_dir, MPLBACKEND="Agg")
+    try:
+        p = subprocess.run(["/usr/bin/python3", "-c", script], cwd=root, env=python_env, capture_output=True,
+                           text=True, timeout=TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        fail(f"over {TIMEOUT_S} s: the Python block at README.md:{start}")
+        return False
+    if p.returncode != 0:
+        fail(f"exit {p.returncode}: the Python block at README.md:{start}\n--- stderr (end)\n{p.stderr[-2000:]}")
+        return False
+    print(f"ok ({time.monotonic() - began:.1f} s): the Python block at README.md:{start}", flush=True)
+    return True
+
+
 def main():
     if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
@@ -195,7 +220,11 @@ def main():
     if not have_data:
         print(f"SKIP note: no real data at {data_dir}: the commands that read {SHARED_DATA} are skipped")
     ran = 0
-    for start, block in blocks:
+    package_dir = os.path.join(os.path.dirname(os.path.realpath(dampbench)), "python")
+    for start, language, block in blocks:
+        if language == "python":
+            ran += run_python(start, block, root, env, package_dir)
+            continue
         variables = []
         for command in commands(block):
             if SETUP.match(command):
