@@ -85,6 +85,19 @@ def test_simulate_noise_and_operating_variables_follow_the_command_line(exe):
                      cli_simulate(exe, model, law_params, *args))
 
 
+def test_simulate_a_law_fixture_on_a_utfsm_file_reads_it_as_the_command_line(exe, shared_data):
+    """The loader options reach the file: its units, columns and the current from its name (I = 0.5 A)."""
+    path = shared_data / "utfsm-mr-damper" / "10mm1Hz0x5A.txt"
+    code, out, err = run_cli(exe, "simulate", "--fixture", "mfm.table3", "--input", path, *UTFSM)
+    assert code == 0, err
+    table = np.loadtxt(io.StringIO(out), delimiter=",", skiprows=1)
+    python = dampbench.simulate(fixture="mfm.table3", record=path, **UTFSM_LOADER)
+    assert_same_bits(python, {name: table[:, k] for k, name in enumerate("txvaF")})
+    at_zero = dampbench.simulate(fixture="mfm.table3", record=path, **{**UTFSM_LOADER, "conditions": None},
+                                 set={"I": 0.0})
+    assert not np.array_equal(at_zero["F"], python["F"])  # the current matters: the file's name was read
+
+
 def test_simulate_linear_viscous_is_m_a_plus_c_v():
     m, c = 3.0, 1.5e4
     t = np.linspace(0.0, 1.0, 401)
