@@ -26,37 +26,54 @@ void add_evaluate_options(CLI::App* c, EvaluateOptions& eval) {
   c->add_option("--format", eval.format, "md (default) or json");
 }
 
-int evaluate_command(const EvaluateOptions& o) {
-  check_format(o.format);
+namespace {
+
+/// The model and its parameters from --model-file, or from --model, --laws and --params (all required).
+LoadedModel evaluated_model(const EvaluateOptions& o) {
   LoadedModel loaded;
   if (!o.model_file.empty()) {
     if (!o.model.empty() || !o.laws.empty() || !o.params.empty())
       throw InputError("evaluate: --model-file gives the model, its laws and coefficients: drop --model, --laws and --params");
-    loaded = load_model_file(o.model_file);
-  } else {
-    if (o.model.empty() || o.params.empty())
-      throw InputError("evaluate: give --model and --params (or --model-file FILE)");
-    loaded.model = resolve_model(command_line_model(o.model, o.laws));
-    loaded.params = parse_params(*loaded.model.model, o.params);
+    return load_model_file(o.model_file);
   }
+  if (o.model.empty() || o.params.empty()) throw InputError("evaluate: give --model and --params (or --model-file FILE)");
+  loaded.model = resolve_model(command_line_model(o.model, o.laws));
+  loaded.params = parse_params(*loaded.model.model, o.params);
+  return loaded;
+}
+
+}  // namespace
+
+Evaluation run_evaluate(const EvaluateOptions& o) {
+  const LoadedModel loaded = evaluated_model(o);
   const Model& model = *loaded.model.model;
-  const std::vector<double>& params = loaded.params;
-  if (o.paths.empty()) throw InputError("evaluate: give at least one --data FILE");
-  const FitRecords records = load_fit_records(model, o.paths, o.data);
+  if (o.paths.empty() && o.records.empty()) throw InputError("evaluate: give at least one --data FILE");
+  if (!o.paths.empty() && !o.records.empty()) throw InputError("evaluate: give records or --data files, not both");
+  const FitRecords records = o.records.empty() ? load_fit_records(model, o.paths, o.data) : fit_records_of(model, o.records);
   CandidateBatch batch(model.dim(), 1);
-  batch.set_candidate(0, params);
+  batch.set_candidate(0, loaded.params);
+  Evaluation e{std::string(model.id()), {}, {}};
+  for (const Signals& s : records.signals) {
+    std::vector<MetricRow> row(1);
+    BatchEvaluator(model, s).evaluate_all(batch, row);
+    e.names.push_back(s.name);
+    e.metrics.push_back(row[0]);
+  }
+  return e;
+}
+
+int evaluate_command(const EvaluateOptions& o) {
+  check_format(o.format);
+  const Evaluation e = run_evaluate(o);
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   std::vector<std::string> cols{"record"};
   for (Metric m : kAllMetrics) cols.emplace_back(metric_name(m));
-  Table t{"evaluate", fmt::format("{} at the given parameters", model.id()), cols, {}};
-  for (std::size_t r = 0; r < records.signals.size(); ++r) {
-    const Signals& s = records.signals[r];
-    std::vector<MetricRow> row(1);
-    BatchEvaluator(model, s).evaluate_all(batch, row);
-    std::vector<Cell> cells{s.name};
+  Table t{"evaluate", fmt::format("{} at the given parameters", e.model_id), cols, {}};
+  for (std::size_t r = 0; r < e.metrics.size(); ++r) {
+    std::vector<Cell> cells{e.names[r]};
     for (int m = 0; m < kMetricCount; ++m) {
-      j[o.paths[r]][std::string(metric_name(kAllMetrics[m]))] = json_number(row[0][m]);
-      cells.push_back(format_number(row[0][m]));
+      j[o.paths[r]][std::string(metric_name(kAllMetrics[m]))] = json_number(e.metrics[r][m]);
+      cells.push_back(format_number(e.metrics[r][m]));
     }
     t.rows.push_back(std::move(cells));
   }

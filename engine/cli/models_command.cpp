@@ -8,6 +8,7 @@
 
 #include "engine/cli/cli_options.hpp"
 #include "engine/common/table.hpp"
+#include "engine/model/bounds.hpp"
 #include "models/registry.hpp"
 
 namespace dampbench::cli {
@@ -26,26 +27,28 @@ std::string rule_of(const Model& m, const ParameterInfo& p) {
   return std::string();
 }
 
-void print_json() {
+}  // namespace
+
+nlohmann::ordered_json models_json(std::span<const Signals* const> records) {
   nlohmann::ordered_json models = nlohmann::ordered_json::object();
   for (const Model* m : all_models()) {
+    const Bounds bounds = default_bounds(*m, records);
     nlohmann::ordered_json params = nlohmann::ordered_json::array();
-    for (const auto& p : m->parameters()) {
-      params.push_back({{"name", p.name}, {"unit", p.unit}, {"lower", p.lower}, {"upper", p.upper},
+    for (int j = 0; j < m->dim(); ++j) {
+      const ParameterInfo& p = m->parameters()[j];
+      params.push_back({{"name", p.name}, {"unit", p.unit}, {"lower", bounds.lower[j]}, {"upper", bounds.upper[j]},
                         {"paper_unit", p.paper_unit}});
       if (const std::string rule = rule_of(*m, p); !rule.empty()) params.back()["record_rule"] = rule;
     }
     models[std::string(m->id())] = {{"citation", m->citation()}, {"law", m->law()}, {"parameters", params}};
   }
-  std::cout << nlohmann::ordered_json{{"models", models}}.dump(2) << "\n";
+  return models;
 }
-
-}  // namespace
 
 int models_command(const std::string& format) {
   check_format(format);
   if (format == "json") {
-    print_json();
+    std::cout << nlohmann::ordered_json{{"models", models_json()}}.dump(2) << "\n";
     return 0;
   }
   for (const Model* m : all_models()) {

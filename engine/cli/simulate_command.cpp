@@ -63,21 +63,30 @@ LoadedModel simulated_model(const SimulateOptions& o) {
 
 }  // namespace
 
-int simulate_command(const SimulateOptions& o) {
-  if (o.sine.empty() == o.input.path.empty())
+Simulation run_simulate(const SimulateOptions& o) {
+  const int displacements = !o.sine.empty() + !o.input.path.empty() + o.record.has_value();
+  if (displacements != 1)
     throw InputError("simulate: give exactly one of --input FILE or --sine amp=...,freq=...,cycles=...,fs=...");
   if (!(o.noise_rel >= 0) || !std::isfinite(o.noise_rel))
     throw InputError(fmt::format("--noise-rel: expected a number >= 0, got {}", o.noise_rel));
   const LoadedModel loaded = simulated_model(o);
   const Model& model = *loaded.model.model;
-  const std::vector<double>& params = loaded.params;
-  Dataset data = o.sine.empty() ? load_record(o.input, false) : make_sine(parse_sine_option(o.sine));
-  if (!o.sine.empty() && !o.input.set.empty()) set_operating(data, o.input.set);
-  const Signals signals = prepare_signals(data);
+  Simulation sim;
+  if (o.record) sim.data = *o.record;
+  else if (o.sine.empty()) sim.data = load_record(o.input, false);
+  else sim.data = make_sine(parse_sine_option(o.sine));
+  // A file's loader applies --set itself; a sine or a given record take it here.
+  if (o.input.path.empty() && !o.input.set.empty()) set_operating(sim.data, o.input.set);
+  const Signals signals = prepare_signals(sim.data);
   check_record(model, signals);
-  std::vector<double> force = model.simulate(params, signals);
-  if (o.noise_rel > 0) add_noise(force, o.noise_rel, o.seed);
+  sim.force = model.simulate(loaded.params, signals);
+  if (o.noise_rel > 0) add_noise(sim.force, o.noise_rel, o.seed);
+  return sim;
+}
 
+int simulate_command(const SimulateOptions& o) {
+  const Simulation sim = run_simulate(o);
+  const Dataset& data = sim.data;
   std::ofstream file;
   if (!o.output.empty()) {
     file.open(o.output);
@@ -85,9 +94,9 @@ int simulate_command(const SimulateOptions& o) {
   }
   std::ostream& out = o.output.empty() ? std::cout : file;
   out << "t,x,v,a,F\n";
-  for (std::size_t k = 0; k < force.size(); ++k)
+  for (std::size_t k = 0; k < sim.force.size(); ++k)
     out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", data.t_s[k], data.x_m[k], data.v_m_s[k],
-                       data.a_m_s2[k], force[k]);
+                       data.a_m_s2[k], sim.force[k]);
   return 0;
 }
 

@@ -2,7 +2,9 @@
 // `dampbench simulate`: the force of a model with given parameters under a displacement (a record or a sine),
 // optionally with Gaussian noise, as CSV.
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/record/record_options.hpp"
 
@@ -18,14 +20,25 @@ struct SimulateOptions {
   std::string laws;     ///< "c0=poly(I,1);..." laws on the model's parameters
   std::string params;   ///< "name=value,..." in SI (the fixture's values by default)
   std::string model_file;  ///< a model file (fit --save-model) instead of model, fixture, laws and params
-  RecordOptions input;   ///< used when sine is empty
+  RecordOptions input;   ///< used when sine is empty and no record is given
+  std::optional<Dataset> record;  ///< a record already loaded, instead of input.path or sine (the Python module's)
   std::string sine;    ///< "amp=...,freq=...,cycles=...,fs=..."
   double noise_rel = 0;
   std::uint64_t seed = 1;
   std::string output;  ///< CSV path; stdout when empty
 };
 
+/// A displacement and the model's force under it, as `dampbench simulate` prints them.
+struct Simulation {
+  Dataset data;               ///< t, x, v, a (SI) of the record or sine
+  std::vector<double> force;  ///< F [N], with the noise asked for
+};
+
 void add_simulate_options(CLI::App* cmd, SimulateOptions& options);
+
+/// Checks the options, builds the model and the displacement, and simulates (the Python module's simulate too).
+Simulation run_simulate(const SimulateOptions& options);
+
 int simulate_command(const SimulateOptions& options);
 
 }  // namespace dampbench::cli

@@ -1,8 +1,176 @@
-// simulate, evaluate, models and optimizers (filled in next).
+// simulate, evaluate, models and optimizers: the command line's simulate, evaluate and models
+// (engine/cli/{simulate,evaluate,models}_command.hpp, their computing halves) on Records, and the optimizers'
+// names with their settings and the fit's class defaults.
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "engine/cli/evaluate_command.hpp"
+#include "engine/cli/models_command.hpp"
+#include "engine/cli/simulate_command.hpp"
+#include "engine/common/error.hpp"
+#include "engine/fit/fit_defaults.hpp"
+#include "engine/model/metrics.hpp"
+#include "models/registry.hpp"
+#include "optimizers/registry.hpp"
 #include "python/src/bindings.hpp"
 
 namespace dampbench::python {
 
-void bind_simulate(py::module_&) {}
+namespace {
+
+py::array_t<double> to_numpy(const std::vector<double>& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+/// The loader options as load_record takes them in Python (units, columns, transform, average_cycles,
+/// conditions, set).
+RecordOptions loader_options(const std::string& path, const std::vector<std::string>& loader) {
+  return RecordOptions{path, loader.at(0), loader.at(1), loader.at(2), loader.at(3), loader.at(4), loader.at(5)};
+}
+
+py::dict simulation_dict(const cli::Simulation& sim) {
+  py::dict out;
+  out["t"] = to_numpy(sim.data.t_s);
+  out["x"] = to_numpy(sim.data.x_m);
+  out["v"] = to_numpy(sim.data.v_m_s);
+  out["a"] = to_numpy(sim.data.a_m_s2);
+  out["F"] = to_numpy(sim.force);
+  return out;
+}
+
+/// The settings make_optimizer_factory knows for `name` with its default choices: the registry reads them as it
+/// validates and lists them when it meets an unknown one, so a setting no optimizer has asks for that list
+/// without a second table of names to keep in step.
+std::vector<std::string> known_settings(const std::string& name) {
+  const std::string unknown = "?";  // never a setting's name
+  try {
+    (void)make_optimizer_factory(OptimizerSpec{name, 50, 100, {{unknown, "0"}}});
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    const std::string head = "(known: ";
+    const auto begin = message.rfind(head);
+    if (message.find("unknown setting '" + unknown + "'") != std::string::npos && begin != std::string::npos &&
+        message.back() == ')') {
+      std::vector<std::string> names;
+      const std::string list = message.substr(begin + head.size(), message.size() - 1 - begin - head.size());
+      for (std::size_t at = 0; at <= list.size();) {
+        const auto comma = std::min(list.find(", ", at), list.size());
+        if (comma > at) names.push_back(list.substr(at, comma - at));
+        at = comma + 2;
+      }
+      return names;
+    }
+    throw;
+  }
+  throw std::logic_error("optimizer " + name + " accepted an unknown setting");
+}
+
+/// The fit's defaults (fit_plan with nothing given) for the first registered model of each class.
+py::dict fit_defaults_by_class() {
+  py::dict out;
+  for (const bool states : {false, true})
+    for (const Model* m : all_models())
+      if (m->has_internal_states() == states) {
+        const FitPlan plan = fit_plan(*m, std::nullopt, std::nullopt, std::nullopt, std::nullopt);
+        py::dict d;
+        d["optimizer"] = plan.optimizer;
+        d["population"] = plan.population;
+        d["iterations"] = plan.iterations;
+        d["runs"] = plan.runs;
+        out[states ? "internal_states" : "algebraic"] = d;
+        break;
+      }
+  return out;
+}
+
+void bind_simulate_function(py::module_& m) {
+  m.def(
+      "simulate",
+      [](const std::string& model, const std::string& fixture, const std::string& laws, const std::string& params,
+         const std::string& model_file, std::optional<Dataset> record, const std::string& path,
+         const std::vector<std::string>& loader, const std::string& sine, double noise_rel, std::uint64_t seed,
+         std::optional<int> threads, std::optional<std::string> isa) {
+        cli::SimulateOptions o;
+        o.model = model;
+        o.fixture = fixture;
+        o.laws = laws;
+        o.params = params;
+        o.model_file = model_file;
+        o.record = std::move(record);
+        o.input = loader_options(path, loader);
+        o.sine = sine;
+        o.noise_rel = noise_rel;
+        o.seed = seed;
+        std::atomic<bool> stop{false};  // a simulation runs to its end: Ctrl-C is raised after it
+        cli::Simulation sim;
+        run_released([&] { sim = cli::run_simulate(o); }, stop, {threads, isa});
+        return simulation_dict(sim);
+      },
+      py::arg("model"), py::arg("fixture"), py::arg("laws"), py::arg("params"), py::arg("model_file"),
+      py::arg("record"), py::arg("path"), py::arg("loader"), py::arg("sine"), py::arg("noise_rel"), py::arg("seed"),
+      py::arg("threads"), py::arg("isa"));
+}
+
+void bind_evaluate_function(py::module_& m) {
+  m.def(
+      "evaluate",
+      [](const std::string& model, const std::string& laws, const std::string& params, const std::string& model_file,
+         const std::vector<Dataset>& records, std::optional<std::string> isa) {
+        cli::EvaluateOptions o;
+        o.model = model;
+        o.laws = laws;
+        o.params = params;
+        o.model_file = model_file;
+        o.records = records;
+        std::atomic<bool> stop{false};
+        cli::Evaluation e;
+        run_released([&] { e = cli::run_evaluate(o); }, stop, {std::nullopt, isa});
+        py::list rows;
+        for (const MetricRow& row : e.metrics) {
+          py::dict metrics;
+          for (int k = 0; k < kMetricCount; ++k) metrics[py::str(std::string(metric_name(kAllMetrics[k])))] = row[k];
+          rows.append(metrics);
+        }
+        return rows;
+      },
+      py::arg("model"), py::arg("laws"), py::arg("params"), py::arg("model_file"), py::arg("records"), py::arg("isa"));
+}
+
+}  // namespace
+
+void bind_simulate(py::module_& m) {
+  bind_simulate_function(m);
+  bind_evaluate_function(m);
+  m.def(
+      "models",
+      [](const std::vector<Dataset>& records) {
+        std::vector<Signals> signals;
+        signals.reserve(records.size());
+        for (const Dataset& d : records) signals.push_back(prepare_signals(d));
+        std::vector<const Signals*> pointers;
+        for (const Signals& s : signals) pointers.push_back(&s);
+        return cli::models_json(pointers).dump();
+      },
+      py::arg("records"));
+  m.def("optimizers", [] {
+    py::dict out;
+    const py::dict defaults = fit_defaults_by_class();
+    for (const std::string& name : optimizer_names()) {
+      py::dict entry;
+      entry["settings"] = known_settings(name);
+      py::dict default_for;
+      for (const auto& [cls, plan] : defaults)
+        if (py::cast<std::string>(plan["optimizer"]) == name) default_for[cls] = plan;
+      entry["fit_default_for"] = default_for;
+      out[py::str(name)] = entry;
+    }
+    return out;
+  });
+}
 
 }  // namespace dampbench::python
