@@ -22,6 +22,7 @@ set(DAMPBENCH_LAYERS
   "engine/report"         12  # HTML reports from stores
   "engine/distributed"    13  # MPI and shards
   "engine/cli"            14  # the command line
+  "python"                15  # the Python module, on the command line's library
   "bench"                 15
   "docs/extending"        15  # the examples of docs/extending.md
   "tests"                 16
@@ -53,7 +54,7 @@ function(check_tree root out)
   file(GLOB_RECURSE sources RELATIVE "${root}"
     "${root}/engine/*.hpp" "${root}/engine/*.cpp" "${root}/models/*.hpp" "${root}/models/*.cpp"
     "${root}/optimizers/*.hpp" "${root}/optimizers/*.cpp" "${root}/datasets/*.hpp" "${root}/datasets/*.cpp"
-    "${root}/bench/*.cpp" "${root}/docs/*.hpp" "${root}/docs/*.cpp" "${root}/tests/*.hpp" "${root}/tests/*.cpp")
+    "${root}/bench/*.cpp" "${root}/python/*.hpp" "${root}/python/*.cpp" "${root}/docs/*.hpp" "${root}/docs/*.cpp" "${root}/tests/*.hpp" "${root}/tests/*.cpp")
   foreach(src IN LISTS sources)
     get_filename_component(dir "${src}" DIRECTORY)
     layer_of("${dir}" own)
