@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 #include <type_traits>
 #include <variant>
@@ -17,6 +18,14 @@
 
 namespace dampbench {
 namespace {
+
+/// An unknown setting, with the names the optimizer knows (what optimizer_settings lists).
+class UnknownSetting : public InputError {
+ public:
+  UnknownSetting(const std::string& message, std::vector<std::string> known)
+      : InputError(message), known(std::move(known)) {}
+  std::vector<std::string> known;
+};
 
 /// The field a settings key sets: a number, an optional number (unset = the optimizer's rule) or a whole number.
 using SettingField = std::variant<double*, std::optional<double>*, int*, std::optional<int>*>;
@@ -71,7 +80,8 @@ class SettingsReader {
   void finish() const {
     for (const auto& [key, value] : settings_)
       if (std::ranges::find(known_, key) == known_.end())
-        throw InputError(fmt::format("{}: unknown setting '{}' (known: {})", optimizer_, key, fmt::join(known_, ", ")));
+        throw UnknownSetting(fmt::format("{}: unknown setting '{}' (known: {})", optimizer_, key, fmt::join(known_, ", ")),
+                             {known_.begin(), known_.end()});
   }
 
  private:
@@ -215,6 +225,16 @@ OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec) {
   for (const Entry& e : kOptimizers)
     if (spec.name == e.name) return e.make(spec);
   throw InputError(fmt::format("unknown optimizer '{}' (known: {})", spec.name, fmt::join(optimizer_names(), ", ")));
+}
+
+std::vector<std::string> optimizer_settings(const std::string& name) {
+  // The reader collects the keys it asks for as it validates; a key no optimizer has makes it list them.
+  try {
+    (void)make_optimizer_factory(OptimizerSpec{name, 50, 100, {{"?", "0"}}});
+  } catch (const UnknownSetting& e) {
+    return e.known;
+  }
+  throw std::logic_error("optimizer " + name + " accepted an unknown setting");
 }
 
 }  // namespace dampbench

@@ -59,4 +59,8 @@ std::vector<std::string> optimizer_names();
 /// name (the message names the setting), or settings that the optimizer's validate() rejects.
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec);
 
+/// The settings `name` reads with its default choices (a hybrid's with global = ga), in the order of the "known:"
+/// list of its messages. InputError for an unknown optimizer.
+std::vector<std::string> optimizer_settings(const std::string& name);
+
 }  // namespace dampbench

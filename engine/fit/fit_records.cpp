@@ -45,7 +45,7 @@ FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& record
   FitRecords r;
   r.signals.reserve(records.size());
   for (const Dataset& record : records) {
-    if (!record.has_force()) throw InputError(fmt::format("record '{}' has no force F: a fit needs one", record.name));
+    if (!record.has_force()) throw InputError(fmt::format("record '{}' has no force F: fitting and evaluating need the measured force", record.name));
     add_record(model, record, r);
   }
   return r;

@@ -43,33 +43,6 @@ py::dict simulation_dict(const cli::Simulation& sim) {
   return out;
 }
 
-/// The settings make_optimizer_factory knows for `name` with its default choices: the registry reads them as it
-/// validates and lists them when it meets an unknown one, so a setting no optimizer has asks for that list
-/// without a second table of names to keep in step.
-std::vector<std::string> known_settings(const std::string& name) {
-  const std::string unknown = "?";  // never a setting's name
-  try {
-    (void)make_optimizer_factory(OptimizerSpec{name, 50, 100, {{unknown, "0"}}});
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    const std::string head = "(known: ";
-    const auto begin = message.rfind(head);
-    if (message.find("unknown setting '" + unknown + "'") != std::string::npos && begin != std::string::npos &&
-        message.back() == ')') {
-      std::vector<std::string> names;
-      const std::string list = message.substr(begin + head.size(), message.size() - 1 - begin - head.size());
-      for (std::size_t at = 0; at <= list.size();) {
-        const auto comma = std::min(list.find(", ", at), list.size());
-        if (comma > at) names.push_back(list.substr(at, comma - at));
-        at = comma + 2;
-      }
-      return names;
-    }
-    throw;
-  }
-  throw std::logic_error("optimizer " + name + " accepted an unknown setting");
-}
-
 /// The fit's defaults (fit_plan with nothing given) for the first registered model of each class.
 py::dict fit_defaults_by_class() {
   py::dict out;
@@ -162,7 +135,7 @@ void bind_simulate(py::module_& m) {
     const py::dict defaults = fit_defaults_by_class();
     for (const std::string& name : optimizer_names()) {
       py::dict entry;
-      entry["settings"] = known_settings(name);
+      entry["settings"] = optimizer_settings(name);
       py::dict default_for;
       for (const auto& [cls, plan] : defaults)
         if (py::cast<std::string>(plan["optimizer"]) == name) default_for[cls] = plan;
