@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (tests/fuzz)
   libopenmpi-dev openmpi-bin  # mpirun -np K dampbench run (engine/distributed; tests/e2e/mpi_test.py)
   python3-dev pybind11-dev python3-numpy python3-pandas python3-pytest  # the Python module (python/) and its tests
+  python3-matplotlib  # the plot of docs/python.md's session, which tests/python/test_docs.py runs
   "$@"
 )
 missing=()
