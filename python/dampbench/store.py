@@ -57,6 +57,13 @@ class Store:
         """
         return pd.DataFrame(self._reader.runs())
 
+    def dataset_metrics(self):
+        """The metrics of each run on each dataset of a joint fit (role "fit") and on each predicted dataset (role
+        "predict"), one row per (group, run, dataset); single-dataset fits without predictions have none (their
+        metrics are runs()'s). Columns: those of runs() up to metric, then run, dataset (its name), role, and one
+        column per metric as in runs(). Empty when no group has any."""
+        return pd.DataFrame(self._reader.dataset_metrics())
+
     def groups(self):
         """Every stored task group, one row each (failed ones included), in group order.
 

@@ -153,6 +153,30 @@ class StoreReader {
     return columns;
   }
 
+  py::dict dataset_metrics() const {
+    std::vector<GroupRecord> groups;
+    StoreHeader header;
+    released([&] {
+      const std::lock_guard lock(mutex_);
+      header = store_.header();
+      sweep::GroupQuery q;
+      q.runs = false;
+      groups = store_.groups(q);
+    });
+    Columns c;
+    for (const auto& g : groups) {
+      const GroupLabels l = labels(header, g);
+      for (const auto& d : g.dataset_metrics) {
+        add_labels(c, g, l);
+        c["run"].append(d.run);
+        c["dataset"].append(header.datasets.at(static_cast<std::size_t>(header.dataset(g.part, d.dataset))).name);
+        c["role"].append(d.predicted ? "predict" : "fit");
+        for (std::size_t m = 0; m < kAllMetrics.size(); ++m) c[std::string(metric_name(kAllMetrics[m]))].append(d.metrics[m]);
+      }
+    }
+    return c.dict();
+  }
+
   py::dict groups() {
     const sweep::StoreResults& R = results();
     Columns c;
@@ -232,6 +256,7 @@ void bind_store(py::module_& m) {
       .def("meta", &StoreReader::meta, py::arg("key"))
       .def("runs", &StoreReader::runs)
       .def("groups", &StoreReader::groups)
+      .def("dataset_metrics", &StoreReader::dataset_metrics)
       .def(
           "tables",
           [](StoreReader& s, const std::string& kind, const std::string& split, const std::vector<std::string>& models,

@@ -6,6 +6,7 @@ import math
 import os
 import sqlite3
 import struct
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -184,6 +185,31 @@ def test_report_writes_the_command_lines_bytes(store, tmp_path):
     assert Path(mine).read_bytes() == cli_html.read_bytes()
 
 
+def test_two_threads_read_one_store(store):
+    _, path = store
+    s = dampbench.Store(path)
+    expected = (s.runs(), dampbench.Store(path).groups())
+    with ThreadPoolExecutor(4) as pool:
+        got = list(pool.map(lambda i: s.runs() if i % 2 == 0 else s.groups(), range(8)))
+    for i, df in enumerate(got):
+        assert df.equals(expected[i % 2])
+
+
+def test_a_shards_tables_warn_that_they_are_partial(store, tmp_path):
+    exe, _ = store
+    spec = tmp_path / "pystore.toml"
+    spec.write_text(SWEEP)
+    shard = tmp_path / "shard.sqlite"
+    code, _, err = run_cli(exe, "run", spec, "-o", tmp_path / "out", "--shard", "1/2", "--store", shard)
+    assert code == 0, err
+    code, out, err = run_cli(exe, "table", shard, "--kind", "runs", "--format", "json")
+    assert code == 0 and "holds shard 1/2 of the sweep only" in err
+    with pytest.warns(UserWarning, match="holds shard 1/2 of the sweep only"):
+        tables = dampbench.Store(shard).tables("runs")
+    assert {i: json_cells(df) for i, df in tables.items()} == {t["id"]: t["rows"] for t in json.loads(out)["tables"]}
+    assert len(dampbench.Store(shard).runs()) == 6
+
+
 def cli_error(exe, *args):
     code, _, err = run_cli(exe, *args)
     assert err.startswith("dampbench: error: ")
@@ -197,6 +223,10 @@ def test_missing_store_raises_the_command_lines_error_and_is_not_created(exe, tm
         dampbench.Store(missing)
     assert str(e.value) == message and e.value.exit_code == code == 4
     assert not missing.exists() and not missing.parent.exists()
+    beside = tmp_path / "absent.sqlite"
+    with pytest.raises(dampbench.StoreError, match="no store at"):
+        dampbench.Store(beside)
+    assert list(tmp_path.iterdir()) == []
     with pytest.raises(dampbench.StoreError, match="no store at"):
         dampbench.report(missing, tmp_path / "r.html")
 
@@ -241,3 +271,64 @@ def test_fvd_preset_one_row_per_run_and_its_paper_tables(store, tmp_path):
     assert list(mine) == [t["id"] for t in cli] and len(cli) == 13
     for t in cli:
         assert json_cells(mine[t["id"]]) == t["rows"]
+
+
+# One joint fit of two records predicting a third: per-dataset metrics, fitted and predicted.
+JOINT = f"""
+name = "pyjoint"
+seed = 2
+runs = 2
+tables = ["errors"]
+models = ["fvd.linear_viscous"]
+
+[optimizer]
+name = "pso"
+population = 10
+iterations = 20
+
+[[datasets]]
+name = "train"
+files = ["{FVD}/test1_20mm_92mms.csv", "{FVD}/test2_20mm_230mms.csv"]
+
+[[datasets]]
+name = "check"
+file = "{FVD}/test3_20mm_460mms.csv"
+
+[[splits]]
+name = "joint"
+datasets = ["train", "check"]
+fit = {{ freq = [0.732112738, 1.83028185] }}
+predict = {{}}
+by = "all"
+"""
+
+
+def test_dataset_metrics_of_a_joint_fit_and_its_prediction(store, tmp_path):
+    exe, _ = store
+    spec = tmp_path / "joint.toml"
+    spec.write_text(JOINT)
+    code, _, err = run_cli(exe, "run", spec, "-o", tmp_path / "out")
+    assert code == 0, err
+    path = tmp_path / "out" / "store.sqlite"
+    s = dampbench.Store(path)
+    runs = s.runs()
+    assert list(runs.datasets) == ["test1_20mm_92mms + test2_20mm_230mms"] * 2 and list(runs.predict) == ["check"] * 2
+    per = s.dataset_metrics()
+    stored = sql_rows(path, "SELECT m.run, d.name, m.role, m.metrics FROM dataset_metrics m JOIN datasets d "
+                            "ON d.dataset = m.dataset ORDER BY m.grp, m.run, m.dataset")
+    assert len(per) == len(stored) == 6
+    metric_names = sql_rows(path, "SELECT value FROM meta WHERE key='metrics'")[0][0].split(",")
+    for d, (run, name, role, metrics) in zip(per.to_dict("records"), stored):
+        assert (d["run"], d["dataset"], d["role"]) == (run, name, role)
+        assert all(same_bits(d[m], v) for m, v in zip(metric_names, doubles(metrics)))
+    # The errors table prints the best run's metric on each dataset.
+    best = int(s.groups().best_run.iloc[0])
+    for role in ("fit", "predict"):
+        cli = cli_json(exe, "table", path, "--kind", "errors", "--role", role)["tables"]
+        mine = s.tables("errors", role=role)
+        assert list(mine) == [t["id"] for t in cli]
+        for t in cli:
+            assert json_cells(mine[t["id"]]) == t["rows"]
+            for name, value in t["rows"][:-1]:  # the last row is the mean
+                row = per[(per.run == best) & (per.dataset == name)]
+                assert list(row.role) == [role] and row.of_abs.iloc[0] == value
