@@ -7,7 +7,7 @@ import pandas as pd
 
 from dampbench import _core
 
-_NO_STORE_TABLE = "sweep"  # the kind that means "the tables the sweep file asks for"
+_SWEEP_KIND = "sweep"  # the kind that means "the tables the sweep file asks for"
 
 
 def _names(value):
@@ -91,7 +91,7 @@ class Store:
         if self.meta("shard"):
             warnings.warn(f"{self.path} holds shard {self.meta('shard')} of the sweep only: its tables are partial "
                           "(dampbench merge joins the shards' stores)", stacklevel=2)
-        raw = self._reader.tables(kind or _NO_STORE_TABLE, split or "", _names(model), _names(optimizer),
+        raw = self._reader.tables(kind or _SWEEP_KIND, split or "", _names(model), _names(optimizer),
                                   metric or "", role or "", float(target_rel))
         out = {}
         for t in raw:
