@@ -23,6 +23,9 @@ struct ReportOptions {
 
 void add_report_options(CLI::App* cmd, ReportOptions& options);
 int report_command(const ReportOptions& options);
+/// Writes the HTML report of a store where `report` writes it (its computing half, the Python module's too);
+/// returns the file's path and sets `bytes` (when given) to its size.
+std::string write_store_report(const ReportOptions& options, std::size_t* bytes = nullptr);
 
 /// What `fit --report FILE` draws: the fitted records, every run, and the fit's printed tables; with held-out
 /// evaluation also each held-out record against its fold's prediction, and the held-out tables.

@@ -27,9 +27,7 @@ void add_table_options(CLI::App* cmd, TableOptions& o) {
   cmd->add_option("--target-rel", o.target_rel, "runtime: target = best known + this x |best known| (default 0.01)");
 }
 
-int table_command(const TableOptions& o) {
-  if (o.format != "md" && o.format != "csv" && o.format != "latex" && o.format != "json")
-    throw InputError(fmt::format("--format: expected md, csv, latex or json, got '{}'", o.format));
+void check_table_request(const TableOptions& o) {
   const auto kinds = sweep::table_kinds();
   if (o.kind != "sweep" && std::find(kinds.begin(), kinds.end(), o.kind) == kinds.end()) {
     std::string known;
@@ -39,11 +37,9 @@ int table_command(const TableOptions& o) {
   if (!o.role.empty() && o.role != "fit" && o.role != "predict")
     throw InputError(fmt::format("--role: expected fit or predict, got '{}'", o.role));
   if (!o.metric.empty()) (void)parse_metric(o.metric);
-  const sweep::Store store = sweep::Store::open(o.store);
-  if (const std::string shard = store.meta("shard"); !shard.empty())
-    std::cerr << fmt::format("note: {} holds shard {} of the sweep only: its tables are partial (dampbench merge joins "
-                             "the shards' stores)\n", o.store, shard);
-  const sweep::StoreResults results(store);
+}
+
+std::vector<Table> store_tables(const TableOptions& o, const sweep::StoreResults& results) {
   std::vector<Table> reports;
   for (int p = 0; p < results.part_count(); ++p) {
     std::vector<Table> part;
@@ -65,6 +61,18 @@ int table_command(const TableOptions& o) {
       reports.push_back(std::move(r));
     }
   }
+  return reports;
+}
+
+int table_command(const TableOptions& o) {
+  if (o.format != "md" && o.format != "csv" && o.format != "latex" && o.format != "json")
+    throw InputError(fmt::format("--format: expected md, csv, latex or json, got '{}'", o.format));
+  check_table_request(o);
+  const sweep::Store store = sweep::Store::open(o.store);
+  if (const std::string shard = store.meta("shard"); !shard.empty())
+    std::cerr << fmt::format("note: {} holds shard {} of the sweep only: its tables are partial (dampbench merge joins "
+                             "the shards' stores)\n", o.store, shard);
+  const std::vector<Table> reports = store_tables(o, sweep::StoreResults(store));
   if (reports.empty()) {
     std::cerr << fmt::format("dampbench: no '{}' table in {} (no stored task group matches)\n", o.kind, o.store);
     return kExitDifferent;

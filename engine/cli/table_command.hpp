@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/common/table.hpp"
+#include "engine/sweep/tables.hpp"
+
 namespace CLI {
 class App;
 }
@@ -22,6 +25,12 @@ struct TableOptions {
 };
 
 void add_table_options(CLI::App* cmd, TableOptions& options);
+/// InputError for an unknown kind, role or metric (checked before the store is opened).
+void check_table_request(const TableOptions& options);
+/// The tables `table` prints (its computing half, the Python module's too): per part of the store, the kind's
+/// tables or the sweep file's; a table's id starts with its part's name when the store has several parts.
+/// Empty when no stored group matches.
+std::vector<Table> store_tables(const TableOptions& options, const sweep::StoreResults& results);
 int table_command(const TableOptions& options);
 
 }  // namespace dampbench::cli
