@@ -124,15 +124,9 @@ class StoreReader {
   }
 
   py::dict runs() const {
-    std::vector<GroupRecord> groups;
-    StoreHeader header;
-    released([&] {
-      const std::lock_guard lock(mutex_);
-      header = store_.header();
-      sweep::GroupQuery q;
-      q.details = false;
-      groups = store_.groups(q);
-    });
+    sweep::GroupQuery query;
+    query.details = false;
+    const auto [header, groups] = read_groups(query);
     Columns c;
     std::vector<std::pair<const std::vector<std::string>*, const std::vector<double>*>> params;
     for (const auto& g : groups) {
@@ -154,15 +148,9 @@ class StoreReader {
   }
 
   py::dict dataset_metrics() const {
-    std::vector<GroupRecord> groups;
-    StoreHeader header;
-    released([&] {
-      const std::lock_guard lock(mutex_);
-      header = store_.header();
-      sweep::GroupQuery q;
-      q.runs = false;
-      groups = store_.groups(q);
-    });
+    sweep::GroupQuery query;
+    query.runs = false;
+    const auto [header, groups] = read_groups(query);
     Columns c;
     for (const auto& g : groups) {
       const GroupLabels l = labels(header, g);
@@ -213,6 +201,16 @@ class StoreReader {
   }
 
  private:
+  /// The store's header and its groups as `query` asks for them, read with the interpreter released.
+  std::pair<StoreHeader, std::vector<GroupRecord>> read_groups(const sweep::GroupQuery& query) const {
+    std::pair<StoreHeader, std::vector<GroupRecord>> read;
+    released([&] {
+      const std::lock_guard lock(mutex_);
+      read = {store_.header(), store_.groups(query)};
+    });
+    return read;
+  }
+
   const sweep::StoreResults& results() {
     released([&] {
       const std::lock_guard lock(mutex_);
