@@ -150,3 +150,13 @@ def test_bad_arrays_raise_data_errors():
     with pytest.raises(dampbench.UsageError, match=r"record 'r' has no force F"):
         dampbench.fit("fvd.linear_viscous", dampbench.record(t, x, name="r"))
     assert dampbench.DataError.exit_code == 3 and issubclass(dampbench.DataError, dampbench.Error)
+
+
+def test_prediction_and_vector_level_equal_cli(exe):
+    """--predict (held-out records, read with the same loader options) and --isa, as the command line."""
+    held_out = FVD_RECORD.with_name("test4_17mm_460mms.csv")
+    cli = cli_json(exe, "--isa", "sse2", "fit", "--model", "fvd.gv_linear_elastic", "--data", FVD_RECORD,
+                   "--runs", 4, "--predict", held_out)
+    result = dampbench.fit("fvd.gv_linear_elastic", FVD_RECORD, runs=4, predict=[held_out], isa="sse2")
+    assert_same_fit(result, cli)
+    assert result.json["held_out"] == cli["held_out"]
