@@ -6,7 +6,12 @@
 #include <optional>
 #include <string>
 
+#include <vector>
+
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+
+#include "engine/record/record_options.hpp"
 
 namespace dampbench::python {
 
@@ -17,6 +22,17 @@ void bind_records(py::module_& m);   // records.cpp: Record, load_record, record
 void bind_fit(py::module_& m);       // fit.cpp: fit
 void bind_simulate(py::module_& m);  // simulate.cpp: simulate, evaluate, models, optimizers
 void bind_store(py::module_& m);     // store.cpp: a store's runs, groups and tables; report
+
+/// A copy of `values` as a 1-D numpy array.
+inline py::array_t<double> to_numpy(const std::vector<double>& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+/// The loader options of a record file, from the six strings python/dampbench/records.py's loader_args makes
+/// (units, columns, transform, average_cycles, conditions, set).
+inline RecordOptions loader_options(const std::string& path, const std::vector<std::string>& loader) {
+  return RecordOptions{path, loader.at(0), loader.at(1), loader.at(2), loader.at(3), loader.at(4), loader.at(5)};
+}
 
 /// Where the engine works for one call: at most `threads` worker threads (none: every core) and the vector level
 /// `isa` (none: the one already chosen), restored afterwards.

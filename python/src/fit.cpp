@@ -43,7 +43,7 @@ void bind_fit(py::module_& m) {
         spec.stop = &stop;
         // Loader options for the --predict files, as the records' were read (units, columns, transform,
         // average_cycles, conditions, set).
-        spec.data = RecordOptions{"", loader.at(0), loader.at(1), loader.at(2), loader.at(3), loader.at(4), loader.at(5)};
+        spec.data = loader_options("", loader);
         o.held_out.predict = predict;
         o.held_out.folds = folds;
         o.held_out.reference = reference;

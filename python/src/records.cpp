@@ -17,10 +17,6 @@ namespace dampbench::python {
 
 namespace {
 
-py::array_t<double> to_numpy(const std::vector<double>& values) {
-  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
-}
-
 /// The loader options of the command line (--units, --columns, --transform, --average-cycles, --conditions, --set).
 RecordOptions record_options(const std::string& path, const std::string& units, const std::string& columns,
                              const std::string& transform, const std::string& average_cycles,

@@ -23,16 +23,6 @@ namespace dampbench::python {
 
 namespace {
 
-py::array_t<double> to_numpy(const std::vector<double>& values) {
-  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
-}
-
-/// The loader options as load_record takes them in Python (units, columns, transform, average_cycles,
-/// conditions, set).
-RecordOptions loader_options(const std::string& path, const std::vector<std::string>& loader) {
-  return RecordOptions{path, loader.at(0), loader.at(1), loader.at(2), loader.at(3), loader.at(4), loader.at(5)};
-}
-
 py::dict simulation_dict(const cli::Simulation& sim) {
   py::dict out;
   out["t"] = to_numpy(sim.data.t_s);
