@@ -47,9 +47,7 @@ LoadedModel evaluated_model(const EvaluateOptions& o) {
 Evaluation run_evaluate(const EvaluateOptions& o) {
   const LoadedModel loaded = evaluated_model(o);
   const Model& model = *loaded.model.model;
-  if (o.paths.empty() && o.records.empty()) throw InputError("evaluate: give at least one --data FILE");
-  if (!o.paths.empty() && !o.records.empty()) throw InputError("evaluate: give records or --data files, not both");
-  const FitRecords records = o.records.empty() ? load_fit_records(model, o.paths, o.data) : fit_records_of(model, o.records);
+  const FitRecords records = command_records(model, o.paths, o.records, o.data, "evaluate");
   CandidateBatch batch(model.dim(), 1);
   batch.set_candidate(0, loaded.params);
   Evaluation e{std::string(model.id()), {}, {}};

@@ -41,6 +41,14 @@ FitRecords load_fit_records(const Model& model, const std::vector<std::string>& 
   return r;
 }
 
+FitRecords command_records(const Model& model, const std::vector<std::string>& paths,
+                           const std::vector<Dataset>& records, const RecordOptions& data, std::string_view command) {
+  if (paths.empty() && records.empty()) throw InputError(fmt::format("{}: give at least one --data FILE", command));
+  if (!paths.empty() && !records.empty())
+    throw InputError(fmt::format("{}: give records as files or as loaded records, not both", command));
+  return records.empty() ? load_fit_records(model, paths, data) : fit_records_of(model, records);
+}
+
 FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& records) {
   FitRecords r;
   r.signals.reserve(records.size());

@@ -2,6 +2,7 @@
 // The records of a fit named by their files (the command line's --data): each loaded with the same loader
 // options, prepared, and checked against the model.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/model/model.hpp"
@@ -23,5 +24,10 @@ FitRecords load_fit_records(const Model& model, const std::vector<std::string>& 
 
 /// The same from records already loaded (the Python module's): each prepared and checked against the model.
 FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& records);
+
+/// A command's records: its files (`paths`, read with `data`) or records already loaded, exactly one of the two.
+/// InputError "<command>: give at least one --data FILE" for neither.
+FitRecords command_records(const Model& model, const std::vector<std::string>& paths,
+                           const std::vector<Dataset>& records, const RecordOptions& data, std::string_view command);
 
 }  // namespace dampbench

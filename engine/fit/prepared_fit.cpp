@@ -81,9 +81,7 @@ PreparedFit prepare_fit(const FitSpec& spec) {
                               p.plan.why.empty() ? "" : "; ",
                               p.auto_budget->max_evaluations > 0 ? fmt::format("{}", p.auto_budget->max_evaluations)
                                                                  : std::string("64 × the first round's"));
-  if (spec.paths.empty() && spec.records.empty()) throw InputError("fit: give at least one --data FILE");
-  if (!spec.paths.empty() && !spec.records.empty()) throw InputError("fit: give records as files or as loaded records, not both");
-  p.records = spec.records.empty() ? load_fit_records(model, spec.paths, spec.data) : fit_records_of(model, spec.records);
+  p.records = command_records(model, spec.paths, spec.records, spec.data, "fit");
   p.seed = spec.seed;
   p.stop = spec.stop;
   return p;
