@@ -46,8 +46,8 @@ std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string
   for (const ValueLaw& v : value_law_candidates())
     if (v.text() == text) return fit_value_law(v, variables, values).coefficients;
   throw InputError(fmt::format("--start per-file: the law {}={} has no fit to per-record values (those that have one: "
-                               "free, poly(VAR,K), sat(I), hill(I,2), and sat, hill(I,2) or poly(I,1) times "
-                               "poly(amp,1) or poly(freq,1))",
+                               "free, poly(VAR,K), mono(I,0,1), hill(I,2), sat(I), poly(amp,1), poly(freq,1), power(vamp), "
+                               "power(amp), power(freq), and prod of one of the first three with one of the last five)",
                                parameter, text));
 }
 

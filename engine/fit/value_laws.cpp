@@ -25,8 +25,9 @@ double shape(ValueLaw::Shape s, double current, double h) {
 
 bool has_scale(ValueLaw::Shape s) { return s == ValueLaw::Shape::hill2 || s == ValueLaw::Shape::saturating; }
 
-/// The setting factor is power(vamp): k·vamp^p + c rather than q0 + q1·v.
-bool power_factor(const ValueLaw& law) { return law.setting == "vamp"; }
+/// The setting factor is k·v^p + c rather than q0 + q1·v.
+bool power_factor(const ValueLaw& law) { return law.factor == ValueLaw::Factor::power; }
+bool has_factor(const ValueLaw& law) { return law.factor != ValueLaw::Factor::none; }
 
 /// The setting factor's value from its coefficients q at the record's variables.
 double factor_value(const ValueLaw& law, const double* q, const std::map<std::string, double>& variables) {
@@ -64,11 +65,11 @@ Fitted fit_at_scale(const ValueLaw& law, double h, const std::vector<double>& I,
   for (std::size_t i = 0; i < n; ++i) g[i] = shape(law.current, I[i], h);
   Fitted f;
   f.h = h;
-  const auto factor = [&](std::size_t i) { return law.setting.empty() ? 1.0 : f.c + f.k * v[i]; };
-  for (int pass = 0; pass < (law.setting.empty() ? 1 : 40); ++pass) {
+  const auto factor = [&](std::size_t i) { return !has_factor(law) ? 1.0 : f.c + f.k * v[i]; };
+  for (int pass = 0; pass < (has_factor(law) ? 40 : 1); ++pass) {
     for (std::size_t i = 0; i < n; ++i) G[i] = factor(i);
     fit_levels(law, g, G, y, f);
-    if (law.setting.empty()) break;
+    if (!has_factor(law)) break;
     if (!power_factor(law)) {  // G = 1 + k·v: k by least squares
       double num = 0, den = 0;
       for (std::size_t i = 0; i < n; ++i) {
@@ -135,31 +136,34 @@ Fitted fit_over_scales(const ValueLaw& law, const std::vector<double>& I, const 
 std::string ValueLaw::text() const {
   const char* shapes[] = {"", "mono(I,0,1)", "hill(I,2)", "sat(I)"};
   const std::string f = shapes[static_cast<int>(current)];
-  if (setting.empty()) return f.empty() ? "free" : f;
-  const std::string g = power_factor(*this) ? "power(vamp)" : fmt::format("poly({},1)", setting);
+  if (!has_factor(*this)) return f.empty() ? "free" : f;
+  const std::string g = power_factor(*this) ? fmt::format("power({})", setting) : fmt::format("poly({},1)", setting);
   return f.empty() ? g : fmt::format("prod({},{})", f, g);
 }
 
 int ValueLaw::coefficients() const {
   const int f = current == Shape::constant ? 1 : has_scale(current) ? 3 : 2;
   const int g = power_factor(*this) ? 3 : 2;
-  return setting.empty() ? f : current == Shape::constant ? g : f + g;
+  return !has_factor(*this) ? f : current == Shape::constant ? g : f + g;
 }
 
 std::vector<ValueLaw> value_law_candidates() {
   std::vector<ValueLaw> out;
   for (auto s : {ValueLaw::Shape::constant, ValueLaw::Shape::linear, ValueLaw::Shape::hill2, ValueLaw::Shape::saturating})
-    for (const char* v : {"", "amp", "freq", "vamp"}) out.push_back({s, v});
+    for (const auto& [g, v] : {std::pair{ValueLaw::Factor::none, ""}, {ValueLaw::Factor::linear, "amp"},
+                               {ValueLaw::Factor::linear, "freq"}, {ValueLaw::Factor::power, "vamp"},
+                               {ValueLaw::Factor::power, "amp"}, {ValueLaw::Factor::power, "freq"}})
+      out.push_back({s, g, v});
   return out;
 }
 
 double ValueFit::predict(const ValueLaw& law, const std::map<std::string, double>& variables) const {
   const auto& c = coefficients;
   if (law.current == ValueLaw::Shape::constant)
-    return law.setting.empty() ? c[0] : factor_value(law, c.data(), variables);
+    return has_factor(law) ? factor_value(law, c.data(), variables) : c[0];
   const bool scaled = has_scale(law.current);
   const double F = c[0] + c[1] * shape(law.current, variable(variables, "I"), scaled ? c[2] : 1.0);
-  if (law.setting.empty()) return F;
+  if (!has_factor(law)) return F;
   return F * factor_value(law, c.data() + (scaled ? 3 : 2), variables);
 }
 
@@ -169,7 +173,7 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
   std::vector<double> I(n, 0.0), v(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (law.current != ValueLaw::Shape::constant) I[i] = variable(variables[i], "I");
-    if (!law.setting.empty()) v[i] = variable(variables[i], law.setting);
+    if (has_factor(law)) v[i] = variable(variables[i], law.setting);
   }
   Fitted best;
   if (!power_factor(law)) {
@@ -186,13 +190,13 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
   ValueFit out;
   out.rss = best.rss;
   if (law.current == ValueLaw::Shape::constant) {
-    if (law.setting.empty()) out.coefficients = {best.a};
+    if (!has_factor(law)) out.coefficients = {best.a};
     else if (power_factor(law)) out.coefficients = {best.a * best.k, best.p, best.a * best.c};
     else out.coefficients = {best.a, best.a * best.k};
     return out;
   }
-  // power(vamp) as a later factor: scaled to 1 at the records' geometric-mean vamp, so that F(I) is the parameter
-  // there and k, c stay well inside their ±1 bounds (a pure 1/vamp has k ≈ vamp there, c ≈ 0); kept at
+  // A power factor as a later factor: scaled to 1 at the records' geometric-mean v, so that F(I) is the parameter
+  // there and k, c stay well inside their ±1 bounds (a pure 1/v has k ≈ v there, c ≈ 0); kept at
   // max(|k|, |c|) = 1 when that scaling would leave them.
   double scale = 1;
   if (power_factor(law)) {
@@ -204,7 +208,7 @@ ValueFit fit_value_law(const ValueLaw& law, const std::vector<std::map<std::stri
   out.coefficients = {best.a * scale, best.b * scale};
   if (has_scale(law.current)) out.coefficients.push_back(best.h);
   if (power_factor(law)) out.coefficients.insert(out.coefficients.end(), {best.k / scale, best.p, best.c / scale});
-  else if (!law.setting.empty()) out.coefficients.insert(out.coefficients.end(), {1.0, best.k});
+  else if (has_factor(law)) out.coefficients.insert(out.coefficients.end(), {1.0, best.k});
   return out;
 }
 

@@ -25,7 +25,7 @@ namespace {
 
 TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
   // y = (20 + 300·I²/(0.5² + I²))·(1 + 0.4·freq) at five currents and three frequencies
-  const ValueLaw law{ValueLaw::Shape::hill2, "freq"};
+  const ValueLaw law{ValueLaw::Shape::hill2, ValueLaw::Factor::linear, "freq"};
   EXPECT_EQ(law.text(), "prod(hill(I,2),poly(freq,1))");
   EXPECT_EQ(law.coefficients(), 5);
   std::vector<std::map<std::string, double>> vars;
@@ -41,12 +41,12 @@ TEST(ValueLaws, FitsAHillLawTimesALinearFactorItWasGeneratedFrom) {
   EXPECT_NEAR(fit.coefficients[4] / fit.coefficients[3], 0.4, 0.02);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.02 * y[i] + 1);
   // a linear law in I cannot follow the sigmoid: its residuals are far larger
-  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss);
+  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, ValueLaw::Factor::linear, "freq"}, vars, y).rss, 100 * fit.rss);
 }
 
 TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
   // c0 = (500 + 2000·I)·0.05/vamp: a post-yield force that does not grow with velocity
-  const ValueLaw law{ValueLaw::Shape::linear, "vamp"};
+  const ValueLaw law{ValueLaw::Shape::linear, ValueLaw::Factor::power, "vamp"};
   EXPECT_EQ(law.text(), "prod(mono(I,0,1),power(vamp))");
   EXPECT_EQ(law.coefficients(), 5);
   std::vector<std::map<std::string, double>> vars;
@@ -66,7 +66,28 @@ TEST(ValueLaws, FitsAViscousCoefficientFallingAsOneOverTheVelocityAmplitude) {
   EXPECT_NEAR(fit.coefficients[0], 500 * 0.05 / mean_vamp, 0.01 * 500 * 0.05 / mean_vamp);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_NEAR(fit.predict(law, vars[i]), y[i], 0.01 * y[i]);
   // a linear factor in the same variable misses the 1/vamp curve by far more
-  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, "freq"}, vars, y).rss, 100 * fit.rss + 1);
+  EXPECT_GT(fit_value_law({ValueLaw::Shape::linear, ValueLaw::Factor::linear, "freq"}, vars, y).rss, 100 * fit.rss + 1);
+}
+
+TEST(ValueLaws, FitsAHystereticRateFallingAsAPowerOfTheStroke) {
+  // beta = -300·amp^-0.8 + 50 [1/m], shared by the currents: a yield displacement that grows with the stroke
+  const ValueLaw law{ValueLaw::Shape::constant, ValueLaw::Factor::power, "amp"};
+  EXPECT_EQ(law.text(), "power(amp)");
+  EXPECT_EQ(law.coefficients(), 3);
+  std::vector<std::map<std::string, double>> vars;
+  std::vector<double> y;
+  for (double amp : {0.002, 0.005, 0.01, 0.025})
+    for (double I : {0.0, 0.5, 1.0}) {
+      vars.push_back({{"I", I}, {"amp", amp}});
+      y.push_back(-300 * std::pow(amp, -0.8) + 50);
+    }
+  const ValueFit fit = fit_value_law(law, vars, y);
+  ASSERT_EQ(fit.coefficients.size(), 3u);
+  EXPECT_NEAR(fit.coefficients[0], -300, 3);
+  EXPECT_NEAR(fit.coefficients[1], -0.8, 0.008);
+  EXPECT_NEAR(fit.coefficients[2], 50, 0.01 * 300 * std::pow(0.025, -0.8));
+  // a linear law in amp misses the curve by far more
+  EXPECT_GT(fit_value_law({ValueLaw::Shape::constant, ValueLaw::Factor::linear, "amp"}, vars, y).rss, 100 * fit.rss + 1);
 }
 
 TEST(ValueLaws, EachFamilysCoefficientsMeanTheSameInTheLawGrammar) {
@@ -92,12 +113,12 @@ TEST(ValueLaws, EachFamilysCoefficientsMeanTheSameInTheLawGrammar) {
 
 TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) {
   const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
-  const ValueFit fit = fit_value_law({ValueLaw::Shape::linear, ""}, vars, {3.0, 2.0, 1.0});
+  const ValueFit fit = fit_value_law({ValueLaw::Shape::linear}, vars, {3.0, 2.0, 1.0});
   EXPECT_EQ(fit.coefficients[1], 0.0);
   EXPECT_DOUBLE_EQ(fit.coefficients[0], 2.0);
   EXPECT_EQ(ValueLaw{}.text(), "free");
-  EXPECT_EQ((ValueLaw{ValueLaw::Shape::constant, "amp"}.text()), "poly(amp,1)");
-  EXPECT_EQ(value_law_candidates().size(), 16u);
+  EXPECT_EQ((ValueLaw{ValueLaw::Shape::constant, ValueLaw::Factor::linear, "amp"}.text()), "poly(amp,1)");
+  EXPECT_EQ(value_law_candidates().size(), 24u);
 }
 
 /// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine, with f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
