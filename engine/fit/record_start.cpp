@@ -30,6 +30,31 @@ std::vector<double> polynomial_fit(const LawFactor& f, const std::vector<std::ma
   return {c.data(), c.data() + c.size()};
 }
 
+/// The laws fit_law_to_values fits, for its refusal: the single factors of --laws auto's families, named from
+/// the candidates themselves so that the list follows them.
+std::string laws_with_value_fits() {
+  std::string out = "free, poly(VAR,K)";
+  for (const ValueLaw& v : value_law_candidates())
+    if ((v.current == ValueLaw::Shape::constant || v.factor == ValueLaw::Factor::none) && v.text() != "free")
+      out += ", " + v.text();
+  return out + ", and prod of a shape in I with a setting factor among them";
+}
+
+/// The family of --laws auto that `law` is, for a law that is neither fixed, free nor a single poly; InputError
+/// naming the parameter when it is none of them.
+ValueLaw value_law_of(const ParameterLaw& law, const std::string& parameter) {
+  const std::string text = law.text();
+  for (const ValueLaw& v : value_law_candidates())
+    if (v.text() == text) return v;
+  throw InputError(fmt::format("--start per-file: the law {}={} has no fit to per-record values (those that have one: "
+                               "{})",
+                               parameter, text, laws_with_value_fits()));
+}
+
+bool fitted_as_value_law(const ParameterLaw& law) {
+  return law.kind == ParameterLaw::Kind::product && !law.single(LawFactor::Family::poly);
+}
+
 }  // namespace
 
 std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string& parameter,
@@ -41,14 +66,8 @@ std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string
     for (double v : values) sum += v;
     return {values.empty() ? 0.0 : sum / static_cast<double>(values.size())};
   }
-  if (law.single(LawFactor::Family::poly)) return polynomial_fit(law.factors.front(), variables, values);
-  const std::string text = law.text();
-  for (const ValueLaw& v : value_law_candidates())
-    if (v.text() == text) return fit_value_law(v, variables, values).coefficients;
-  throw InputError(fmt::format("--start per-file: the law {}={} has no fit to per-record values (those that have one: "
-                               "free, poly(VAR,K), mono(I,0,1), hill(I,2), sat(I), poly(amp,1), poly(freq,1), power(vamp), "
-                               "power(amp), power(freq), and prod of one of the first three with one of the last five)",
-                               parameter, text));
+  if (!fitted_as_value_law(law)) return polynomial_fit(law.factors.front(), variables, values);
+  return fit_value_law(value_law_of(law, parameter), variables, values).coefficients;
 }
 
 ResolvedModel per_record_model(const ModelChoice& choice) {
@@ -65,10 +84,12 @@ ResolvedModel per_record_model(const ModelChoice& choice) {
 
 std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
                                            const Model& law_model) {
-  const ResolvedModel per_record = per_record_model(choice);
-  const auto fits = fit_each_record(search, per_record);
   const auto laws = choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
                                         : parse_laws(choice.laws, choice.option_prefix + "laws");
+  for (const auto& [name, law] : laws)  // refused before the records' fits, which take minutes
+    if (fitted_as_value_law(law)) value_law_of(law, name);
+  const ResolvedModel per_record = per_record_model(choice);
+  const auto fits = fit_each_record(search, per_record);
   std::vector<std::map<std::string, double>> variables;
   for (const Signals* r : search.records) variables.push_back(r->law_variables);
   const auto fitted = per_record.model->parameters();
