@@ -93,6 +93,12 @@ int simulate_command(const SimulateOptions& o) {
     if (!file) throw StoreError(fmt::format("-o: cannot write '{}'", o.output));
   }
   std::ostream& out = o.output.empty() ? std::cout : file;
+  if (data.is_system()) {  // a system model's output is the displacement y
+    out << "t,y,u\n";
+    for (std::size_t k = 0; k < sim.force.size(); ++k)
+      out << fmt::format("{:.17g},{:.17g},{:.17g}\n", data.t_s[k], sim.force[k], data.u_N[k]);
+    return 0;
+  }
   out << "t,x,v,a,F\n";
   for (std::size_t k = 0; k < sim.force.size(); ++k)
     out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", data.t_s[k], data.x_m[k], data.v_m_s[k],

@@ -10,6 +10,12 @@
 namespace dampbench {
 
 void check_record(const Model& model, const Signals& record) {
+  if (model.is_system() != record.is_system())
+    throw InputError(fmt::format(
+        "record '{}' is a {} record and model {} a {} model: {}", record.name, record.is_system() ? "system (t, y, u)" : "rig (t, x, F)",
+        model.id(), model.is_system() ? "system" : "rig",
+        model.is_system() ? "a system model is driven by a force u and computes the displacement y (columns t,y,u)"
+                          : "a rig model is driven by the displacement x and computes the force F (columns t,x,F)"));
   if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(record);
 }
 

@@ -53,7 +53,9 @@ FitRecords fit_records_of(const Model& model, const std::vector<Dataset>& record
   FitRecords r;
   r.signals.reserve(records.size());
   for (const Dataset& record : records) {
-    if (!record.has_force()) throw InputError(fmt::format("record '{}' has no force F: fitting and evaluating need the measured force", record.name));
+    if (!record.has_measured())
+      throw InputError(fmt::format("record '{}' has no {}: fitting and evaluating need the measured output", record.name,
+                                   record.is_system() ? "displacement y" : "force F"));
     add_record(model, record, r);
   }
   return r;

@@ -19,7 +19,7 @@ struct FitRecords {
 };
 
 /// Loads `paths` with the loader options `data` (its path unused), in order, each checked against the model
-/// (check_record) as soon as it is read. Every record needs a force column.
+/// (check_record) as soon as it is read. Every record needs its measured output (F, or y of a system record).
 FitRecords load_fit_records(const Model& model, const std::vector<std::string>& paths, const RecordOptions& data);
 
 /// The same from records already loaded (the Python module's): each prepared and checked against the model.

@@ -47,11 +47,11 @@ std::vector<std::vector<double>> scaled_residuals(const Model& model, std::span<
     for (const Signals* d : data) {
       force.resize(static_cast<std::size_t>(n) * d->size());
       model.simulate_block(batch, first, n, *d, force.data());
-      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->force_max_abs_N);
+      const double scale = 1.0 / (std::sqrt(static_cast<double>(d->size())) * d->measured_max_abs);
       for (int i = 0; i < n; ++i) {
         const double* F = force.data() + static_cast<std::size_t>(i) * d->size();
         double* out = r[static_cast<std::size_t>(first + i)].data() + offset;
-        for (std::size_t k = 0; k < d->size(); ++k) out[k] = (F[k] - d->F_N[k]) * scale;
+        for (std::size_t k = 0; k < d->size(); ++k) out[k] = (F[k] - d->measured()[k]) * scale;
       }
       offset += d->size();
     }
@@ -175,7 +175,8 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
   if (settings.runs < 1) throw InputError(fmt::format("runs must be at least 1, got {}", settings.runs));
   if (data.empty()) throw InputError("identification needs at least one dataset");
   for (const Signals* d : data)
-    if (!d->has_force()) throw InputError(fmt::format("dataset '{}' has no force column F", d->name));
+    if (!d->has_measured())
+      throw InputError(fmt::format("dataset '{}' has no measured output (force F, or displacement y)", d->name));
   validate_bounds(bounds, model);
   const auto start = Clock::now();
 

@@ -23,7 +23,7 @@ Bounds default_bounds(const Model& model, std::span<const Signals* const> record
   Bounds b = default_bounds(model);
   double F = 0, V = 0, X = 0;
   for (const Signals* r : records) {
-    F = std::max(F, r->force_max_abs_N);
+    F = std::max(F, r->measured_max_abs);
     V = std::max(V, r->velocity_max_abs);
     X = std::max(X, 0.5 * r->displacement_ptp);
   }

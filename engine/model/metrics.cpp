@@ -19,23 +19,23 @@ struct MetricDefinition {
 
 constexpr std::array<MetricDefinition, kMetricCount> kDefinitions{{
     {Metric::of_abs, "of_abs", SumSet::abs_weighted,
-     [](const MetricSums& s, const Signals& d, double) { return s.abs_weighted / (d.force_std_N * d.duration_s); }},
+     [](const MetricSums& s, const Signals& d, double) { return s.abs_weighted / (d.measured_std * d.duration_s); }},
     {Metric::of_sq, "of_sq", SumSet::sq_weighted,
      [](const MetricSums& s, const Signals& d, double) {
-       return s.sq_weighted / (d.force_std_N * d.force_std_N * d.duration_s);
+       return s.sq_weighted / (d.measured_std * d.measured_std * d.duration_s);
      }},
     {Metric::rmse, "rmse", SumSet::sq, [](const MetricSums& s, const Signals&, double n) { return std::sqrt(s.sq / n); }},
     {Metric::nrmse, "nrmse", SumSet::sq,
-     [](const MetricSums& s, const Signals& d, double n) { return std::sqrt(s.sq / n) / d.force_max_abs_N; }},
+     [](const MetricSums& s, const Signals& d, double n) { return std::sqrt(s.sq / n) / d.measured_max_abs; }},
     {Metric::mae, "mae", SumSet::abs, [](const MetricSums& s, const Signals&, double n) { return s.abs / n; }},
     {Metric::crfd_eps, "crfd_eps", SumSet::sq,
-     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(0.5 * s.sq / d.force_max_abs_N) * 100.0; }},
+     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(0.5 * s.sq / d.measured_max_abs) * 100.0; }},
     {Metric::mfm_E, "mfm_E", SumSet::sq,
-     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(s.sq / d.force_sum_sq); }},
+     [](const MetricSums& s, const Signals& d, double) { return std::sqrt(s.sq / d.measured_sum_sq); }},
     {Metric::fdsp_pct, "fdsp_pct", SumSet::abs_magnitude,
-     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs_magnitude / (n * d.force_max_abs_N); }},
+     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs_magnitude / (n * d.measured_max_abs); }},
     {Metric::fdsp_signed_pct, "fdsp_signed_pct", SumSet::abs,
-     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs / (n * d.force_max_abs_N); }},
+     [](const MetricSums& s, const Signals& d, double n) { return 100.0 * s.abs / (n * d.measured_max_abs); }},
 }};
 
 constexpr bool rows_in_enum_order() {

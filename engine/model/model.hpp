@@ -100,6 +100,11 @@ class Model {
   /// for algebraic ones. `fit` chooses its default optimizer and budget by it (engine/fit/fit_defaults.hpp).
   [[nodiscard]] virtual bool has_internal_states() const { return false; }
 
+  /// True for a system model: a structure driven by the force u of a system record (t, y, u), computing its
+  /// displacement y (the "force" of simulate and the metrics is then y [m]). False for rig models, which take the
+  /// displacement x and compute the force F. A model is only evaluated on records of its own kind.
+  [[nodiscard]] virtual bool is_system() const { return false; }
+
   /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
   /// with internal states; nullopt for algebraic models, whose force is exact.
   [[nodiscard]] virtual std::optional<std::vector<double>> simulate_reference(std::span<const double> /*params*/,

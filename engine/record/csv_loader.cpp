@@ -121,7 +121,7 @@ ColumnInfo column_from_cell(std::string_view cell, const std::string& origin) {
   return {std::move(name), std::move(unit), origin, 1.0};
 }
 
-/// Rejects names other than t, x, v, a, F, I, V, phi (listing all of them) and repeated names.
+/// Rejects names other than t, x, v, a, F, y, u, I, V, phi (listing all of them) and repeated names.
 void check_names(const std::vector<ColumnInfo>& columns, const std::string& origin) {
   std::vector<std::string> unknown;
   for (const auto& column : columns)
@@ -186,15 +186,25 @@ std::optional<std::size_t> index_of(const std::vector<ColumnInfo>& columns, std:
   return std::nullopt;
 }
 
+/// A record with column u is a system record (t, u, and y when the output is required); one with a column of each kind
+/// is refused, since a record is either driven by displacement (rig) or by force (system).
 void check_required(const std::vector<ColumnInfo>& columns, const CsvOptions& options, const std::string& source) {
-  std::vector<std::string> required{"t", "x"};
-  if (options.require_force) required.emplace_back("F");
+  const bool system = index_of(columns, "u") || index_of(columns, "y");
+  std::vector<std::string> required{"t", system ? "u" : "x"};
+  if (options.require_force) required.emplace_back(system ? "y" : "F");
   std::vector<std::string> missing;
   for (const auto& name : required)
     if (!index_of(columns, name)) missing.push_back(name);
-  if (missing.empty()) return;
   std::string found;
   for (const auto& column : columns) found += (found.empty() ? "" : ", ") + column.name;
+  if (system)
+    for (const char* rig : {"x", "v", "a", "F"})
+      if (index_of(columns, rig))
+        throw InputError(fmt::format("{}: column '{}' with a force input u or an output y (columns found: {}); a record "
+                                     "is either t,x,F (displacement in, force out: a rig) or t,y,u (force u in, "
+                                     "displacement y out: a system)",
+                                     source, rig, found));
+  if (missing.empty()) return;
   throw InputError(fmt::format("{}: missing column{} {} (columns found: {})", source, missing.size() > 1 ? "s" : "",
                                join_quoted(missing), found));
 }
@@ -256,17 +266,9 @@ void read_operating_column(const char* name, const std::vector<double>& column, 
         data.source, name, *lo, *hi, spread, 100 * spread / scale, kConstantFloor, 100 * kConstantSpreadRel, name);
 }
 
-/// Moves the parsed columns into a Dataset, computing v and a when the file lacks them.
-Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::vector<double>>& values,
-                     const std::string& source) {
-  const auto column = [&](std::string_view name) -> std::vector<double>* {
-    const auto index = index_of(columns, name);
-    return index ? &values[*index] : nullptr;
-  };
-  Dataset data;
-  data.source = source;
-  data.name = std::filesystem::path(source).stem().string();
-  data.t_s = std::move(*column("t"));
+/// x, F, v and a of a rig record, computing v and a when the file lacks them.
+template <class Column>
+void fill_rig_columns(const Column& column, Dataset& data) {
   data.x_m = std::move(*column("x"));
   if (auto* force = column("F")) data.F_N = std::move(*force);
   if (auto* velocity = column("v"))
@@ -277,6 +279,25 @@ Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::ve
     data.a_m_s2 = std::move(*acceleration);
   else
     data.a_m_s2 = differentiate_3rd_order(data.t_s, data.v_m_s);
+}
+
+/// Moves the parsed columns into a Dataset: a system record's t, u, y, or a rig record's columns.
+Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::vector<double>>& values,
+                     const std::string& source) {
+  const auto column = [&](std::string_view name) -> std::vector<double>* {
+    const auto index = index_of(columns, name);
+    return index ? &values[*index] : nullptr;
+  };
+  Dataset data;
+  data.source = source;
+  data.name = std::filesystem::path(source).stem().string();
+  data.t_s = std::move(*column("t"));
+  if (auto* input = column("u")) {
+    data.u_N = std::move(*input);
+    if (auto* output = column("y")) data.y_m = std::move(*output);
+  } else {
+    fill_rig_columns(column, data);
+  }
   for (const char* name : {"I", "V", "phi"})
     if (const auto* operating = column(name)) read_operating_column(name, *operating, data);
   return data;

@@ -22,10 +22,11 @@ struct CsvOptions {
 /// Parses --units "x=mm,F=kN" into CsvOptions::units (validating column and unit names).
 std::map<std::string, std::string> parse_units_option(std::string_view text);
 
-/// Loads a test record and converts it to SI. Columns t and x are required (F too if require_force);
+/// Loads a test record and converts it to SI. A rig record needs columns t and x (F too if require_force);
 /// v and a are taken from the file when present, else computed by differentiate_3rd_order (v from x,
-/// a from the velocity in use). Unknown column names in a header are an error naming them (only t, x, v, a,
-/// F, I, V, phi). Columns I, V, phi (if present) go to Dataset::operating as their mean value.
+/// a from the velocity in use). A system record (a column u or y) needs t and u (y too if require_force) and
+/// no x, v, a or F. Unknown column names in a header are an error naming them (only t, x, v, a,
+/// F, y, u, I, V, phi). Columns I, V, phi (if present) go to Dataset::operating as their mean value.
 /// dataset.name = file stem, source = path. Every error is an InputError starting with the path.
 ///
 /// Format: '#' lines and blank lines are skipped; the first remaining line decides the separator (comma if it

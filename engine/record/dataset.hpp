@@ -6,8 +6,9 @@
 
 namespace dampbench {
 
-/// One measured (or synthetic) test: displacement in, force out, all in SI units.
-/// Rotary devices store the angle in x [rad] and the torque in F [N·m].
+/// One measured (or synthetic) test in SI units. A rig record (columns t, x, F): displacement in, force out; rotary
+/// devices store the angle in x [rad] and the torque in F [N·m]. A system record (columns t, y, u): a structure
+/// driven by the force u, its displacement y out; x, v, a and F are empty.
 struct Dataset {
   std::string name;            ///< label used in tables (file stem by default)
   std::string source;          ///< file path or generator description
@@ -16,6 +17,8 @@ struct Dataset {
   std::vector<double> v_m_s;   ///< velocity [m/s] (from the file or 3rd-order differentiation)
   std::vector<double> a_m_s2;  ///< acceleration [m/s²] (from the file or 3rd-order differentiation)
   std::vector<double> F_N;     ///< measured force [N]; empty when only the input is known
+  std::vector<double> u_N;     ///< system record: input force [N]
+  std::vector<double> y_m;     ///< system record: measured displacement [m]; empty when only the input is known
   /// Operating variables of the test (I [A], V [V], phi [deg], amp [m], freq [Hz]).
   std::map<std::string, double> operating;
   /// Where each operating variable comes from: "file comment", "column mean", "file name", "--set", "sine
@@ -27,6 +30,10 @@ struct Dataset {
 
   [[nodiscard]] std::size_t size() const { return t_s.size(); }
   [[nodiscard]] bool has_force() const { return !F_N.empty(); }
+  [[nodiscard]] bool is_system() const { return !u_N.empty(); }
+  /// The measured output a model is compared with: y of a system record, F of a rig record.
+  [[nodiscard]] const std::vector<double>& measured() const { return is_system() ? y_m : F_N; }
+  [[nodiscard]] bool has_measured() const { return !measured().empty(); }
 };
 
 }  // namespace dampbench

@@ -33,6 +33,10 @@ Dataset load_record(const RecordOptions& options, bool require_force) {
 }
 
 Dataset prepare_record(Dataset data, const RecordOptions& options) {
+  if (data.is_system() && (!options.transform.empty() || !options.average.empty()))
+    throw InputError(fmt::format("{}: --transform and --average-cycles act on a rig record's stroke; this is a system "
+                                 "record (t, y, u: force in, displacement out)",
+                                 data.source));
   if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
     SliderCrank rig;
     rig.printed_torque = options.transform == "slider-crank-printed";

@@ -18,9 +18,11 @@ struct Signals : Dataset {
   /// fvd.gv_linear_elastic's time.
   std::vector<double> sgn_x, sgn_v, log_abs_x, log_abs_v;
   double duration_s = 0;          ///< t_end − t_start
-  double force_std_N = 0;         ///< population standard deviation of the measured force, σ(p_m) of fvd eq. 7
-  double force_max_abs_N = 0;     ///< max |F|, normalizes nrmse
-  double force_sum_sq = 0;        ///< Σ F² [N²], normalizes mfm eq. 12
+  // Statistics of the measured output (Dataset::measured(): the force F [N] of a rig record, the displacement
+  // y [m] of a system record) that normalise the metrics.
+  double measured_std = 0;      ///< population standard deviation, σ(p_m) of fvd eq. 7
+  double measured_max_abs = 0;  ///< max |F| (or |y|), normalizes nrmse
+  double measured_sum_sq = 0;   ///< Σ F² [N²] (or Σ y² [m²]), normalizes mfm eq. 12
   double velocity_max_abs = 0;    ///< max |v| [m/s] (ΔŻ of fdsp eq. 15)
   double displacement_ptp = 0;    ///< max x − min x [m] (ΔZ of fdsp eq. 15)
   /// fdsp eq. 15: ω = ΔŻ/(π·ΔZ), the excitation frequency [Hz] for a sinusoid, estimated from the record.

@@ -46,14 +46,16 @@ constexpr std::array<Unit, 2> kCurrent{{{"A", 1.0}, {"mA", 1e-3}}};
 constexpr std::array<Unit, 2> kVoltage{{{"V", 1.0}, {"mV", 1e-3}}};
 constexpr std::array<Unit, 2> kAngle{{{"deg", 1.0}, {"rad", 1.0 / kDeg}}};  // phi is kept in degrees
 
-constexpr std::array<Column, 8> kColumns{{{"t", kTime},
-                                          {"x", kDisplacement},
-                                          {"v", kVelocity},
-                                          {"a", kAcceleration},
-                                          {"F", kForce},
-                                          {"I", kCurrent},
-                                          {"V", kVoltage},
-                                          {"phi", kAngle}}};
+constexpr std::array<Column, 10> kColumns{{{"t", kTime},
+                                           {"x", kDisplacement},
+                                           {"v", kVelocity},
+                                           {"a", kAcceleration},
+                                           {"F", kForce},
+                                           {"y", kDisplacement},
+                                           {"u", kForce},
+                                           {"I", kCurrent},
+                                           {"V", kVoltage},
+                                           {"phi", kAngle}}};
 
 const Column* find_column(std::string_view name) {
   for (const Column& column : kColumns)

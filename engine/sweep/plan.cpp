@@ -18,6 +18,10 @@ LoadedDataset load_dataset(const DatasetSpec& d, const Loader& loader) {
     Dataset data = loader(d.load);
     data.name = d.name;
     out.signals = prepare_signals(data);
+    if (out.signals.is_system())
+      throw DataError(fmt::format("dataset '{}' is a system record (t, y, u): sweeps take rig records (t, x, F); fit a "
+                                  "system with `dampbench fit`",
+                                  d.name));
     if (!out.signals.has_force()) throw DataError(fmt::format("dataset '{}' has no force column F", d.name));
     out.hash = dataset_hash(out.signals);
   } catch (const std::exception& e) {

@@ -102,7 +102,7 @@ TEST(BatchEvaluator, MetricOfSimulatedForceMatchesBatchPath) {
     const auto F = f.model.simulate(f.batch.candidate(i), f.data);
     double integral = 0;
     for (std::size_t k = 0; k < F.size(); ++k) integral += f.data.w_trapz_s[k] * std::fabs(f.data.F_N[k] - F[k]);
-    EXPECT_NEAR(batch_values[i], integral / (f.data.force_std_N * f.data.duration_s), 1e-12 * batch_values[i]);
+    EXPECT_NEAR(batch_values[i], integral / (f.data.measured_std * f.data.duration_s), 1e-12 * batch_values[i]);
   }
 }
 

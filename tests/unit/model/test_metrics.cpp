@@ -46,8 +46,8 @@ TEST(Signals, TrapezoidWeightsAndForceStatistics) {
   EXPECT_DOUBLE_EQ(s.w_trapz_s[2], 0.75);
   EXPECT_DOUBLE_EQ(s.w_trapz_s[3], 0.25);
   EXPECT_DOUBLE_EQ(s.duration_s, 2.0);
-  EXPECT_DOUBLE_EQ(s.force_std_N, std::sqrt(17.0 / 4.0));  // mean 0.5, Σ(F − mean)² = 17
-  EXPECT_DOUBLE_EQ(s.force_max_abs_N, 3.0);
+  EXPECT_DOUBLE_EQ(s.measured_std, std::sqrt(17.0 / 4.0));  // mean 0.5, Σ(F − mean)² = 17
+  EXPECT_DOUBLE_EQ(s.measured_max_abs, 3.0);
 }
 
 TEST(Metrics, HandComputedValues) {

@@ -279,7 +279,7 @@ TEST(CsvLoaderErrors, UnknownUnitInOptions) {
   EXPECT_EQ(error_of([] { parse_units_option("x=furlong"); }),
             "--units: unknown unit 'furlong' for column 'x' (known: m, mm, cm, um, in, rad, deg)");
   EXPECT_EQ(error_of([] { parse_units_option("q=mm"); }),
-            "--units: unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
+            "--units: unknown column 'q' (known: t, x, v, a, F, y, u, I, V, phi)");
   EXPECT_EQ(error_of([] { parse_units_option("x=mm,x=cm"); }), "--units: 'x' given twice");
   CsvOptions options;
   options.units = {{"x", "furlong"}};  // built by hand, not validated by parse_units_option
@@ -289,7 +289,7 @@ TEST(CsvLoaderErrors, UnknownUnitInOptions) {
 }
 
 TEST(CsvLoaderErrors, UnknownColumnNames) {
-  EXPECT_EQ(parse_error("t,x,F,q\n0,0,0,0\n"), "data.csv:1: unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
+  EXPECT_EQ(parse_error("t,x,F,q\n0,0,0,0\n"), "data.csv:1: unknown column 'q' (known: t, x, v, a, F, y, u, I, V, phi)");
   EXPECT_TRUE(HasText(parse_error("time,x,F,load\n0,0,0,0\n"), "data.csv:1: unknown columns 'time', 'load'"));
   EXPECT_TRUE(
       HasText(parse_error(linear_rows(10), with_columns({"t", "x", "f"})), "data.csv: --columns: unknown column 'f'"));

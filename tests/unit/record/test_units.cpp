@@ -73,8 +73,8 @@ TEST(Units, UnitOfAnotherColumnOrWrongCaseIsUnknown) {
 }
 
 TEST(Units, UnknownColumnListsKnownOnes) {
-  EXPECT_EQ(error_of([] { unit_to_si("q", "m"); }), "unknown column 'q' (known: t, x, v, a, F, I, V, phi)");
-  EXPECT_EQ(known_columns_text(), "t, x, v, a, F, I, V, phi");
+  EXPECT_EQ(error_of([] { unit_to_si("q", "m"); }), "unknown column 'q' (known: t, x, v, a, F, y, u, I, V, phi)");
+  EXPECT_EQ(known_columns_text(), "t, x, v, a, F, y, u, I, V, phi");
   EXPECT_TRUE(is_known_column("phi"));
   EXPECT_FALSE(is_known_column("f"));
 }
