@@ -17,6 +17,9 @@ void add_data_options(CLI::App* cmd, RecordOptions& d) {
   cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
   cmd->add_option("--conditions", d.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
   cmd->add_option("--set", d.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
+  cmd->add_flag("--periodic", d.periodic,
+                "a system record (t,y,u) is one period of a periodic input and y its steady response (default: the "
+                "structure starts from rest)");
 }
 
 ModelChoice command_line_model(const std::string& model, const std::string& laws, const std::string& bounds,

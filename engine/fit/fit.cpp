@@ -16,6 +16,7 @@ void check_record(const Model& model, const Signals& record) {
         model.id(), model.is_system() ? "system" : "rig",
         model.is_system() ? "a system model is driven by a force u and computes the displacement y (columns t,y,u)"
                           : "a rig model is driven by the displacement x and computes the force F (columns t,x,F)"));
+  if (record.is_system()) check_uniform_sampling(record);
   if (const auto* law = dynamic_cast<const LawModel*>(&model)) law->check_variables(record);
 }
 

@@ -19,6 +19,9 @@ struct Dataset {
   std::vector<double> F_N;     ///< measured force [N]; empty when only the input is known
   std::vector<double> u_N;     ///< system record: input force [N]
   std::vector<double> y_m;     ///< system record: measured displacement [m]; empty when only the input is known
+  /// System record: u is one period of a periodic input, and y the steady response to it (evaluate --periodic).
+  /// Otherwise the structure starts from rest at the first sample.
+  bool periodic_input = false;
   /// Operating variables of the test (I [A], V [V], phi [deg], amp [m], freq [Hz]).
   std::map<std::string, double> operating;
   /// Where each operating variable comes from: "file comment", "column mean", "file name", "--set", "sine

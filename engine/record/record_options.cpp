@@ -37,6 +37,10 @@ Dataset prepare_record(Dataset data, const RecordOptions& options) {
     throw InputError(fmt::format("{}: --transform and --average-cycles act on a rig record's stroke; this is a system "
                                  "record (t, y, u: force in, displacement out)",
                                  data.source));
+  if (options.periodic && !data.is_system())
+    throw InputError(fmt::format("{}: --periodic applies to system records (t, y, u); this is a rig record (t, x, F)",
+                                 data.source));
+  data.periodic_input = options.periodic;
   if (options.transform == "slider-crank" || options.transform == "slider-crank-printed") {
     SliderCrank rig;
     rig.printed_torque = options.transform == "slider-crank-printed";

@@ -18,6 +18,7 @@ struct RecordOptions {
   std::string average;     ///< "cycles=10,drop=3": average the kept cycles into one
   std::string conditions;  ///< "" | "utfsm": operating variables from the file name
   std::string set;         ///< "I=1,amp=0.01,freq=1": operating variables (override the others)
+  bool periodic = false;   ///< a system record is one period of a periodic input (Dataset::periodic_input)
 };
 
 /// Loads and prepares one record: CSV → slider-crank transform → cycle averaging → operating variables.

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
 #include "engine/common/vector_math.hpp"
 
 namespace dampbench {
@@ -65,6 +68,19 @@ void prepare_measured_statistics(Signals& s) {
 }
 
 }  // namespace
+
+void check_uniform_sampling(const Dataset& data) {
+  const std::size_t n = data.size();
+  if (n < 2) return;
+  const double first_step = data.t_s[1] - data.t_s[0];
+  for (std::size_t k = 2; k < n; ++k) {
+    const double step = data.t_s[k] - data.t_s[k - 1];
+    if (std::fabs(step - first_step) > 1e-6 * first_step)
+      throw InputError(fmt::format("record '{}': sample {} is {:g} s after the one before, the first step is {:g} s; "
+                                   "a system record needs a constant sampling rate",
+                                   data.name, k, step, first_step));
+  }
+}
 
 Signals prepare_signals(const Dataset& data) {
   Signals s;

@@ -38,4 +38,8 @@ struct Signals : Dataset {
 /// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).
 Signals prepare_signals(const Dataset& data);
 
+/// Throws InputError naming the record and the first offending sample unless its time step is constant (to 1e−6
+/// of the first step): a system model reconstructs the input between samples assuming a uniform rate.
+void check_uniform_sampling(const Dataset& data);
+
 }  // namespace dampbench
