@@ -12,7 +12,7 @@ struct Registry {
   std::vector<const Model*> views;
 
   Registry() {
-    for (auto make : {make_fvd_models, make_crfd_models, make_mrd_models})
+    for (auto make : {make_fvd_models, make_crfd_models, make_mrd_models, make_system_models})
       for (auto& m : make()) owned.push_back(std::move(m));
     for (const auto& m : owned) views.push_back(m.get());
   }

@@ -19,5 +19,7 @@ const Model& find_model(std::string_view id);
 std::vector<std::unique_ptr<Model>> make_fvd_models();
 std::vector<std::unique_ptr<Model>> make_crfd_models();
 std::vector<std::unique_ptr<Model>> make_mrd_models();
+/// Structures driven by a force (system records t, y, u).
+std::vector<std::unique_ptr<Model>> make_system_models();
 
 }  // namespace dampbench

@@ -72,13 +72,13 @@ void prepare_measured_statistics(Signals& s) {
 void check_uniform_sampling(const Dataset& data) {
   const std::size_t n = data.size();
   if (n < 2) return;
-  const double first_step = data.t_s[1] - data.t_s[0];
-  for (std::size_t k = 2; k < n; ++k) {
-    const double step = data.t_s[k] - data.t_s[k - 1];
-    if (std::fabs(step - first_step) > 1e-6 * first_step)
-      throw InputError(fmt::format("record '{}': sample {} is {:g} s after the one before, the first step is {:g} s; "
-                                   "a system record needs a constant sampling rate",
-                                   data.name, k, step, first_step));
+  const double step = (data.t_s.back() - data.t_s.front()) / static_cast<double>(n - 1);
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    const double expected = data.t_s.front() + static_cast<double>(k) * step;
+    if (std::fabs(data.t_s[k] - expected) > kUniformSamplingTolerance * step)
+      throw InputError(fmt::format("record '{}': sample {} is at {:.9g} s, {:.3g} steps from the uniform grid of {:g} s "
+                                   "from {:g} s; a system record needs a constant sampling rate",
+                                   data.name, k, data.t_s[k], (data.t_s[k] - expected) / step, step, data.t_s.front()));
   }
 }
 
