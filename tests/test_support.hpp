@@ -43,6 +43,21 @@ inline Dataset two_sine_record(int samples = 1000, double fs_hz = 500.0) {
   return d;
 }
 
+/// The input of a two-sine test for a model of either kind: two_sine_record's displacement for a rig model, a force
+/// of the same shape (±84 N) for a system model (a t, u record).
+inline Dataset two_sine_input(bool system, int samples = 1000, double fs_hz = 500.0) {
+  Dataset d = two_sine_record(samples, fs_hz);
+  if (!system) return d;
+  Dataset s;
+  s.name = d.name;
+  s.t_s = d.t_s;
+  for (double x : d.x_m) s.u_N.push_back(4000 * x);
+  return s;
+}
+
+/// The measured output a model is compared with: F of a rig record, y of a system record.
+inline std::vector<double>& measured_output(Dataset& d) { return d.is_system() ? d.y_m : d.F_N; }
+
 /// Adds Gaussian noise of `relative` × RMS(d.F_N) to d.F_N from the keyed stream (seed); returns the RMS of the
 /// noise actually added (the noise floor a fit can reach).
 inline double add_force_noise(Dataset& d, double relative, std::uint64_t seed) {

@@ -113,8 +113,8 @@ namespace dampbench {
 // Every model's lane kernel against the plain scalar loop of the same law (Model::evaluate_scalar):
 // the same sums up to rounding of the vector math library (libmvec lanes vs scalar libm).
 TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
-  Dataset d = testing::two_sine_record(300);
   for (const Model* m : all_models()) {
+    const Dataset d = testing::two_sine_input(m->is_system(), 300);
     const Signals input = prepare_signals(d);
     const Bounds b = default_bounds(*m);
     CandidateBatch batch(m->dim(), 21);
@@ -123,8 +123,8 @@ TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
       for (int j = 0; j < m->dim(); ++j)  // central half of the bounds: mostly well-behaved candidates
         batch.at(i, j) = b.lower[j] + (0.25 + 0.5 * rng.uniform()) * (b.upper[j] - b.lower[j]);
     Dataset with_force = d;
-    with_force.F_N = m->simulate(batch.candidate(0), input);
-    for (double& f : with_force.F_N) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
+    testing::measured_output(with_force) = m->simulate(batch.candidate(0), input);
+    for (double& f : testing::measured_output(with_force)) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
     const Signals data = prepare_signals(with_force);
     std::vector<MetricSums> lanes(21), scalar(21);
     for (int first = 0; first < 21; first += kLanes) {
@@ -147,7 +147,6 @@ TEST(BatchEvaluator, LaneKernelsMatchTheirScalarLoops) {
 // metric, that sum has the bits it has when all five are computed, the others are NaN (so a metric finished from
 // one of them is +inf, never a wrong number), and BatchEvaluator::evaluate equals the metric of evaluate_all.
 TEST(BatchEvaluator, OneMetricsSumHasTheBitsOfAllSums) {
-  const Dataset d = testing::two_sine_record(300);
   const auto sum_of = [](const MetricSums& s, SumSet set) {
     switch (set) {
       case SumSet::abs_weighted: return s.abs_weighted;
@@ -161,6 +160,7 @@ TEST(BatchEvaluator, OneMetricsSumHasTheBitsOfAllSums) {
   };
   const SumSet singles[] = {SumSet::abs_weighted, SumSet::sq_weighted, SumSet::abs, SumSet::sq, SumSet::abs_magnitude};
   for (const Model* m : all_models()) {
+    const Dataset d = testing::two_sine_input(m->is_system(), 300);
     const Signals input = prepare_signals(d);
     Dataset with_force = d;
     const Bounds b = default_bounds(*m);
@@ -168,8 +168,8 @@ TEST(BatchEvaluator, OneMetricsSumHasTheBitsOfAllSums) {
     RandomStream rng(hash_key({5, hash_name(m->id())}));
     for (int i = 0; i < batch.count(); ++i)  // the whole box: masked candidates included
       for (int j = 0; j < m->dim(); ++j) batch.at(i, j) = b.lower[j] + rng.uniform() * (b.upper[j] - b.lower[j]);
-    with_force.F_N = m->simulate(batch.candidate(0), input);
-    for (double& f : with_force.F_N) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
+    testing::measured_output(with_force) = m->simulate(batch.candidate(0), input);
+    for (double& f : testing::measured_output(with_force)) f = std::isfinite(f) ? f * 1.01 + 1.0 : 0.0;
     const Signals data = prepare_signals(with_force);
     std::vector<MetricSums> every(21), one(21);
     for (int first = 0; first < 21; first += kLanes)
@@ -226,7 +226,7 @@ TEST(BatchEvaluator, SimulateBlockEqualsSimulateOfEachCandidate) {
     RandomStream rng(hash_key({23, hash_name(m->id())}));
     for (int i = 0; i < batch.count(); ++i)
       for (int j = 0; j < m->dim(); ++j) batch.at(i, j) = rng.uniform(b.lower[j], b.upper[j]);
-    check(*m, input, batch);
+    check(*m, m->is_system() ? prepare_signals(testing::two_sine_input(true, 300)) : input, batch);
   }
   // A law model: c0 and alpha linear in I on a record at I = 0.7.
   const LawModel law(find_model("mrd.bouc_wen"), parse_laws("c0=poly(I,1);alpha=poly(I,1)", "laws"));
