@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "datasets/synthetic/bouc_wen_benchmark.hpp"
 #include "datasets/synthetic/grids.hpp"
 #include "engine/sweep/spec.hpp"
 
@@ -26,6 +27,18 @@ int datasets_command(const DatasetsOptions& o) {
                                                                             : "regenerated (made by another build) in",
                              (std::filesystem::path(root) / grid).string());
   }
+  return 0;
+}
+
+void add_bouc_wen_datasets_options(CLI::App* cmd, BoucWenDatasetsOptions& o) {
+  cmd->add_option("--seed", o.seed, "seed of the multisine's phases and the output noise (default 1)");
+  cmd->add_option("--into", o.into, "folder to write into (default: the current one)");
+}
+
+int bouc_wen_datasets_command(const BoucWenDatasetsOptions& o) {
+  synthetic::write_bouc_wen_benchmark(o.into, o.seed);
+  std::cout << fmt::format("bouc-wen-benchmark: training_seed{}.csv and sweep_40N_20-50Hz.csv written into {}\n",
+                           o.seed, o.into);
   return 0;
 }
 

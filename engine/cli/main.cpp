@@ -86,6 +86,9 @@ std::vector<Command> declare_commands(CLI::App& app, int& threads, std::string& 
   datasets->require_subcommand(1);
   add_command<DatasetsOptions>(datasets, commands, "generate",
       "write the grids ahead of first use (run does it when needed)", add_datasets_options, datasets_command);
+  add_command<BoucWenDatasetsOptions>(datasets, commands, "bouc-wen-benchmark",
+      "the hysteretic benchmark's training data for a seed, and a sine sweep check (t,y,u records)",
+      add_bouc_wen_datasets_options, bouc_wen_datasets_command);
   auto* bench_cmd = add_command<BenchOptions>(&app, commands, "bench",
       "throughput of every model with 1 and 2 threads (docs/performance.md)", add_bench_options, bench_command);
   auto* lssvm_cmd = add_command<LssvmOptions>(&app, commands, "lssvm",
