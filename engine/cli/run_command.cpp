@@ -10,6 +10,7 @@
 
 #include "engine/cli/sweep_outputs.hpp"
 #include "engine/cli/output_manifest.hpp"
+#include "engine/cli/system_benchmark.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/distributed/mpi_runner.hpp"
@@ -120,6 +121,8 @@ void print_run_summary(const sweep::Plan& plan, const sweep::StoreResults& resul
 }  // namespace
 
 int run_command(const RunOptions& options) {
+  if (is_system_benchmark(options.preset))  // a [benchmark] preset: generate, fit, then test (system_benchmark.hpp)
+    return run_system_benchmark(load_system_benchmark(options.preset), options.output_dir);
   // Under mpirun every rank builds the same plan; rank 0 owns the store and writes everything
   // (engine/distributed/mpi_runner.hpp), the other ranks only identify groups.
   std::optional<distributed::MpiJob> job;
