@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "engine/kernels/cvode_integrator.hpp"
+#include "engine/kernels/isa.hpp"
 #include "engine/kernels/lane_kernel.hpp"
 #include "engine/kernels/newmark.hpp"
 #include "engine/record/bandlimited.hpp"
@@ -70,31 +71,61 @@ FineInput fine_input(const Signals& d) {
   return in;
 }
 
-/// Runs `count` candidates from rest through the whole input; out(k, l, y) receives lane l's displacement at the
-/// record's sample k, k = 0, 1, ... in order. failed[l] is set for a lane whose state stops being finite (its
-/// later outputs are NaN).
-template <class Out>
-void run_lanes(const HystereticStructure* lanes, int count, const FineInput& in, bool* failed, Out&& out) {
-  std::vector<StructureState> state(static_cast<std::size_t>(count));
-  for (int l = 0; l < count; ++l) {
-    state[l] = structure_at_rest(lanes[l], in.input(0));
-    failed[l] = false;
-  }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (in.first_output == 0)
-    for (int l = 0; l < count; ++l) out(0, l, state[l].y_m);
-  for (std::size_t step = 1; step <= in.steps; ++step) {
-    const double u = in.input(step);
-    for (int l = 0; l < count; ++l)
-      if (!failed[l]) {
-        newmark_step(lanes[l], in.h_s, u, state[l]);
-        failed[l] = !std::isfinite(state[l].y_m) || !std::isfinite(state[l].z_N);
-      }
-    if (step >= in.first_output && (step - in.first_output) % kSubsteps == 0) {
-      const std::size_t k = (step - in.first_output) / kSubsteps;
-      for (int l = 0; l < count; ++l) out(k, l, failed[l] ? nan : state[l].y_m);
+/// Candidates in lanes, stepped from rest through the whole input; out(k, lanes) sees the lanes at the record's
+/// sample k, k = 0, 1, ... in order. Compiled once per vector level (IsaClones): the lanes' Newton iterations are
+/// vector loops, and a lane's bits depend on its own parameters only.
+template <int W>
+struct LaneRun {
+  template <class Out>
+  static void run(NewmarkLanes<W>* lanes, const FineInput* in, Out out) {
+    const double u0 = in->input(0);
+    for (int l = 0; l < W; ++l) lanes->set_state(l, structure_at_rest(lanes->structure(l), u0));
+    if (in->first_output == 0) out(std::size_t{0}, *lanes);
+    for (std::size_t step = 1; step <= in->steps; ++step) {
+      lanes->step(in->h_s, in->input(step));
+      if (step >= in->first_output && (step - in->first_output) % kSubsteps == 0)
+        out((step - in->first_output) / kSubsteps, *lanes);
     }
   }
+};
+
+/// A block of W lanes holding candidates [first, first + count) of `batch`; the lanes past count repeat the first.
+template <int W>
+NewmarkLanes<W> lanes_of(const CandidateBatch& batch, int first, int count) {
+  NewmarkLanes<W> lanes;
+  for (int l = 0; l < W; ++l) lanes.set_structure(l, structure_of(batch.candidate(first + (l < count ? l : 0))));
+  return lanes;
+}
+
+/// lane's displacement, NaN once it failed.
+template <int W>
+double output_of(const NewmarkLanes<W>& lanes, int lane) {
+  return lanes.failed[lane] ? std::numeric_limits<double>::quiet_NaN() : lanes.y[lane];
+}
+
+/// The metric sums of one block of W lanes (W = kBlock: the vector clones; W = 1: the plain scalar loop).
+template <int W>
+void block_sums(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
+                MetricSums* out) {
+  NewmarkLanes<W> lanes = lanes_of<W>(batch, first, count);
+  const FineInput in = fine_input(data);
+  constexpr std::size_t kChunk = 16;
+  alignas(64) double chunk[kChunk][W] = {};
+  LaneSums<W> sums;
+  std::size_t filled = 0, chunk_start = 0;
+  const auto flush = [&] {
+    sums.add(chunk, filled, data.y_m.data() + chunk_start, data.w_trapz_s.data() + chunk_start, wanted);
+    chunk_start += filled;
+    filled = 0;
+  };
+  const auto collect = [&](std::size_t, const NewmarkLanes<W>& at) {
+    for (int l = 0; l < W; ++l) chunk[filled][l] = output_of(at, l);
+    if (++filled == kChunk) flush();
+  };
+  if constexpr (W == 1) LaneRun<1>::run(&lanes, &in, collect);
+  else IsaClones<LaneRun<W>>::call(&lanes, &in, collect);
+  if (filled > 0) flush();
+  sums.store(out, count, wanted, lanes.failed);
 }
 
 class BoucWenSystem final : public Model {
@@ -108,32 +139,24 @@ class BoucWenSystem final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
-    HystereticStructure lanes[kBlock];
-    for (int l = 0; l < count; ++l) lanes[l] = structure_of(batch.candidate(first + l));
-    const FineInput in = fine_input(data);
-    constexpr std::size_t kChunk = 16;
-    alignas(64) double chunk[kChunk][kBlock] = {};
-    LaneSums<kBlock> sums;
-    bool failed[kBlock] = {};
-    std::size_t filled = 0, chunk_start = 0;
-    const auto flush = [&] {
-      sums.add(chunk, filled, data.y_m.data() + chunk_start, data.w_trapz_s.data() + chunk_start, wanted);
-      chunk_start += filled;
-      filled = 0;
-    };
-    run_lanes(lanes, count, in, failed, [&](std::size_t, int l, double y) {
-      chunk[filled][l] = y;
-      if (l == count - 1 && ++filled == kChunk) flush();
-    });
-    if (filled > 0) flush();
-    sums.store(out, count, wanted, failed);
+    block_sums<kBlock>(batch, first, count, data, wanted, out);
   }
 
+  /// One candidate at a time in a single lane of plain scalar code (the reference of `dampbench bench`).
+  void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
+                       MetricSums* out) const override {
+    for (int i = 0; i < count; ++i) block_sums<1>(batch, first + i, 1, data, wanted, out + i);
+  }
+
+  /// One candidate in every lane of a block: the bits evaluate_block gives it.
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
-    const HystereticStructure lane = structure_of(params);
+    CandidateBatch one(dim(), 1);
+    one.set_candidate(0, params);
+    NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(one, 0, 1);
+    const FineInput in = fine_input(data);
     std::vector<double> y(data.size());
-    bool failed = false;
-    run_lanes(&lane, 1, fine_input(data), &failed, [&](std::size_t k, int, double value) { y[k] = value; });
+    IsaClones<LaneRun<kBlock>>::call(&lanes, &in,
+                                     [&](std::size_t k, const NewmarkLanes<kBlock>& at) { y[k] = output_of(at, 0); });
     return y;
   }
 
