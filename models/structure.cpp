@@ -157,7 +157,21 @@ class BoucWenSystem final : public Model {
     std::vector<double> y(data.size());
     IsaClones<LaneRun<kBlock>>::call(&lanes, &in,
                                      [&](std::size_t k, const NewmarkLanes<kBlock>& at) { y[k] = output_of(at, 0); });
+    if (lanes.failed[0]) std::fill(y.begin(), y.end(), std::nan(""));
     return y;
+  }
+
+  /// Candidates [first, first + count) in one lane block (count ≤ kBlock): each gets the bits simulate() gives it.
+  void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
+                      double* out) const override {
+    NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(batch, first, count);
+    const FineInput in = fine_input(data);
+    const std::size_t n = data.size();
+    IsaClones<LaneRun<kBlock>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<kBlock>& at) {
+      for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = output_of(at, l);
+    });
+    for (int l = 0; l < count; ++l)  // a lane that blew up is NaN throughout, as the interface promises
+      if (lanes.failed[l]) std::fill(out + static_cast<std::size_t>(l) * n, out + static_cast<std::size_t>(l + 1) * n, std::nan(""));
   }
 
   /// CVODE on the states (y, ẏ, z) with the input interpolated linearly between the integrator's input samples.
