@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -114,6 +115,18 @@ inline CommandResult run_dampbench(const std::string& args) {
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Inputs the reference script tests/unit/record/signal_chain_reference.py makes as well: s ← 48271·s mod (2³¹ − 1),
+/// x = s/2³¹ − 0.5 (exact in doubles, so both sides see the same x).
+inline std::vector<double> lehmer(std::size_t n, std::uint64_t seed) {
+  std::vector<double> x(n);
+  std::uint64_t s = seed;
+  for (double& value : x) {
+    s = 48271 * s % 2147483647;
+    value = static_cast<double>(s) / 2147483648.0 - 0.5;
+  }
+  return x;
 }
 
 }  // namespace dampbench::testing

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.hpp"
+
 #include "engine/common/error.hpp"
 
 namespace dampbench {
@@ -50,17 +52,6 @@ const std::vector<double> kSpline = {
     0.48260659212246537, 0.46339766524243703, 0.29189874463776749,
     -0.097169569693505764,
 };
-
-/// The script's inputs: s ← 48271·s mod (2³¹ − 1), x = s/2³¹ − 0.5 (exact in doubles, so both sides see the same x).
-std::vector<double> lehmer(std::size_t n, std::uint64_t seed) {
-  std::vector<double> x(n);
-  std::uint64_t s = seed;
-  for (double& value : x) {
-    s = 48271 * s % 2147483647;
-    value = static_cast<double>(s) / 2147483648.0 - 0.5;
-  }
-  return x;
-}
 
 /// A real trigonometric polynomial Σ a_k cos(2πkt + φ_k) over lines [first, last], t in periods.
 struct TrigPolynomial {
@@ -130,15 +121,15 @@ TEST(UpsamplePeriodic, KeepsNyquistLineAsCosine) {
 }
 
 TEST(UpsamplePeriodic, FactorOneIsIdentityAndBadInputRefused) {
-  const std::vector<double> x = lehmer(11, 3);
+  const std::vector<double> x = testing::lehmer(11, 3);
   EXPECT_EQ(upsample_periodic(x, 1), x);
   EXPECT_THROW(upsample_periodic(x, 0), InputError);
   EXPECT_THROW(upsample_periodic(std::vector<double>{}, 2), InputError);
 }
 
 TEST(UpsamplePeriodic, MatchesInterpftTranscription) {
-  expect_near_all(upsample_periodic(lehmer(10, 4242), 3), kInterpftEven, 1e-15);
-  expect_near_all(upsample_periodic(lehmer(9, 4243), 2), kInterpftOdd, 1e-15);
+  expect_near_all(upsample_periodic(testing::lehmer(10, 4242), 3), kInterpftEven, 1e-15);
+  expect_near_all(upsample_periodic(testing::lehmer(9, 4243), 2), kInterpftOdd, 1e-15);
 }
 
 // Not-a-knot makes a cubic through the samples the spline itself, from 4 samples (one cubic) up.
@@ -166,7 +157,7 @@ TEST(UpsampleSpline, LineAndParabolaFromTwoAndThreeSamples) {
 }
 
 TEST(UpsampleSpline, PassesThroughSamples) {
-  const std::vector<double> x = lehmer(500, 17);
+  const std::vector<double> x = testing::lehmer(500, 17);
   const std::vector<double> fine = upsample_spline(x, 20);
   for (std::size_t k = 0; k < x.size(); ++k) EXPECT_EQ(fine[k * 20], x[k]) << "k " << k;
 }
@@ -194,7 +185,7 @@ TEST(UpsampleSpline, ConvergesAsFourthPowerOfStep) {
 }
 
 TEST(UpsampleSpline, MatchesScipyNotAKnot) {
-  expect_near_all(upsample_spline(lehmer(8, 99), 3), kSpline, 1e-15);
+  expect_near_all(upsample_spline(testing::lehmer(8, 99), 3), kSpline, 1e-15);
 }
 
 // 150 000 samples (the benchmark's longest non-periodic record) go through the O(N) solve; a line stays a line.

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.hpp"
+
 #include "engine/common/error.hpp"
 
 namespace dampbench {
@@ -66,17 +68,6 @@ const std::vector<double> kCascade225 = {
     0.012221947445846265, 0.052214264750300554, -0.069516355115876352,
     -0.06393108516931531,
 };
-
-/// The script's inputs: s ← 48271·s mod (2³¹ − 1), x = s/2³¹ − 0.5 (exact in doubles, so both sides see the same x).
-std::vector<double> lehmer(std::size_t n, std::uint64_t seed) {
-  std::vector<double> x(n);
-  std::uint64_t s = seed;
-  for (double& value : x) {
-    s = 48271 * s % 2147483647;
-    value = static_cast<double>(s) / 2147483648.0 - 0.5;
-  }
-  return x;
-}
 
 /// fir1's closed form written out here: Hamming window times the ideal low-pass, normalised to unit DC gain.
 std::vector<double> closed_form_taps(int order, double cutoff) {
@@ -162,7 +153,7 @@ TEST(DecimateFir, RefusesBadFactorAndShortInput) {
 }
 
 TEST(DecimateFir, FactorOneIsIdentity) {
-  const std::vector<double> x = lehmer(10, 5);
+  const std::vector<double> x = testing::lehmer(10, 5);
   EXPECT_EQ(decimate_fir(x, 1), x);
 }
 
@@ -199,18 +190,18 @@ TEST(DecimateFir, PassBandSineIsScaledByGain) {
 }
 
 TEST(DecimateFir, MatchesMatlabTranscription) {
-  expect_near_all(decimate_fir(lehmer(70, 12345), 3), kDecimate3, 1e-15);
+  expect_near_all(decimate_fir(testing::lehmer(70, 12345), 3), kDecimate3, 1e-15);
 }
 
 TEST(DecimateFirCascade, MatchesStepsLengthAndTranscription) {
   const std::vector<int> factors = {2, 2, 5};
   for (std::size_t n : {301U, 1000U, 1001U, 4003U}) {
-    const std::vector<double> x = lehmer(n, 31 + n);
+    const std::vector<double> x = testing::lehmer(n, 31 + n);
     const std::vector<double> y = decimate_fir_cascade(x, factors);
     EXPECT_EQ(y.size(), (((n + 1) / 2 + 1) / 2 + 4) / 5) << "n " << n;
     EXPECT_EQ(y, decimate_fir(decimate_fir(decimate_fir(x, 2), 2), 5)) << "n " << n;
   }
-  expect_near_all(decimate_fir_cascade(lehmer(301, 777), factors), kCascade225, 1e-15);
+  expect_near_all(decimate_fir_cascade(testing::lehmer(301, 777), factors), kCascade225, 1e-15);
   EXPECT_THROW(decimate_fir_cascade(std::vector<double>(200, 1.0), factors), InputError);
 }
 
