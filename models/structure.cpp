@@ -14,6 +14,7 @@
 #include "engine/kernels/newmark.hpp"
 #include "engine/record/bandlimited.hpp"
 #include "models/registry.hpp"
+#include "models/structure.hpp"
 
 namespace dampbench::sys {
 namespace {
@@ -207,6 +208,27 @@ class BoucWenSystem final : public Model {
 }  // namespace dampbench::sys
 
 namespace dampbench {
+
+std::optional<StructureResponse> structure_response(const Model& model, std::span<const double> params,
+                                                    const Signals& data) {
+  using namespace sys;
+  if (dynamic_cast<const BoucWenSystem*>(&model) == nullptr) return std::nullopt;
+  CandidateBatch one(model.dim(), 1);
+  one.set_candidate(0, params);
+  NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(one, 0, 1);
+  const FineInput in = fine_input(data);
+  const std::size_t n = data.size();
+  StructureResponse r{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
+  IsaClones<LaneRun<kBlock>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<kBlock>& at) {
+    r.y_m[k] = at.y[0];
+    r.v_m_s[k] = at.v[0];
+    r.a_m_s2[k] = at.a[0];
+    r.z_N[k] = at.z[0];
+  });
+  if (lanes.failed[0])
+    for (auto* channel : {&r.y_m, &r.v_m_s, &r.a_m_s2, &r.z_N}) std::fill(channel->begin(), channel->end(), std::nan(""));
+  return r;
+}
 
 std::vector<std::unique_ptr<Model>> make_system_models() {
   std::vector<std::unique_ptr<Model>> models;

@@ -29,7 +29,8 @@ void add_simulate_options(CLI::App* c, SimulateOptions& sim) {
   c->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
   c->add_option("--noise-rel", sim.noise_rel, "Gaussian noise, std = R x RMS(force)");
   c->add_option("--seed", sim.seed, "noise seed");
-  c->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI); default stdout");
+  c->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI; t,y,u for a system record); default stdout");
+  c->add_flag("--states", sim.states, "a structure model (sys.*): also write its velocity v, acceleration a and hysteretic force z");
 }
 
 namespace {
@@ -80,6 +81,7 @@ Simulation run_simulate(const SimulateOptions& o) {
   const Signals signals = prepare_signals(sim.data);
   check_record(model, signals);
   sim.force = model.simulate(loaded.params, signals);
+  sim.response = structure_response(model, loaded.params, signals);
   if (o.noise_rel > 0) add_noise(sim.force, o.noise_rel, o.seed);
   return sim;
 }
@@ -93,10 +95,16 @@ int simulate_command(const SimulateOptions& o) {
     if (!file) throw StoreError(fmt::format("-o: cannot write '{}'", o.output));
   }
   std::ostream& out = o.output.empty() ? std::cout : file;
-  if (data.is_system()) {  // a system model's output is the displacement y
-    out << "t,y,u\n";
-    for (std::size_t k = 0; k < sim.force.size(); ++k)
-      out << fmt::format("{:.17g},{:.17g},{:.17g}\n", data.t_s[k], sim.force[k], data.u_N[k]);
+  if (data.is_system()) {  // a structure model: its displacement y (with any noise), the input u, and its states
+    const bool states = o.states && sim.response;
+    out << (states ? "t,y,u,v,a,z\n" : "t,y,u\n");
+    for (std::size_t k = 0; k < sim.force.size(); ++k) {
+      out << fmt::format("{:.17g},{:.17g},{:.17g}", data.t_s[k], sim.force[k], data.u_N[k]);
+      if (states)
+        out << fmt::format(",{:.17g},{:.17g},{:.17g}", sim.response->v_m_s[k], sim.response->a_m_s2[k],
+                           sim.response->z_N[k]);
+      out << "\n";
+    }
     return 0;
   }
   out << "t,x,v,a,F\n";

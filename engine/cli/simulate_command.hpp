@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/record/record_options.hpp"
+#include "models/structure.hpp"
 
 namespace CLI {
 class App;
@@ -26,12 +27,14 @@ struct SimulateOptions {
   double noise_rel = 0;
   std::uint64_t seed = 1;
   std::string output;  ///< CSV path; stdout when empty
+  bool states = false;  ///< a structure model: also write ẏ, ÿ and z (the file is then no longer a record to load)
 };
 
 /// A displacement and the model's force under it, as `dampbench simulate` prints them.
 struct Simulation {
-  Dataset data;               ///< t, x, v, a (SI) of the record or sine
-  std::vector<double> force;  ///< F [N], with the noise asked for
+  Dataset data;               ///< t, x, v, a (SI) of the record or sine; t, u of a system record
+  std::vector<double> force;  ///< F [N], with the noise asked for; a structure model's displacement y [m]
+  std::optional<StructureResponse> response;  ///< a structure model's y (without noise), ẏ, ÿ and z
 };
 
 void add_simulate_options(CLI::App* cmd, SimulateOptions& options);

@@ -3,7 +3,7 @@
 - `datasets bouc-wen-benchmark`: the same seed gives the same files, another seed other ones.
 - System records at the command line: a record mixing x and u is refused (exit 3), a rig model on a t,y,u record
   is refused naming both kinds (exit 2); `evaluate --periodic` scores the official test set as one steady period,
-  far closer than the same record simulated from rest.
+  far closer than the same record simulated from rest; `simulate` writes a record that loads again and scores 0.
 - The preset datasets/presets/bouc_wen_benchmark.toml with a small budget (population 8, 2 iterations, 3 runs):
   run with --threads 1 and with --threads 2, its model files are identical byte for byte; the fit read the
   generated training record alone (never the test set); the saved model simulates the official multisine test set
@@ -65,6 +65,13 @@ def system_records():
     print(f"Table 1 on the test set: e_RMS {periodic:.3g} m as one steady period, {from_rest:.3g} m from rest")
     check(periodic < 5e-7, f"true structure on the test set, --periodic: e_RMS {periodic} m, expected < 5e-7")
     check(from_rest > 20 * periodic, f"from rest ({from_rest}) should miss the steady test output by far more")
+    # simulate writes a system record that loads again and scores exactly 0 against the same model; --states adds
+    # the structure's velocity, acceleration and hysteretic force.
+    run("simulate", "--model", "sys.bouc_wen", "--params", TRUTH, "--input", TEST_SET, "-o", "simulated.csv")
+    again = rmse("--model", "sys.bouc_wen", "--params", TRUTH, "--data", "simulated.csv")
+    check(again == 0, f"a simulated record scored against its own model: e_RMS {again}, expected 0")
+    states = run("simulate", "--model", "sys.bouc_wen", "--params", TRUTH, "--input", TEST_SET, "--states").stdout
+    check(states.splitlines()[0] == "t,y,u,v,a,z", f"simulate --states header: {states.splitlines()[0]}")
 
 
 def preset():
