@@ -154,12 +154,8 @@ class BoucWenSystem final : public Model {
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
     CandidateBatch one(dim(), 1);
     one.set_candidate(0, params);
-    NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(one, 0, 1);
-    const FineInput in = fine_input(data);
     std::vector<double> y(data.size());
-    IsaClones<LaneRun<kBlock>>::call(&lanes, &in,
-                                     [&](std::size_t k, const NewmarkLanes<kBlock>& at) { y[k] = output_of(at, 0); });
-    if (lanes.failed[0]) std::fill(y.begin(), y.end(), std::nan(""));
+    simulate_block(one, 0, 1, data, y.data());
     return y;
   }
 

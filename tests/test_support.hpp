@@ -117,6 +117,16 @@ inline CommandResult run_dampbench(const std::string& args) {
   return r;
 }
 
+/// ||a − b|| / ||b||, the relative L2 distance of a simulation a from its reference b (||a − b|| when b is zero).
+inline double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
+  double num = 0, den = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    num += (a[k] - b[k]) * (a[k] - b[k]);
+    den += b[k] * b[k];
+  }
+  return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
+}
+
 /// Inputs the reference script tests/unit/record/signal_chain_reference.py makes as well: s ← 48271·s mod (2³¹ − 1),
 /// x = s/2³¹ − 0.5 (exact in doubles, so both sides see the same x).
 inline std::vector<double> lehmer(std::size_t n, std::uint64_t seed) {

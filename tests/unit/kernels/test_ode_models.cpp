@@ -19,15 +19,6 @@ Signals sine(double amp_m, double freq_hz, double cycles, double fs_hz, double V
   return testing::sine_signals(amp_m, freq_hz, cycles, fs_hz, {{"V", V}});
 }
 
-double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
-  double num = 0, den = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    num += (a[k] - b[k]) * (a[k] - b[k]);
-    den += b[k] * b[k];
-  }
-  return std::sqrt(num / den);
-}
-
 /// Parameters by name, in the model's order.
 std::vector<double> params(const Model& m, const std::vector<std::pair<std::string, double>>& named) {
   std::vector<double> p(m.dim(), std::nan(""));
@@ -41,7 +32,7 @@ void expect_matches_cvode(const std::string& id, const std::vector<double>& p, c
   const auto fixed_step = model.simulate(p, data);
   const auto reference = model.simulate_reference(p, data);
   ASSERT_TRUE(reference.has_value()) << id << " has no CVODE reference";
-  const double diff = relative_l2(fixed_step, *reference);
+  const double diff = testing::relative_l2(fixed_step, *reference);
   EXPECT_LT(diff, 1e-4) << id;
   ::testing::Test::RecordProperty(id + "_rel_l2_vs_cvode", std::to_string(diff));
   std::printf("%s: relative L2 difference to CVODE %.3g\n", id.c_str(), diff);

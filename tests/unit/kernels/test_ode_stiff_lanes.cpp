@@ -20,15 +20,6 @@
 namespace dampbench {
 namespace {
 
-double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
-  double num = 0, den = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    num += (a[k] - b[k]) * (a[k] - b[k]);
-    den += b[k] * b[k];
-  }
-  return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
-}
-
 /// `count` candidates drawn uniformly from the box, candidate i from the stream (key, i).
 CandidateBatch random_candidates(const Bounds& box, int count, std::uint64_t key) {
   CandidateBatch batch(box.dim(), count);
@@ -80,7 +71,7 @@ BoxReport check_box(const std::string& id, int count) {
       continue;
     }
     const auto p = row(batch, i);
-    const double d = relative_l2(model.simulate(p, data), *model.simulate_reference(p, data));
+    const double d = testing::relative_l2(model.simulate(p, data), *model.simulate_reference(p, data));
     if (!(d <= r.worst_rel_l2)) r.worst_rel_l2 = d, r.worst_candidate = i;
     if (std::getenv("DAMPBENCH_DEBUG_STIFF") && !(d < 1e-4)) {
       std::printf("candidate %d, relative L2 %g:", i, d);
@@ -128,7 +119,7 @@ TEST(StiffLanes, LaneResultDoesNotDependOnItsBlockMates) {
   ASSERT_TRUE(std::isfinite(m[0])) << "the stiff candidate must be integrated, not masked";
   EXPECT_EQ(a[0], m[1]);
   // and the stiff one is right: CVODE agrees
-  EXPECT_LT(relative_l2(model.simulate(stiff, data), *model.simulate_reference(stiff, data)), 1e-4);
+  EXPECT_LT(testing::relative_l2(model.simulate(stiff, data), *model.simulate_reference(stiff, data)), 1e-4);
 }
 
 INSTANTIATE_TEST_SUITE_P(MrOdeModels, StiffLanes,

@@ -24,12 +24,6 @@ std::vector<double> gauged(const Model& base, const LawModel& law, std::vector<d
   return c;
 }
 
-double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
-  double d = 0, n = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) d += (a[k] - b[k]) * (a[k] - b[k]), n += b[k] * b[k];
-  return std::sqrt(d / n);
-}
-
 TEST(StateGauge, SpencerUnderTheGaugeGivesTheUngaugedForce) {
   const Model& base = find_model("mrd.spencer");
   const LawModel law(base, {});
@@ -43,12 +37,12 @@ TEST(StateGauge, SpencerUnderTheGaugeGivesTheUngaugedForce) {
   const auto c = gauged(base, law, p);
   // the gauged α is the hysteretic force: 3000 N/m × 0.0724 m = 217 N
   EXPECT_NEAR(c[static_cast<std::size_t>(law.parameter_index("alpha"))], 3000 * std::pow(50.0 / 4e4, 1 / 1.5), 1e-9);
-  EXPECT_LT(relative_l2(*law.simulate_reference(c, data), *reference), 1e-6);
-  EXPECT_LT(relative_l2(law.simulate(c, data), *reference), 1e-4);  // the lane kernel, against CVODE
+  EXPECT_LT(testing::relative_l2(*law.simulate_reference(c, data), *reference), 1e-6);
+  EXPECT_LT(testing::relative_l2(law.simulate(c, data), *reference), 1e-4);  // the lane kernel, against CVODE
   // a scale that is not the gauge's changes the force: the test can fail
   auto wrong = c;
   wrong[static_cast<std::size_t>(law.parameter_index("alpha"))] *= 1.1;
-  EXPECT_GT(relative_l2(law.simulate(wrong, data), *reference), 1e-3);
+  EXPECT_GT(testing::relative_l2(law.simulate(wrong, data), *reference), 1e-3);
 }
 
 TEST(StateGauge, BoucWenTiesAToBetaPlusGammaAndChangesUnits) {

@@ -10,6 +10,7 @@
 #include "engine/model/model.hpp"
 #include "engine/record/signals.hpp"
 #include "models/registry.hpp"
+#include "tests/test_support.hpp"
 
 namespace dampbench {
 namespace {
@@ -29,15 +30,6 @@ Dataset sweep_input(double seconds) {
   return d;
 }
 
-double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0, norm = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    diff += (a[k] - b[k]) * (a[k] - b[k]);
-    norm += b[k] * b[k];
-  }
-  return std::sqrt(diff / norm);
-}
-
 TEST(SystemModels, BoucWenNewmarkAgreesWithCvode) {
   // Newmark's average-acceleration rule at 15 kHz has a period error of (ωh)²/12 = 2e-5 at the 35.6 Hz resonance;
   // CVODE (BDF, rtol 1e-10) on the same reconstructed input measures what that costs in y.
@@ -45,7 +37,7 @@ TEST(SystemModels, BoucWenNewmarkAgreesWithCvode) {
   const Signals data = prepare_signals(sweep_input(4));
   const std::vector<double> lanes = model.simulate(kTable1, data);
   const std::vector<double> reference = *model.simulate_reference(kTable1, data);
-  const double error = relative_l2(lanes, reference);
+  const double error = testing::relative_l2(lanes, reference);
   RecordProperty("relative_l2", fmt::format("{:.3g}", error));
   EXPECT_LT(error, 1e-4);  // the CVODE bound of the ODE models (docs/models.md)
 }
@@ -70,10 +62,10 @@ TEST(SystemModels, PeriodicInputScoresTheSteadyPeriod) {
   repeated.periodic_input = true;  // the FFT reconstruction of four periods is that of one, repeated
   const std::vector<double> four = model.simulate(kTable1, prepare_signals(repeated));
   const std::vector<double> last(four.end() - 750, four.end());
-  EXPECT_LT(relative_l2(steady, last), 1e-9);
+  EXPECT_LT(testing::relative_l2(steady, last), 1e-9);
   repeated.periodic_input = false;  // from rest, the first period still carries the free response
   const std::vector<double> from_rest = model.simulate(kTable1, prepare_signals(repeated));
-  EXPECT_GT(relative_l2(std::vector<double>(from_rest.begin(), from_rest.begin() + 750), steady), 1e-3);
+  EXPECT_GT(testing::relative_l2(std::vector<double>(from_rest.begin(), from_rest.begin() + 750), steady), 1e-3);
 }
 
 TEST(SystemModels, MetricsOfASystemRecordAreInMetres) {
