@@ -27,7 +27,8 @@ XV prepare_xv(const Signals& s, std::size_t k) { return {s.x_m[k], s.v_m_s[k], s
 
 /// Bouc–Wen evolution shared by Bouc–Wen, Spencer and fdsp: dz/dt for relative velocity u, with zn = |z|^n (the
 /// ODE kernel's power of the state z: kPowerState, kPowerExponentRow).
-inline double bouc_wen_rate(double z, double zn, double u, double A, double beta, double gamma) {
+template <class R>
+inline R bouc_wen_rate(R z, R zn, R u, R A, R beta, R gamma) {
   return -gamma * std::fabs(u) * sign(z) * zn - beta * u * zn + A * u;
 }
 
@@ -131,6 +132,7 @@ struct BoucWen {
   static constexpr double kSubstepsPerStroke = 400;  // 2.4e-5 vs CVODE (tests/unit/kernels/test_ode_models.cpp); 1/600: 6.6e-6
   static constexpr bool kStrokeDriven = true;        // sub-steps by the interval's |v| (engine/kernels/ode_kernel.hpp)
   static constexpr int kPowerState = 0, kPowerExponentRow = 7;  // |z|^n
+  static constexpr bool kFloat32Lanes = true;
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.bouc_wen", "Bouc-Wen model (Wen 1976), as cited by mfm and fdsp",
@@ -155,12 +157,12 @@ struct BoucWen {
     }();
     return rules;
   }
-  template <class P, class Y, class DY>
-  static void rhs(const P& p, int l, const Context&, double, double v, const Y& y, double zn, DY&& dy) {
-    dy[0] = bouc_wen_rate(y[0], zn, v, p.p[6][l], p.p[4][l], p.p[5][l]);
+  template <class P, class Y, class DY, class R = typename P::Real>
+  static void rhs(const P& p, int l, const Context&, R, R v, const Y& y, R zn, DY&& dy) {
+    dy[0] = bouc_wen_rate<R>(y[0], zn, v, p.p[6][l], p.p[4][l], p.p[5][l]);
   }
-  template <class P, class Y>
-  static double force(const P& p, int l, const Context&, double x, double v, const Y& y) {
+  template <class P, class Y, class R = typename P::Real>
+  static R force(const P& p, int l, const Context&, R x, R v, const Y& y) {
     return p.p[0][l] * v + p.p[1][l] * (x - p.p[2][l]) + p.p[3][l] * y[0];
   }
   template <class P>
@@ -182,6 +184,7 @@ struct Spencer {
   // 1.7e-5 of 100, 2.9e-5 of 1000 (1.0: 9.1e-6 of 100; 1.5: 9.7e-5 of 1000, too close to the 1e-4 bound)
   static constexpr double kStiffStep = 1.25;
   static constexpr int kPowerState = 1, kPowerExponentRow = 9;  // |z|^n
+  static constexpr bool kFloat32Lanes = true;
   using Context = NoContext;
   static const ModelInfo& info() {
     static const ModelInfo i{"mrd.spencer", "mfm eq. 1 (Spencer et al. 1997 phenomenological model)",
@@ -216,19 +219,20 @@ struct Spencer {
   }
   template <class P>
   static void lane_invariants(P& p) {
-    for (std::size_t l = 0; l < std::size(p.p[0]); ++l) p.p[kInvC0C1][l] = 1.0 / (p.p[0][l] + p.p[1][l]);
+    using R = typename P::Real;
+    for (std::size_t l = 0; l < std::size(p.p[0]); ++l) p.p[kInvC0C1][l] = R(1) / (p.p[0][l] + p.p[1][l]);
   }
-  template <class P, class Y>
-  static double ydot(const P& p, int l, double x, double v, const Y& s) {
+  template <class P, class Y, class R = typename P::Real>
+  static R ydot(const P& p, int l, R x, R v, const Y& s) {
     return (p.p[5][l] * s[1] + p.p[0][l] * v + p.p[2][l] * (x - s[0])) * p.p[kInvC0C1][l];
   }
-  template <class P, class Y, class DY>
-  static void rhs(const P& p, int l, const Context&, double x, double v, const Y& s, double zn, DY&& ds) {
+  template <class P, class Y, class DY, class R = typename P::Real>
+  static void rhs(const P& p, int l, const Context&, R x, R v, const Y& s, R zn, DY&& ds) {
     ds[0] = ydot(p, l, x, v, s);
-    ds[1] = bouc_wen_rate(s[1], zn, v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l]);
+    ds[1] = bouc_wen_rate<R>(s[1], zn, v - ds[0], p.p[8][l], p.p[6][l], p.p[7][l]);
   }
-  template <class P, class Y>
-  static double force(const P& p, int l, const Context&, double x, double v, const Y& s) {
+  template <class P, class Y, class R = typename P::Real>
+  static R force(const P& p, int l, const Context&, R x, R v, const Y& s) {
     return p.p[1][l] * ydot(p, l, x, v, s) + p.p[3][l] * (x - p.p[4][l]);
   }
   /// Bouc–Wen part at |u| = |c1 v − α z − k0 (x − y)|/(c0 + c1) ≤ (c1 V + α z_b + k0 ΔZ)/(c0 + c1), plus the

@@ -2,7 +2,8 @@
 //   record     engine/evaluation/bench_workload.hpp at 1 Hz, 2 cycles of 1024 samples (2049 samples)
 //   candidates 4096 from bench_candidates (the central half of the model's bench box); masked_share is the
 //              share of them that blow up (+inf), 0 for every model by the choice of the bench boxes
-//   metric     of_abs through BatchEvaluator (the same path as identification)
+//   metric     of_abs through BatchEvaluator (the same path as identification), in float64 lanes or, with
+//              `--lanes float32`, in the single-precision lanes of `--precision mixed` (models without them: float64)
 //   1 thread / 2 threads   tbb::task_arena of that size, repeated until min_time_s
 //   scalar     Model::evaluate_scalar (the same law, one candidate at a time, no lanes), 1 thread, 256 candidates
 //   limit      a vector-exp probe: exp over a 4096-element array (libmvec lanes), 1 thread, elements/s
@@ -86,11 +87,11 @@ struct ModelRates {
   double one = 0, two = 0, scalar = 0, masked_share = 0;
 };
 
-ModelRates measure(const Model& model, double min_time_s, int trials) {
+ModelRates measure(const Model& model, double min_time_s, int trials, Precision precision) {
   const Signals data = bench_record(model, 2 * kSamplesPerCycle + 1, 1.0, kSamplesPerCycle);
   const CandidateBatch batch = bench_candidates(model, kCandidates, kBenchSeed);
   const CandidateBatch few = bench_candidates(model, kScalarCandidates, kBenchSeed);
-  const BatchEvaluator evaluator(model, data);
+  const BatchEvaluator evaluator(model, data, 1, precision);
   std::vector<double> out(kCandidates);
   std::vector<MetricSums> sums(kScalarCandidates);
   const double n = static_cast<double>(data.size());
@@ -119,10 +120,16 @@ void add_bench_options(CLI::App* cmd, BenchOptions& o) {
   cmd->add_option("--models", o.models, "comma-separated model ids (default: every model)");
   cmd->add_option("--min-time", o.min_time_s, "seconds per measurement (default 0.3)")->check(CLI::PositiveNumber);
   cmd->add_option("--trials", o.trials, "measurements per rate, best kept (default 3)")->check(CLI::Range(1, 100));
+  cmd->add_option("--lanes", o.lanes,
+                  "float64 (default) or float32: the single-precision lanes the global search of --precision mixed uses "
+                  "(models without them run float64; the table says which)");
 }
 
 int bench_command(const BenchOptions& o) {
   if (o.format != "md" && o.format != "json") throw InputError(fmt::format("--format: expected md or json, got '{}'", o.format));
+  if (o.lanes != "float64" && o.lanes != "float32")
+    throw InputError(fmt::format("--lanes: expected float64 or float32, got '{}'", o.lanes));
+  const Precision precision = o.lanes == "float32" ? Precision::float32 : Precision::float64;
   std::vector<const Model*> models;
   if (o.models.empty()) models.assign(all_models().begin(), all_models().end());
   else for (const auto& id : split_list(o.models, "--models")) models.push_back(&find_model(id));
@@ -130,16 +137,18 @@ int bench_command(const BenchOptions& o) {
   const double exp_per_s = exp_rate(o.min_time_s, o.trials);
   nlohmann::ordered_json j;
   Table t{"bench", "Candidate-samples per second (dampbench bench workload, docs/performance.md)",
-          {"model", "1 thread", "2 threads", "2t/1t", "scalar loop", "lanes/scalar", "limit ratio", "masked"}, {}};
+          {"model", "lanes", "1 thread", "2 threads", "2t/1t", "scalar loop", "lanes/scalar", "limit ratio", "masked"}, {}};
   for (const Model* m : models) {
-    const ModelRates r = measure(*m, o.min_time_s, o.trials);
-    j["models"][std::string(m->id())] = {{"cand_samples_per_s_1t", r.one},
+    const ModelRates r = measure(*m, o.min_time_s, o.trials, precision);
+    const char* lanes = precision == Precision::float32 && m->has_float32_lanes() ? "float32" : "float64";
+    j["models"][std::string(m->id())] = {{"lanes", lanes},
+                                         {"cand_samples_per_s_1t", r.one},
                                          {"cand_samples_per_s_2t", r.two},
                                          {"scalar_ratio", r.one / r.scalar},
                                          {"limit_ratio", r.one / exp_per_s},
                                          {"cand_samples_per_s_scalar", r.scalar},
                                          {"masked_share", r.masked_share}};
-    t.rows.push_back({std::string(m->id()), fmt::format("{:.3g}", r.one), fmt::format("{:.3g}", r.two),
+    t.rows.push_back({std::string(m->id()), lanes, fmt::format("{:.3g}", r.one), fmt::format("{:.3g}", r.two),
                       fmt::format("{:.2f}", r.two / r.one), fmt::format("{:.3g}", r.scalar),
                       fmt::format("{:.2f}", r.one / r.scalar), fmt::format("{:.3f}", r.one / exp_per_s),
                       fmt::format("{:.0f} %", 100 * r.masked_share)});

@@ -14,6 +14,7 @@ struct BenchOptions {
   std::string models;          ///< comma-separated model ids (default: all)
   double min_time_s = 0.3;     ///< each measurement repeats until it has run this long
   int trials = 3;              ///< measurements per rate; the best is reported
+  std::string lanes = "float64";  ///< float64, or float32: the single-precision lanes of `--precision mixed`
 };
 
 void add_bench_options(CLI::App* cmd, BenchOptions& options);

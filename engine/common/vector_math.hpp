@@ -4,6 +4,7 @@
 // loop that calls std::exp vectorizes instead of calling the scalar function lane by lane. glibc's own
 // math.h only does this under -ffast-math, which we refuse (it would hide NaN and Inf, and a blown-up
 // candidate must be detected). Needs -fno-math-errno (set on dampbench_flags) and -lmvec.
+#include <algorithm>
 #include <cmath>
 
 extern "C" {
@@ -14,6 +15,8 @@ __attribute__((simd("notinbranch"))) double sin(double) noexcept;
 __attribute__((simd("notinbranch"))) double cos(double) noexcept;
 __attribute__((simd("notinbranch"))) double tanh(double) noexcept;
 __attribute__((simd("notinbranch"))) double atan(double) noexcept;
+__attribute__((simd("notinbranch"))) float expf(float) noexcept;
+__attribute__((simd("notinbranch"))) float logf(float) noexcept;
 }
 
 namespace dampbench {
@@ -37,5 +40,14 @@ inline double log_abs_for_pow(double z) { return std::log(std::fabs(z) + 1e-100)
 /// for any force. (Clamping the argument instead does not work: GCC folds exp(−708) and selects after
 /// the call, so the vector exp still sees the raw argument.)
 inline double abs_pow(double z, double n) { return std::exp(n * log_abs_for_pow(z)); }
+
+/// The single-precision lanes' overloads (engine/kernels/lane_kernel.hpp, Float32).
+inline float sign(float v) { return static_cast<float>(v > 0.0f) - static_cast<float>(v < 0.0f); }
+/// |z|^n in float: exp(max(n·log(|z| + 1e−30), −80)). The floor keeps the float exp's argument above its
+/// underflow (−87), where libmvec would leave its fast path for the whole vector, as abs_pow(double) explains;
+/// it changes |z|^n only where that is below 2e−35, a zero for any force.
+inline float abs_pow(float z, float n) {
+  return std::exp(std::max(n * std::log(std::fabs(z) + 1e-30f), -80.0f));
+}
 
 }  // namespace dampbench

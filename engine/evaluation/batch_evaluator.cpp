@@ -12,11 +12,12 @@
 
 namespace dampbench {
 
-BatchEvaluator::BatchEvaluator(const Model& model, const Signals& data, int grain_blocks)
-    : BatchEvaluator(model, std::vector<const Signals*>{&data}, grain_blocks) {}
+BatchEvaluator::BatchEvaluator(const Model& model, const Signals& data, int grain_blocks, Precision precision)
+    : BatchEvaluator(model, std::vector<const Signals*>{&data}, grain_blocks, precision) {}
 
-BatchEvaluator::BatchEvaluator(const Model& model, std::vector<const Signals*> datasets, int grain_blocks)
-    : model_(model), datasets_(std::move(datasets)), grain_blocks_(std::max(1, grain_blocks)) {
+BatchEvaluator::BatchEvaluator(const Model& model, std::vector<const Signals*> datasets, int grain_blocks,
+                               Precision precision)
+    : model_(model), datasets_(std::move(datasets)), grain_blocks_(std::max(1, grain_blocks)), precision_(precision) {
   assert(!datasets_.empty());
 }
 
@@ -34,7 +35,9 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
   // The threads take the costliest blocks first (longest processing time first): a block of stiff candidates can
   // outlast all the others together, and taken last it leaves the other thread idle (docs/performance.md has
   // the gain; the results are the same).
-  const int max_lanes = model_.max_block_lanes();
+  const bool float32 = precision_ == Precision::float32 && model_.has_float32_lanes();
+  const int lane_scale = float32 ? kFloat32LaneScale : 1;
+  const int max_lanes = lane_scale * model_.max_block_lanes();
   std::vector<double> cost(static_cast<std::size_t>(count), 1.0);
   std::vector<int> order;
   CandidateBatch sorted;
@@ -48,7 +51,7 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
     std::ranges::sort(cost);
   }
   const CandidateBatch& run = order.empty() ? batch : sorted;
-  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, block_times());
+  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, block_times(), lane_scale);
   const int B = static_cast<int>(blocks.size());
   const int tasks = B * static_cast<int>(datasets_.size());
   std::vector<MetricSums> out(datasets_.size() * static_cast<std::size_t>(count));
@@ -59,8 +62,11 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
           const int d = task / B;
           const int block = order.empty() ? task % B : B - 1 - task % B;  // costliest first
           const LaneBlock& b = blocks[static_cast<std::size_t>(block)];
-          model_.evaluate_block(run, b.first, b.count, *datasets_[d], wanted,
-                                out.data() + static_cast<std::size_t>(d) * count + b.first);
+          MetricSums* block_out = out.data() + static_cast<std::size_t>(d) * count + b.first;
+          if (float32)
+            model_.evaluate_block_float32(run, b.first, b.count, *datasets_[d], wanted, block_out);
+          else
+            model_.evaluate_block(run, b.first, b.count, *datasets_[d], wanted, block_out);
         }
       },
       tbb::simple_partitioner());

@@ -19,13 +19,21 @@ namespace dampbench {
 
 using MetricRow = std::array<double, kMetricCount>;  ///< every metric, in the order of kAllMetrics
 
+/// The real type of the model's lanes in an evaluation: float64, or float32 (single-precision lanes, twice the
+/// lanes per vector) for a model that has them (Model::has_float32_lanes; the others run float64). The metric
+/// sums are added in double either way. float32 serves the global search of `--precision mixed`; what is
+/// reported is evaluated in float64 (engine/identification/identification.hpp).
+enum class Precision { float64, float32 };
+
 class BatchEvaluator {
  public:
   /// `grain_blocks`: lane blocks handed to a task at once (tbb::simple_partitioner); any value gives the
   /// same results, it only changes how the batch is split across threads.
-  BatchEvaluator(const Model& model, const Signals& data, int grain_blocks = 1);
+  BatchEvaluator(const Model& model, const Signals& data, int grain_blocks = 1,
+                 Precision precision = Precision::float64);
   /// Several datasets; the metric of a candidate is the mean of its metric on each dataset.
-  BatchEvaluator(const Model& model, std::vector<const Signals*> datasets, int grain_blocks = 1);
+  BatchEvaluator(const Model& model, std::vector<const Signals*> datasets, int grain_blocks = 1,
+                 Precision precision = Precision::float64);
 
   /// One metric per candidate (mean over the datasets); +inf for candidates whose force is NaN or Inf.
   void evaluate(const CandidateBatch& batch, Metric metric, std::span<double> out) const;
@@ -45,6 +53,7 @@ class BatchEvaluator {
   const Model& model_;
   std::vector<const Signals*> datasets_;
   int grain_blocks_;
+  Precision precision_;
 };
 
 }  // namespace dampbench

@@ -7,8 +7,9 @@
 
 namespace dampbench {
 
-std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times) {
-  constexpr std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
+std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times,
+                                       int lane_scale) {
+  const std::array<int, 3> widths{lane_scale * kLanes, lane_scale * kWideLanes, lane_scale * kWidestLanes};
   const int n = static_cast<int>(costs.size());
   // time[i]: least time of candidates [0, i); start[i]: where the last block of that cut starts. time only
   // grows with i, so a block of a given width ending at i best starts as far left as the width allows, and a

@@ -23,7 +23,9 @@ using BlockTimes = std::array<double, 3>;
 /// are in ascending order, with the least total time: a block takes the cost of its last (dearest) candidate
 /// times the relative time of the narrowest width that holds it (dynamic programming over the ends of the
 /// blocks; the narrower block wins ties).
-std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times);
+/// `lane_scale` multiplies the three widths (kFloat32LaneScale for single-precision lanes).
+std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times,
+                                       int lane_scale = 1);
 
 /// BlockTimes for the vector level the kernels run with (engine/kernels/isa.hpp), measured on `dampbench
 /// bench`'s ODE models.

@@ -32,12 +32,35 @@ struct ModelInfo {
   std::vector<ParameterInfo> parameters;
 };
 
-/// Parameters of one block of W lanes: p[j][lane]. Kernels run with W = kLanes; W = 1 gives the plain
-/// scalar loop of the same law, the reference `dampbench bench` compares against.
-template <int D, int W = kLanes>
+/// Parameters of one block of W lanes: p[j][lane], in the lanes' real type R. Kernels run with W = kLanes; W = 1
+/// gives the plain scalar loop of the same law, the reference `dampbench bench` compares against.
+template <int D, int W = kLanes, class R = double>
 struct LaneParams {
-  alignas(64) double p[D][W];
+  using Real = R;
+  alignas(64) R p[D][W];
 };
+
+/// A law run in single-precision lanes: twice the lanes per vector, for the global search of `--precision mixed`
+/// (engine/evaluation/batch_evaluator.hpp; docs/performance.md, "Mixed precision"). The law's arithmetic follows
+/// the lanes' real type (`typename P::Real`); a law opts in with `kFloat32Lanes`. The metric sums stay in double.
+template <class Law>
+struct Float32 : Law {
+  using Real = float;
+};
+template <class Law>
+struct LaneReal {
+  using type = double;
+};
+template <class Law>
+  requires requires { typename Law::Real; }
+struct LaneReal<Law> {
+  using type = typename Law::Real;
+};
+template <class Law>
+using lane_real_t = typename LaneReal<Law>::type;
+/// Whether a law's equations are written for any lane real type (KernelModel then has float32 blocks).
+template <class Law>
+inline constexpr bool kLawHasFloat32 = requires { requires Law::kFloat32Lanes; };
 
 /// Rows of a law's lane block: its kParams parameters, then kLaneInvariants rows a law may add for
 /// per-candidate constants (1/(c0 + c1), log k_r, ...) that `Law::lane_invariants(p)` fills once per
@@ -48,20 +71,22 @@ constexpr int lane_rows() {
   else return Law::kParams;
 }
 template <class Law, int W>
-using LawLanes = LaneParams<lane_rows<Law>(), W>;
+using LawLanes = LaneParams<lane_rows<Law>(), W, lane_real_t<Law>>;
 
 template <class Law, int W>
 void fill_lane_invariants(LawLanes<Law, W>& lanes) {
   if constexpr (requires { Law::lane_invariants(lanes); }) Law::lane_invariants(lanes);
 }
 
-/// Copies candidates [first, first + count) into a lane block; lanes past count repeat the first one.
+/// Copies candidates [first, first + count) into a lane block (rounded to the lanes' real type); lanes past count
+/// repeat the first one.
 template <class Law, int W = kLanes>
 LawLanes<Law, W> gather_lanes(const CandidateBatch& batch, int first, int count) {
+  using R = lane_real_t<Law>;
   LawLanes<Law, W> lanes;
   for (int j = 0; j < Law::kParams; ++j) {
     const double* row = batch.param_row(j);
-    for (int l = 0; l < W; ++l) lanes.p[j][l] = row[first + (l < count ? l : 0)];
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = static_cast<R>(row[first + (l < count ? l : 0)]);
   }
   fill_lane_invariants<Law, W>(lanes);
   return lanes;
@@ -70,9 +95,10 @@ LawLanes<Law, W> gather_lanes(const CandidateBatch& batch, int first, int count)
 /// One candidate in every lane (simulate).
 template <class Law, int W = kLanes>
 LawLanes<Law, W> broadcast_lanes(std::span<const double> params) {
+  using R = lane_real_t<Law>;
   LawLanes<Law, W> lanes;
   for (int j = 0; j < Law::kParams; ++j)
-    for (int l = 0; l < W; ++l) lanes.p[j][l] = params[j];
+    for (int l = 0; l < W; ++l) lanes.p[j][l] = static_cast<R>(params[j]);
   fill_lane_invariants<Law, W>(lanes);
   return lanes;
 }
@@ -83,15 +109,17 @@ struct LaneSums {
   alignas(64) double abs_w[W] = {}, sq_w[W] = {}, abs_e[W] = {}, sq_e[W] = {}, abs_mag[W] = {};
 
   /// Adds m samples: lane l's force at sample i in force[i][l], measured force F[i], weight w[i]; only the sums
-  /// of `wanted`, each with the same arithmetic whichever others are computed (so the same bits).
-  void add(const double (*force)[W], std::size_t m, const double* F, const double* w, SumSet wanted) {
+  /// of `wanted`, each with the same arithmetic whichever others are computed (so the same bits). Forces of
+  /// single-precision lanes are widened to double first.
+  template <class R>
+  void add(const R (*force)[W], std::size_t m, const double* F, const double* w, SumSet wanted) {
     switch (wanted) {
-      case SumSet::every: return add<true, true, true, true, true>(force, m, F, w);
-      case SumSet::abs_weighted: return add<true, false, false, false, false>(force, m, F, w);
-      case SumSet::sq_weighted: return add<false, true, false, false, false>(force, m, F, w);
-      case SumSet::abs: return add<false, false, true, false, false>(force, m, F, w);
-      case SumSet::sq: return add<false, false, false, true, false>(force, m, F, w);
-      case SumSet::abs_magnitude: return add<false, false, false, false, true>(force, m, F, w);
+      case SumSet::every: return add<true, true, true, true, true, R>(force, m, F, w);
+      case SumSet::abs_weighted: return add<true, false, false, false, false, R>(force, m, F, w);
+      case SumSet::sq_weighted: return add<false, true, false, false, false, R>(force, m, F, w);
+      case SumSet::abs: return add<false, false, true, false, false, R>(force, m, F, w);
+      case SumSet::sq: return add<false, false, false, true, false, R>(force, m, F, w);
+      case SumSet::abs_magnitude: return add<false, false, false, false, true, R>(force, m, F, w);
     }
   }
   /// Writes the first `count` lanes: the sums of `wanted`, NaN for the others; lanes flagged in `failed` get
@@ -108,19 +136,20 @@ struct LaneSums {
   }
 
  private:
-  template <bool kAbsW, bool kSqW, bool kAbs, bool kSq, bool kMag>
-  void add(const double (*force)[W], std::size_t m, const double* F, const double* w) {
+  template <bool kAbsW, bool kSqW, bool kAbs, bool kSq, bool kMag, class R>
+  void add(const R (*force)[W], std::size_t m, const double* F, const double* w) {
     for (std::size_t i = 0; i < m; ++i) {
       const double measured = F[i], wi = w[i];
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        const double e = measured - force[i][l];
+        const double fl = static_cast<double>(force[i][l]);
+        const double e = measured - fl;
         const double ae = std::fabs(e);
         if constexpr (kAbsW) abs_w[l] += wi * ae;
         if constexpr (kSqW) sq_w[l] += wi * (e * e);
         if constexpr (kAbs) abs_e[l] += ae;
         if constexpr (kSq) sq_e[l] += e * e;
-        if constexpr (kMag) abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(force[i][l]));
+        if constexpr (kMag) abs_mag[l] += std::fabs(std::fabs(measured) - std::fabs(fl));
       }
     }
   }
@@ -147,7 +176,7 @@ struct LaneBlockRun {
                   SumSet wanted = SumSet::every) {
     KernelT<Law, W> kernel(*lanes, *data);
     LaneSums<W> sums;
-    alignas(64) double f[kChunk][W];
+    alignas(64) lane_real_t<Law> f[kChunk][W];
     const std::size_t n = data->size();
     for (std::size_t k0 = 0; k0 < n; k0 += kChunk) {
       const std::size_t m = std::min(kChunk, n - k0);
@@ -215,12 +244,39 @@ class KernelModel final : public Model {
     evaluate_lanes<kLanes>(batch, first, count, data, wanted, out);
   }
 
-  /// evaluate_block with a block of W lanes.
-  template <int W>
+  [[nodiscard]] bool has_float32_lanes() const override { return kLawHasFloat32<Law>; }
+
+  void evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
+                              MetricSums* out) const override {
+    if constexpr (kLawHasFloat32<Law>) {  // twice the lanes of the float64 blocks: the same vectors per block
+      constexpr int k = kFloat32LaneScale;
+      if constexpr (kWide) {
+        if (count > k * kWideLanes) return evaluate_lanes<k * kWidestLanes, Float32<Law>>(batch, first, count, data, wanted, out);
+        if (count > k * kLanes) return evaluate_lanes<k * kWideLanes, Float32<Law>>(batch, first, count, data, wanted, out);
+      }
+      evaluate_lanes<k * kLanes, Float32<Law>>(batch, first, count, data, wanted, out);
+    } else {
+      evaluate_block(batch, first, count, data, wanted, out);
+    }
+  }
+
+  [[nodiscard]] std::vector<double> simulate_float32(std::span<const double> params, const Signals& data) const override {
+    if constexpr (kLawHasFloat32<Law>) {
+      const auto lanes = broadcast_lanes<Float32<Law>, kFloat32LaneScale * kLanes>(params);
+      std::vector<double> force(data.size());
+      IsaClones<LaneBlockRun<Float32<Law>, KernelT, kFloat32LaneScale * kLanes, false>>::call(&lanes, &data, 1, force.data());
+      return force;
+    } else {
+      return simulate(params, data);
+    }
+  }
+
+  /// evaluate_block with a block of W lanes of the law L (Law, or Float32<Law>).
+  template <int W, class L = Law>
   static void evaluate_lanes(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                              MetricSums* out) {
-    const auto lanes = gather_lanes<Law, W>(batch, first, count);
-    IsaClones<LaneBlockRun<Law, KernelT, W, true>>::call(&lanes, &data, count, out, wanted);
+    const auto lanes = gather_lanes<L, W>(batch, first, count);
+    IsaClones<LaneBlockRun<L, KernelT, W, true>>::call(&lanes, &data, count, out, wanted);
   }
 
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override {

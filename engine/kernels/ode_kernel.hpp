@@ -69,17 +69,18 @@ inline int ode_substeps(const Signals& data, std::size_t k, double substeps_per_
 
 /// State j of one lane inside a [states][W] block: y[j] is block[j][lane]. Indexing through it keeps
 /// the lane loop free of private arrays, which GCC's vectorizer cannot handle in `omp simd` loops.
-template <int W>
+template <int W, class R = double>
 struct LaneState {
-  double* base;
-  double& operator[](int j) const { return base[j * W]; }
+  R* base;
+  R& operator[](int j) const { return base[j * W]; }
 };
 
 template <class Law, int W>
 class OdeKernel {
  public:
   static constexpr int S = Law::kStates;
-  using State = LaneState<W>;
+  using R = lane_real_t<Law>;  // the lanes' real type: double, or float (Float32<Law>)
+  using State = LaneState<W, R>;
   /// Also run as blocks of kWideLanes and kWidestLanes lanes (engine/model/batch.hpp, chosen per batch by
   /// engine/evaluation/lane_blocks.hpp): four dependent RK4 stages per sub-step leave the CPU waiting at kLanes
   /// lanes, and wider blocks give it independent work (docs/performance.md has the measurements).
@@ -97,9 +98,11 @@ class OdeKernel {
   /// (`kPowerExponentRow`) gets |s|^e as an argument of rhs, from the binomial series of (1 + ε)^e to
   /// ε^kSeriesTerms wherever s = s0·(1 + ε) with |ε| ≤ kSeriesRadius from a point s0 whose power is known, else
   /// exactly (log and exp). The truncation, below |C(e, 9)|·32^−9 < 4e-16 relative for 0 ≤ e ≤ 7, is less than
-  /// the exact path's own rounding; the terms and radius are the fastest pair found (docs/performance.md).
-  static constexpr int kSeriesTerms = 8;
-  static constexpr double kSeriesRadius = 1.0 / 32.0;
+  /// the exact path's own rounding; the terms and radius are the fastest pair found (docs/performance.md). Float
+  /// lanes need less: 6 terms within 1/16, |C(e, 7)|·16^−7 < 4e-9 relative for 0 ≤ e ≤ 7, below float's 6e-8.
+  static constexpr bool kFloat = std::is_same_v<R, float>;
+  static constexpr int kSeriesTerms = kFloat ? 6 : 8;
+  static constexpr double kSeriesRadius = kFloat ? 1.0 / 16.0 : 1.0 / 32.0;
   /// Anchor spacing of the chained power: a sub-step's start takes its power from the previous start's series
   /// except at an anchor (anchored()), at a lane's first sub-step and after a reset, so a chain is at most
   /// K² − 1 series long (K = kChainSteps) and a stage's power stays within about 1e-14 relative of the exact one
@@ -122,7 +125,7 @@ class OdeKernel {
       for (int l = 0; l < W; ++l) {  // C(e, i) = C(e, i − 1)·(e − i + 1)/i
         const double e = p_.p[Law::kPowerExponentRow][l];
         double c = 1.0;
-        for (int i = 1; i <= kSeriesTerms; ++i) series_[i - 1][l] = c *= (e - (i - 1)) / i;
+        for (int i = 1; i <= kSeriesTerms; ++i) series_[i - 1][l] = static_cast<R>(c *= (e - (i - 1)) / i);
       }
     }
   }
@@ -178,9 +181,9 @@ class OdeKernel {
     }
   }
 
-  void forces(std::size_t k, double* f) {
+  void forces(std::size_t k, R* f) {
     if (k > 0) advance(k);
-    const double x = data_.x_m[k], v = data_.v_m_s[k];
+    const R x = static_cast<R>(data_.x_m[k]), v = static_cast<R>(data_.v_m_s[k]);
 #pragma omp simd
     for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, ctx_, x, v, State{&y_[0][l]});
   }
@@ -229,32 +232,33 @@ class OdeKernel {
       if (!(dt <= stiff_dt_ && dt >= stiff_dt_ * (1.0 - 2 * kStiffDtSlack))) stiff_substeps(dt * (1.0 + kStiffDtSlack));
     }
     if (stiff_max_ <= n) {  // every lane takes the record's sub-steps: one set of inputs for all
-      const double inv = 1.0 / n, h = dt * inv;  // LaneInputs: the same arithmetic lane by lane
+      const R inv = R(1) / static_cast<R>(n), h = static_cast<R>(dt) * inv;  // LaneInputs: the same arithmetic lane by lane
+      const R x0r = static_cast<R>(x0), dxr = static_cast<R>(dx), v0r = static_cast<R>(v0), dvr = static_cast<R>(dv);
       for (int i = 0; i < n; ++i) {
-        const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
-        step(SharedInputs{h, x0 + a * dx, v0 + a * dv, x0 + m * dx, v0 + m * dv, x0 + b * dx, v0 + b * dv},
+        const R a = static_cast<R>(i) * inv, m = (static_cast<R>(i) + R(0.5)) * inv, b = static_cast<R>(i + 1) * inv;
+        step(SharedInputs{h, x0r + a * dxr, v0r + a * dvr, x0r + m * dxr, v0r + m * dvr, x0r + b * dxr, v0r + b * dvr},
              anchored(k, i));
       }
     } else {
-      const double record = n;
-      double n_max = record;
+      const R record = static_cast<R>(n);
+      R n_max = record;
 #pragma omp simd reduction(max : n_max)
       for (int l = 0; l < W; ++l) {
         n_[l] = std::max(record, stiff_[l]);
-        inv_n_[l] = 1.0 / n_[l];
+        inv_n_[l] = R(1) / n_[l];
         n_max = std::max(n_max, n_[l]);
       }
       for (int i = 0; i < static_cast<int>(n_max); ++i)
         step(LaneInputs(i, n_, inv_n_, dt, x0, dx, v0, dv), anchored(k, i));
     }
-    constexpr double kBlowUp = 1e30;
+    constexpr R kBlowUp = R(1e30);
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      double bad = 0.0;  // 1 if some state is not finite or huge; selects of doubles keep the loop vectorized
-      for (int j = 0; j < S; ++j) bad = std::fabs(y_[j][l]) < kBlowUp ? bad : 1.0;
+      R bad = 0;  // 1 if some state is not finite or huge; selects of reals keep the loop vectorized
+      for (int j = 0; j < S; ++j) bad = std::fabs(y_[j][l]) < kBlowUp ? bad : R(1);
       failed_[l] += bad;
-      for (int j = 0; j < S; ++j) y_[j][l] = bad > 0.0 ? 0.0 : y_[j][l];
-      chain_near_[l] = bad > 0.0 ? 0.0 : chain_near_[l];
+      for (int j = 0; j < S; ++j) y_[j][l] = bad > R(0) ? R(0) : y_[j][l];
+      chain_near_[l] = bad > R(0) ? R(0) : chain_near_[l];
     }
   }
 
@@ -277,53 +281,55 @@ class OdeKernel {
     stiff_max_ = 0.0;
     for (int l = 0; l < W; ++l) {
       const double stiff = std::ceil(dt * lambda_[l] / kLawStiffStep);  // +inf for an unbounded estimate
-      if (!(stiff <= kMaxSubsteps)) failed_[l] += 1.0;              // too stiff: masked, integrated cheaply
-      stiff_[l] = failed_[l] > 0.0 ? 0.0 : stiff;
-      stiff_max_ = std::max(stiff_max_, stiff_[l]);
+      if (!(stiff <= kMaxSubsteps)) failed_[l] += R(1);             // too stiff: masked, integrated cheaply
+      stiff_[l] = failed_[l] > R(0) ? R(0) : static_cast<R>(stiff);
+      stiff_max_ = std::max(stiff_max_, static_cast<double>(stiff_[l]));
     }
   }
 
   /// Inputs of one sub-step, the same for every lane: step size h and (x, v) at the step's start (a),
   /// middle (m) and end (b).
   struct SharedInputs {
-    double h_, xa_, va_, xm_, vm_, xb_, vb_;
-    [[nodiscard]] double h(int) const { return h_; }
-    [[nodiscard]] double xa(int) const { return xa_; }
-    [[nodiscard]] double va(int) const { return va_; }
-    [[nodiscard]] double xm(int) const { return xm_; }
-    [[nodiscard]] double vm(int) const { return vm_; }
-    [[nodiscard]] double xb(int) const { return xb_; }
-    [[nodiscard]] double vb(int) const { return vb_; }
+    R h_, xa_, va_, xm_, vm_, xb_, vb_;
+    [[nodiscard]] R h(int) const { return h_; }
+    [[nodiscard]] R xa(int) const { return xa_; }
+    [[nodiscard]] R va(int) const { return va_; }
+    [[nodiscard]] R xm(int) const { return xm_; }
+    [[nodiscard]] R vm(int) const { return vm_; }
+    [[nodiscard]] R xb(int) const { return xb_; }
+    [[nodiscard]] R vb(int) const { return vb_; }
     static constexpr bool active(int) { return true; }
   };
 
   /// Inputs of sub-step i of a block whose lanes take n[l] sub-steps each, computed lane by lane with the
   /// arithmetic of SharedInputs; a lane past its own n[l] sub-steps is inactive and keeps its state.
   struct LaneInputs {
-    LaneInputs(int i, const double* n, const double* inv_n, double dt, double x0, double dx, double v0, double dv)
-        : i_(i), n_(n) {
+    LaneInputs(int i, const R* n, const R* inv_n, double dt, double x0, double dx, double v0, double dv)
+        : i_(static_cast<R>(i)), n_(n) {
+      const R ir = static_cast<R>(i), dtr = static_cast<R>(dt);
+      const R x0r = static_cast<R>(x0), dxr = static_cast<R>(dx), v0r = static_cast<R>(v0), dvr = static_cast<R>(dv);
 #pragma omp simd
       for (int l = 0; l < W; ++l) {  // multiplications by 1/n instead of four vector divisions per lane and
-        const double inv = inv_n[l];  // sub-step: divisions are slow and sit on the stage loop's path
-        const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
-        h_[l] = dt * inv;
-        xa_[l] = x0 + a * dx, va_[l] = v0 + a * dv;
-        xm_[l] = x0 + m * dx, vm_[l] = v0 + m * dv;
-        xb_[l] = x0 + b * dx, vb_[l] = v0 + b * dv;
+        const R inv = inv_n[l];       // sub-step: divisions are slow and sit on the stage loop's path
+        const R a = ir * inv, m = (ir + R(0.5)) * inv, b = (ir + R(1)) * inv;
+        h_[l] = dtr * inv;
+        xa_[l] = x0r + a * dxr, va_[l] = v0r + a * dvr;
+        xm_[l] = x0r + m * dxr, vm_[l] = v0r + m * dvr;
+        xb_[l] = x0r + b * dxr, vb_[l] = v0r + b * dvr;
       }
     }
-    [[nodiscard]] double h(int l) const { return h_[l]; }
-    [[nodiscard]] double xa(int l) const { return xa_[l]; }
-    [[nodiscard]] double va(int l) const { return va_[l]; }
-    [[nodiscard]] double xm(int l) const { return xm_[l]; }
-    [[nodiscard]] double vm(int l) const { return vm_[l]; }
-    [[nodiscard]] double xb(int l) const { return xb_[l]; }
-    [[nodiscard]] double vb(int l) const { return vb_[l]; }
+    [[nodiscard]] R h(int l) const { return h_[l]; }
+    [[nodiscard]] R xa(int l) const { return xa_[l]; }
+    [[nodiscard]] R va(int l) const { return va_[l]; }
+    [[nodiscard]] R xm(int l) const { return xm_[l]; }
+    [[nodiscard]] R vm(int l) const { return vm_[l]; }
+    [[nodiscard]] R xb(int l) const { return xb_[l]; }
+    [[nodiscard]] R vb(int l) const { return vb_[l]; }
     [[nodiscard]] bool active(int l) const { return i_ < n_[l]; }
 
-    int i_;
-    const double* n_;
-    alignas(64) double h_[W], xa_[W], va_[W], xm_[W], vm_[W], xb_[W], vb_[W];
+    R i_;
+    const R* n_;
+    alignas(64) R h_[W], xa_[W], va_[W], xm_[W], vm_[W], xb_[W], vb_[W];
   };
 
   /// One RK4 sub-step of every (active) lane with inputs `in` (SharedInputs or LaneInputs).
@@ -336,7 +342,7 @@ class OdeKernel {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
         // ±inf at s0 = 0: ε is then not finite and the next power exact (0 at s0 = ±inf: that lane fails anyway)
-        inv0_[l] = 1.0 / y_[Law::kPowerState][l];
+        inv0_[l] = R(1) / y_[Law::kPowerState][l];
         Law::rhs(p_, l, ctx_, in.xa(l), in.va(l), State{&y_[0][l]}, power0_[l], State{&k_[0][0][l]});
       }
     } else {
@@ -351,16 +357,16 @@ class OdeKernel {
       const State y{&y_[0][l]}, k1{&k_[0][0][l]}, k2{&k_[1][0][l]}, k3{&k_[2][0][l]}, k4{&k_[3][0][l]};
       const bool active = in.active(l);
       for (int j = 0; j < S; ++j) {
-        const double next = y[j] + (in.h(l) / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        const R next = y[j] + (in.h(l) / R(6)) * (k1[j] + R(2) * k2[j] + R(2) * k3[j] + k4[j]);
         y[j] = active ? next : y[j];
       }
       if constexpr (kPower) {  // the power at the next sub-step's start, chained: s = s0·(1 + ε) there
         // (ε from the increment: (s − s0)/s0 of the state as stored would follow its rounding, e·2^−52 relative
         // per series, but is slower; docs/performance.md)
         constexpr int ps = Law::kPowerState;
-        const double eps = (in.h(l) / 6.0) * (k1[ps] + 2.0 * k2[ps] + 2.0 * k3[ps] + k4[ps]) * inv0_[l];
-        const double chained = power0_[l] * series(eps, l);
-        const double near = static_cast<double>(std::fabs(eps) <= kSeriesRadius);
+        const R eps = (in.h(l) / R(6)) * (k1[ps] + R(2) * k2[ps] + R(2) * k3[ps] + k4[ps]) * inv0_[l];
+        const R chained = power0_[l] * series(eps, l);
+        const R near = static_cast<R>(std::fabs(eps) <= R(kSeriesRadius));
         power0_[l] = active ? chained : power0_[l];
         chain_near_[l] = active ? near : chain_near_[l];
       }
@@ -372,17 +378,17 @@ class OdeKernel {
   /// vector log and exp runs only if some lane needs it (kSeriesTerms).
   template <class Inputs>
   void start_power(const Inputs& in, bool anchor) {
-    double all_near = anchor ? 0.0 : 1.0;  // (over every lane: skipping inactive ones is slower; docs/performance.md)
+    R all_near = anchor ? R(0) : R(1);  // (over every lane: skipping inactive ones is slower; docs/performance.md)
     if (!anchor) {
 #pragma omp simd reduction(min : all_near)
       for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
     }
-    if (all_near > 0.0) return;
+    if (all_near > R(0)) return;
 #pragma omp simd
     for (int l = 0; l < W; ++l) exact_[l] = abs_pow(y_[Law::kPowerState][l], p_.p[Law::kPowerExponentRow][l]);
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      const bool exact = chain_near_[l] == 0.0 || (anchor && in.active(l));
+      const bool exact = chain_near_[l] == R(0) || (anchor && in.active(l));
       power0_[l] = exact ? exact_[l] : power0_[l];
     }
   }
@@ -396,23 +402,26 @@ class OdeKernel {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
         const State y{&y_[0][l]}, t{&t_[0][l]}, kf{&k_[from][0][l]};
-        const double a = fraction * in.h(l);
+        const R a = static_cast<R>(fraction) * in.h(l);
         for (int j = 0; j < S; ++j) t[j] = y[j] + a * kf[j];
         Law::rhs(p_, l, ctx_, kEnd ? in.xb(l) : in.xm(l), kEnd ? in.vb(l) : in.vm(l), t, State{&k_[to][0][l]});
       }
     }
   }
 
-  /// 1 + C(e, 1)·ε + … + C(e, 8)·ε^8 of lane l by Estrin's scheme: pairs, then pairs of pairs, four dependent
-  /// multiply-adds deep instead of Horner's eight, because the series sits on the stage loop's critical path.
-  [[nodiscard]] double series(double eps, int l) const {
-    static_assert(kSeriesTerms == 8, "series() is written out for 8 terms");
+  /// 1 + C(e, 1)·ε + … + C(e, m)·ε^m (m = kSeriesTerms, 8 or 6) of lane l by Estrin's scheme: pairs, then pairs
+  /// of pairs, four dependent multiply-adds deep instead of Horner's eight, because the series sits on the stage
+  /// loop's critical path.
+  [[nodiscard]] R series(R eps, int l) const {
+    static_assert(kSeriesTerms == 8 || kSeriesTerms == 6, "series() is written out for 8 and 6 terms");
     const auto c = [&](int i) { return series_[i][l]; };  // C(e, i + 1)
-    const double e2 = eps * eps, e4 = e2 * e2;
-    const double q01 = c(0) + c(1) * eps, q23 = c(2) + c(3) * eps;
-    const double q45 = c(4) + c(5) * eps, q67 = c(6) + c(7) * eps;
-    const double q03 = q01 + q23 * e2, q47 = q45 + q67 * e2;
-    return 1.0 + eps * (q03 + q47 * e4);
+    const R e2 = eps * eps, e4 = e2 * e2;
+    const R q01 = c(0) + c(1) * eps, q23 = c(2) + c(3) * eps, q45 = c(4) + c(5) * eps;
+    const R q03 = q01 + q23 * e2;
+    if constexpr (kSeriesTerms == 6) return R(1) + eps * (q03 + q45 * e4);
+    const R q67 = c(6) + c(7) * eps;
+    const R q47 = q45 + q67 * e2;
+    return R(1) + eps * (q03 + q47 * e4);
   }
 
   /// stage() of a law with a power state: |t|^e from the series where |ε| ≤ kSeriesRadius, else exact; the loop
@@ -422,21 +431,21 @@ class OdeKernel {
     constexpr int ps = Law::kPowerState;
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      const double a = fraction * in.h(l);
+      const R a = static_cast<R>(fraction) * in.h(l);
       for (int j = 0; j < S; ++j) t_[j][l] = y_[j][l] + a * k_[from][j][l];
-      const double eps = a * k_[from][ps][l] * inv0_[l];  // t[ps] = s0·(1 + ε)
+      const R eps = a * k_[from][ps][l] * inv0_[l];  // t[ps] = s0·(1 + ε)
       power_[l] = power0_[l] * series(eps, l);  // replaced below where the lane is not near (no select here: GCC sinks the
-      near_[l] = static_cast<double>(std::fabs(eps) <= kSeriesRadius);  // product into its branch and stops)
+      near_[l] = static_cast<R>(std::fabs(eps) <= R(kSeriesRadius));  // product into its branch and stops)
     }
-    double all_near = 1.0;  // 0 if some lane is not near (a reduction of its own: in the loop above, it left
+    R all_near = 1;  // 0 if some lane is not near (a reduction of its own: in the loop above, it left
 #pragma omp simd reduction(min : all_near)  // that loop scalar in some clones; an integer count was scalar)
     for (int l = 0; l < W; ++l) all_near = std::min(all_near, near_[l]);
-    if (all_near == 0.0) {
+    if (all_near == R(0)) {
       // Two loops: in one, GCC sinks the call into the select's branch and leaves the loop scalar.
 #pragma omp simd
       for (int l = 0; l < W; ++l) exact_[l] = abs_pow(t_[ps][l], p_.p[Law::kPowerExponentRow][l]);
 #pragma omp simd
-      for (int l = 0; l < W; ++l) power_[l] = near_[l] > 0.0 ? power_[l] : exact_[l];
+      for (int l = 0; l < W; ++l) power_[l] = near_[l] > R(0) ? power_[l] : exact_[l];
     }
 #pragma omp simd
     for (int l = 0; l < W; ++l)
@@ -447,24 +456,24 @@ class OdeKernel {
   LawLanes<Law, W> p_;
   const Signals& data_;
   typename Law::Context ctx_;
-  alignas(64) double y_[S][W] = {};
-  alignas(64) double t_[S][W] = {};      // RK4 stage input
-  alignas(64) double k_[4][S][W] = {};   // RK4 stage slopes
-  alignas(64) double failed_[W] = {};    // > 0 once a lane has blown up or was too stiff
+  alignas(64) R y_[S][W] = {};
+  alignas(64) R t_[S][W] = {};      // RK4 stage input
+  alignas(64) R k_[4][S][W] = {};   // RK4 stage slopes
+  alignas(64) R failed_[W] = {};    // > 0 once a lane has blown up or was too stiff
   alignas(64) double lambda_[W] = {};    // Law::stiffness of each lane [1/s] (0: the record's rule alone)
-  alignas(64) double stiff_[W] = {};     // stiff sub-steps of each lane on an interval of length stiff_dt_
+  alignas(64) R stiff_[W] = {};          // stiff sub-steps of each lane on an interval of length stiff_dt_
   double stiff_dt_ = -1.0;
   double stiff_max_ = 0.0;               // max of stiff_
-  alignas(64) double n_[W] = {};         // sub-steps of each lane on the current interval (a whole number)
-  alignas(64) double inv_n_[W] = {};     // 1 / n_
+  alignas(64) R n_[W] = {};              // sub-steps of each lane on the current interval (a whole number)
+  alignas(64) R inv_n_[W] = {};          // 1 / n_
   // Powers of a state (kPower only): |s0|^e and 1/s0 at the sub-step's start, the stage's |t|^e, C(e, i)
-  alignas(64) double power0_[W] = {};      // after a sub-step: the chained power at the next one's start
-  alignas(64) double chain_near_[W] = {};  // 1 where that chained power came from a series with |ε| ≤ kSeriesRadius
-  alignas(64) double inv0_[W] = {};
-  alignas(64) double power_[W] = {};
-  alignas(64) double near_[W] = {};   // 1 where the stage's power came from the series
-  alignas(64) double exact_[W] = {};  // exact powers (a sub-step's start or a stage)
-  alignas(64) double series_[kSeriesTerms][W] = {};
+  alignas(64) R power0_[W] = {};      // after a sub-step: the chained power at the next one's start
+  alignas(64) R chain_near_[W] = {};  // 1 where that chained power came from a series with |ε| ≤ kSeriesRadius
+  alignas(64) R inv0_[W] = {};
+  alignas(64) R power_[W] = {};
+  alignas(64) R near_[W] = {};   // 1 where the stage's power came from the series
+  alignas(64) R exact_[W] = {};  // exact powers (a sub-step's start or a stage)
+  alignas(64) R series_[kSeriesTerms][W] = {};
   mutable bool failed_flags_[W] = {};  // failed_ > 0, filled by failed()
 };
 

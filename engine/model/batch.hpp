@@ -15,6 +15,9 @@ inline constexpr int kLanes = 16;
 /// chains of dependent operations, and a wider block gives the CPU more independent chains. A lane gets the same
 /// bits in a block of any width (tests/unit/kernels/test_isa.cpp).
 inline constexpr int kWideLanes = 32, kWidestLanes = 64;
+/// Blocks of single-precision lanes (Model::evaluate_block_float32) hold this many times the candidates of the
+/// float64 blocks: a float vector holds twice the lanes, so a block keeps its number of vectors.
+inline constexpr int kFloat32LaneScale = 2;
 
 class CandidateBatch {
  public:

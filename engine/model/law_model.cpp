@@ -217,6 +217,15 @@ void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count,
   base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
+void LawModel::evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data,
+                                      SumSet wanted, MetricSums* out) const {
+  base_.evaluate_block_float32(base_block(batch, first, count, data), 0, count, data, wanted, out);
+}
+
+std::vector<double> LawModel::simulate_float32(std::span<const double> coefficients, const Signals& data) const {
+  return base_.simulate_float32(base_parameters(coefficients, data), data);
+}
+
 bool LawModel::lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const {
   return base_.lane_costs(base_block(batch, 0, batch.count(), data), data, out);
 }

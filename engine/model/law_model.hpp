@@ -35,6 +35,11 @@ class LawModel final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override;
+  [[nodiscard]] bool has_float32_lanes() const override { return base_.has_float32_lanes(); }
+  void evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
+                              MetricSums* out) const override;
+  [[nodiscard]] std::vector<double> simulate_float32(std::span<const double> coefficients,
+                                                     const Signals& data) const override;
   [[nodiscard]] int max_block_lanes() const override { return base_.max_block_lanes(); }
   [[nodiscard]] bool has_internal_states() const override { return base_.has_internal_states(); }
   bool lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const override;

@@ -78,6 +78,21 @@ class Model {
     return false;
   }
 
+  /// Whether the model runs single-precision lanes (float, twice the lanes per vector): evaluate_block_float32
+  /// and simulate_float32, for the global search of `--precision mixed`. The metric sums are added in double.
+  [[nodiscard]] virtual bool has_float32_lanes() const { return false; }
+  /// evaluate_block in single-precision lanes where has_float32_lanes(), with count ≤ kFloat32LaneScale ·
+  /// max_block_lanes() (block widths kFloat32LaneScale times those of evaluate_block); else evaluate_block. A
+  /// lane's bits depend on its own parameters only, as in evaluate_block.
+  virtual void evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data,
+                                      SumSet wanted, MetricSums* out) const {
+    evaluate_block(batch, first, count, data, wanted, out);
+  }
+  /// simulate by the single-precision lanes of evaluate_block_float32 (widened to double), else simulate.
+  [[nodiscard]] virtual std::vector<double> simulate_float32(std::span<const double> params, const Signals& data) const {
+    return simulate(params, data);
+  }
+
   /// The same sums computed by a plain scalar loop, one candidate at a time (the reference `dampbench
   /// bench` measures the lane kernels against). Default: evaluate_block.
   virtual void evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,

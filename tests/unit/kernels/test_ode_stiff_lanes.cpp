@@ -1,7 +1,8 @@
 // Stiff-safe ODE lanes (engine/kernels/ode_kernel.hpp, "Stiff lanes"): over random candidates
 // drawn uniformly from each MR ODE model's default box on a UTFSM-like record (10 mm, 1 Hz, 1 kHz), fewer
 // than 5 % are masked, and every candidate that is not masked matches SUNDIALS CVODE (BDF, rtol 1e-10) to a
-// relative L2 difference below 1e-4. A lane's result does not depend on its block-mates.
+// relative L2 difference below 1e-4, in double lanes and in the single-precision lanes of `--precision mixed`.
+// A lane's result does not depend on its block-mates.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,14 +52,15 @@ struct BoxReport {
   int worst_candidate = -1;
 };
 
-BoxReport check_box(const std::string& id, int count) {
+/// With `float32`, the single-precision lanes (evaluate_block_float32, simulate_float32) against CVODE in double.
+BoxReport check_box(const std::string& id, int count, bool float32 = false) {
   const Model& model = find_model(id);
   const Signals data = utfsm_like_record();
   const Signals* records[] = {&data};
   const Bounds box = default_bounds(model, records);
   const CandidateBatch batch = random_candidates(box, count, hash_name(id));
   std::vector<double> values(count);
-  BatchEvaluator(model, data).evaluate(batch, Metric::nrmse, values);
+  BatchEvaluator(model, data, 1, float32 ? Precision::float32 : Precision::float64).evaluate(batch, Metric::nrmse, values);
   BoxReport r;
   int masked = 0;
   for (int i = 0; i < count; ++i) {
@@ -71,7 +73,8 @@ BoxReport check_box(const std::string& id, int count) {
       continue;
     }
     const auto p = row(batch, i);
-    const double d = testing::relative_l2(model.simulate(p, data), *model.simulate_reference(p, data));
+    const auto force = float32 ? model.simulate_float32(p, data) : model.simulate(p, data);
+    const double d = testing::relative_l2(force, *model.simulate_reference(p, data));
     if (!(d <= r.worst_rel_l2)) r.worst_rel_l2 = d, r.worst_candidate = i;
     if (std::getenv("DAMPBENCH_DEBUG_STIFF") && !(d < 1e-4)) {
       std::printf("candidate %d, relative L2 %g:", i, d);
@@ -80,8 +83,8 @@ BoxReport check_box(const std::string& id, int count) {
     }
   }
   r.masked_share = static_cast<double>(masked) / count;
-  std::printf("%s: %d random candidates of the default box, %.1f %% masked, worst relative L2 to CVODE %.3g (candidate %d)\n",
-              id.c_str(), count, 100 * r.masked_share, r.worst_rel_l2, r.worst_candidate);
+  std::printf("%s (%s lanes): %d random candidates of the default box, %.1f %% masked, worst relative L2 to CVODE %.3g (candidate %d)\n",
+              id.c_str(), float32 ? "float32" : "float64", count, 100 * r.masked_share, r.worst_rel_l2, r.worst_candidate);
   return r;
 }
 
@@ -93,6 +96,24 @@ TEST_P(StiffLanes, DefaultBoxIsIntegratedNotMaskedAndMatchesCvode) {
   const BoxReport r = check_box(GetParam(), 100);
   EXPECT_LT(r.masked_share, 0.05);
   EXPECT_LT(r.worst_rel_l2, 1e-4) << "candidate " << r.worst_candidate;
+}
+
+// The global search of `--precision mixed` runs these models in float lanes: the CVODE bound holds there too,
+// and the float lanes are float (their forces differ from the double lanes' by float rounding, not by nothing).
+TEST_P(StiffLanes, Float32LanesMatchCvodeOnTheDefaultBox) {
+  const Model& model = find_model(GetParam());
+  if (!model.has_float32_lanes()) GTEST_SKIP() << GetParam() << " has no float32 lanes";
+  const BoxReport r = check_box(GetParam(), 100, true);
+  EXPECT_LT(r.masked_share, 0.05);
+  EXPECT_LT(r.worst_rel_l2, 1e-4) << "candidate " << r.worst_candidate;
+  const Signals data = utfsm_like_record();
+  const Signals* records[] = {&data};
+  const Bounds box = default_bounds(model, records);
+  const auto p = row(random_candidates(box, 1, hash_name(GetParam())), 0);
+  const double d = testing::relative_l2(model.simulate_float32(p, data), model.simulate(p, data));
+  std::printf("float32 against float64 lanes: relative L2 %.3g\n", d);
+  EXPECT_GT(d, 1e-9);
+  EXPECT_LT(d, 1e-5);
 }
 
 // A lane's sub-steps come from its own parameters: a mild Spencer candidate gives the same bits alone and in
