@@ -45,6 +45,9 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--max-seconds", fit.max_seconds,
                 "wall-clock cap of the automatic budget (a fit it stops is not reproducible bit for bit)");
   c->add_option("--seed", fit.seed, "seed (default 1)");
+  c->add_option("--precision", fit.precision,
+                "double (default), or mixed: the population search in single-precision lanes (twice the lanes per "
+                "vector) for the models that have them; local stages and every reported value in double");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--start", fit.start,
                 "per-file: start the search from the laws fitted to each record's own fit (member 0 of each run)");
@@ -214,6 +217,7 @@ nlohmann::ordered_json fit_json(const FitOptions& o, const FitRun& run) {
   j["optimizer"] = {{"name", p.plan.optimizer}, {"population", p.plan.population}, {"iterations", p.plan.iterations},
                     {"settings", p.optimizer.settings}};
   j["seed"] = o.fit.seed;
+  j["precision"] = search_precision_name(p.search_precision);
   const auto named = [&](const std::vector<double>& values) {
     nlohmann::ordered_json named_values = nlohmann::ordered_json::object();
     for (int i = 0; i < model.dim(); ++i) named_values[model.parameters()[i].name] = values[i];

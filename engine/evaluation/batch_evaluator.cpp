@@ -36,8 +36,6 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
   // outlast all the others together, and taken last it leaves the other thread idle (docs/performance.md has
   // the gain; the results are the same).
   const bool float32 = precision_ == Precision::float32 && model_.has_float32_lanes();
-  const int lane_scale = float32 ? kFloat32LaneScale : 1;
-  const int max_lanes = lane_scale * model_.max_block_lanes();
   std::vector<double> cost(static_cast<std::size_t>(count), 1.0);
   std::vector<int> order;
   CandidateBatch sorted;
@@ -51,7 +49,9 @@ std::vector<MetricSums> BatchEvaluator::sums(const CandidateBatch& batch, SumSet
     std::ranges::sort(cost);
   }
   const CandidateBatch& run = order.empty() ? batch : sorted;
-  const std::vector<LaneBlock> blocks = cut_lane_blocks(cost, max_lanes, block_times(), lane_scale);
+  const std::vector<LaneBlock> blocks =
+      float32 ? cut_lane_blocks(cost, float32_block_shapes(kFloat32LaneScale * model_.max_block_lanes(), block_times()))
+              : cut_lane_blocks(cost, model_.max_block_lanes(), block_times());
   const int B = static_cast<int>(blocks.size());
   const int tasks = B * static_cast<int>(datasets_.size());
   std::vector<MetricSums> out(datasets_.size() * static_cast<std::size_t>(count));

@@ -7,9 +7,25 @@
 
 namespace dampbench {
 
-std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times,
-                                       int lane_scale) {
-  const std::array<int, 3> widths{lane_scale * kLanes, lane_scale * kWideLanes, lane_scale * kWidestLanes};
+std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times) {
+  std::vector<BlockShape> shapes;
+  const std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
+  for (std::size_t w = 0; w < widths.size() && widths[w] <= max_lanes; ++w) shapes.push_back({widths[w], times[w]});
+  return cut_lane_blocks(costs, shapes);
+}
+
+std::vector<BlockShape> float32_block_shapes(int max_lanes, const BlockTimes& times) {
+  // One vector instead of two at avx512 (two instead of four at avx2): less independent work per stage, so
+  // more than half the time of the next width (docs/performance.md, "Mixed precision").
+  constexpr double kNarrowest = 0.6;
+  std::vector<BlockShape> shapes{{kLanes, kNarrowest * times[0]}};
+  const std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
+  for (std::size_t w = 0; w < widths.size() && kFloat32LaneScale * widths[w] <= max_lanes; ++w)
+    shapes.push_back({kFloat32LaneScale * widths[w], times[w]});
+  return shapes;
+}
+
+std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, std::span<const BlockShape> shapes) {
   const int n = static_cast<int>(costs.size());
   // time[i]: least time of candidates [0, i); start[i]: where the last block of that cut starts. time only
   // grows with i, so a block of a given width ending at i best starts as far left as the width allows, and a
@@ -18,10 +34,10 @@ std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_la
   std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
   for (int i = 1; i <= n; ++i) {
     const double dearest = costs[static_cast<std::size_t>(i) - 1];
-    for (std::size_t w = 0; w < widths.size() && widths[w] <= max_lanes; ++w) {
-      const int from = std::max(0, i - widths[w]);
-      if (w > 0 && i - from <= widths[w - 1]) break;
-      const double t = time[static_cast<std::size_t>(from)] + times[w] * dearest;
+    for (std::size_t w = 0; w < shapes.size(); ++w) {
+      const int from = std::max(0, i - shapes[w].lanes);
+      if (w > 0 && i - from <= shapes[w - 1].lanes) break;
+      const double t = time[static_cast<std::size_t>(from)] + shapes[w].time * dearest;
       if (w == 0 || t < time[static_cast<std::size_t>(i)]) {
         time[static_cast<std::size_t>(i)] = t;
         start[static_cast<std::size_t>(i)] = from;

@@ -16,6 +16,7 @@ FitRequest PreparedFit::request() const {
   r.settings.seed = seed;
   r.settings.stop = stop;
   r.settings.metric = metric;
+  r.settings.search_precision = search_precision;
   r.settings.task_key = task_key(model.model->id(), records.names, plan.optimizer);
   r.assess_failed_fit = true;
   r.auto_budget = auto_budget;
@@ -62,6 +63,7 @@ PreparedFit prepare_fit(const FitSpec& spec) {
   p.model = resolve_model(choice);
   const Model& model = *p.model.model;
   p.metric = parse_metric(spec.metric);
+  p.search_precision = parse_search_precision(spec.precision, "--precision");
   p.plan = fit_plan(model, spec.optimizer, spec.population, spec.iterations, spec.runs);
   p.optimizer = OptimizerSpec{p.plan.optimizer, p.plan.population, p.plan.iterations};
   for (const auto& [key, value] : parse_key_values(spec.optimizer_settings, "--optimizer-settings"))

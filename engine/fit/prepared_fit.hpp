@@ -33,6 +33,8 @@ struct FitSpec {
   std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
   std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
+  /// "double", or "mixed": the population phase in single-precision lanes (IdentificationSettings::search_precision)
+  std::string precision = "double";
   /// Once set, the fit stops at the next generation with Interrupted (the Python module's Ctrl-C); may be null.
   const std::atomic<bool>* stop = nullptr;
 };
@@ -50,6 +52,7 @@ struct PreparedFit {
   std::optional<AutoBudget> auto_budget;  ///< the restarts (auto_budget.hpp); absent: the plan is a fixed budget
   FitRecords records;
   std::uint64_t seed = 1;
+  Precision search_precision = Precision::float64;  ///< FitSpec::precision
   const std::atomic<bool>* stop = nullptr;
 
   /// The request of this fit; its task key names the model id, the records' names and the optimizer

@@ -19,6 +19,14 @@ std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name,
   return hash_key({hash_name(model_id), hash_name(dataset_name), hash_name(optimizer)});
 }
 
+Precision parse_search_precision(std::string_view text, std::string_view where) {
+  if (text == "double") return Precision::float64;
+  if (text == "mixed") return Precision::float32;
+  throw InputError(fmt::format("{}: expected double or mixed, got '{}'", where, text));
+}
+
+std::string_view search_precision_name(Precision p) { return p == Precision::float32 ? "mixed" : "double"; }
+
 int Identification::best_run() const {
   int best = 0;
   for (int r = 1; r < static_cast<int>(runs.size()); ++r)
@@ -188,7 +196,9 @@ Identification identify(const Model& model, const std::vector<const Signals*>& d
   Identification result;
   result.runs.resize(R);
   const BatchEvaluator evaluator(model, data, settings.grain_blocks);
-  const long long evaluations = lockstep(model, evaluator, runs, result, settings, start);
+  const long long evaluations =
+      lockstep(model, BatchEvaluator(model, data, settings.grain_blocks, settings.search_precision), runs, result,
+               settings, start);
 
   // Local refinement of each run (hybrids), runs side by side; each run's refinement is deterministic.
   tbb::parallel_for(0, R, [&](int r) {

@@ -35,21 +35,30 @@ struct IdentificationSettings {
   Metric metric = Metric::of_abs;
   int grain_blocks = 1;         ///< lane blocks per oneTBB task; results do not depend on it
   Budget budget;
+  /// Lanes of the population phase: float64, or float32 (`--precision mixed`: the model's single-precision lanes
+  /// where it has them). Local refinements and the reported metrics at each run's best are float64 either way.
+  Precision search_precision = Precision::float64;
   /// Checked every generation and every local-stage evaluation: once set, identify throws Interrupted (the
   /// Python module's Ctrl-C). Null: never stops early.
   const std::atomic<bool>* stop = nullptr;
 };
+
+/// `--precision` (fit) and a sweep entry's `precision`: "double" → float64 search lanes, "mixed" → float32 search
+/// lanes (IdentificationSettings::search_precision); InputError naming `where` otherwise.
+Precision parse_search_precision(std::string_view text, std::string_view where);
+/// "double" or "mixed", the name parse_search_precision reads.
+std::string_view search_precision_name(Precision p);
 
 /// Stable key of a (model, dataset, optimizer) task, from their names.
 std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name, std::string_view optimizer);
 
 struct RunResult {
   std::vector<double> best_params;                ///< SI
-  double best_value = 0;                          ///< the optimized metric at best_params
+  double best_value = 0;                          ///< the optimized metric at best_params (float64 lanes)
   std::array<double, kMetricCount> best_metrics;  ///< every metric at best_params (order of kAllMetrics)
   long long evaluations = 0;
   double wall_time_s = 0;  ///< this run's share of the lockstep group's wall time (group time / runs)
-  std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence)
+  std::vector<double> trace;  ///< best-so-far metric after each iteration (convergence), in the search's lanes
   std::vector<long long> trace_evaluations;  ///< evaluations spent at each trace point
   std::string stop_reason;    ///< "iterations", "max_evaluations", "target", "stall" or "wall_time"
   bool at_local_optimum = false;  ///< a local refinement ended on its own convergence test (Optimizer::at_local_optimum)

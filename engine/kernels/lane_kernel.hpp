@@ -248,13 +248,14 @@ class KernelModel final : public Model {
 
   void evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                               MetricSums* out) const override {
-    if constexpr (kLawHasFloat32<Law>) {  // twice the lanes of the float64 blocks: the same vectors per block
+    if constexpr (kLawHasFloat32<Law>) {  // the widths of float32_block_shapes (engine/evaluation/lane_blocks.hpp)
       constexpr int k = kFloat32LaneScale;
       if constexpr (kWide) {
         if (count > k * kWideLanes) return evaluate_lanes<k * kWidestLanes, Float32<Law>>(batch, first, count, data, wanted, out);
         if (count > k * kLanes) return evaluate_lanes<k * kWideLanes, Float32<Law>>(batch, first, count, data, wanted, out);
       }
-      evaluate_lanes<k * kLanes, Float32<Law>>(batch, first, count, data, wanted, out);
+      if (count > kLanes) return evaluate_lanes<k * kLanes, Float32<Law>>(batch, first, count, data, wanted, out);
+      evaluate_lanes<kLanes, Float32<Law>>(batch, first, count, data, wanted, out);
     } else {
       evaluate_block(batch, first, count, data, wanted, out);
     }

@@ -82,8 +82,8 @@ class Model {
   /// and simulate_float32, for the global search of `--precision mixed`. The metric sums are added in double.
   [[nodiscard]] virtual bool has_float32_lanes() const { return false; }
   /// evaluate_block in single-precision lanes where has_float32_lanes(), with count ≤ kFloat32LaneScale ·
-  /// max_block_lanes() (block widths kFloat32LaneScale times those of evaluate_block); else evaluate_block. A
-  /// lane's bits depend on its own parameters only, as in evaluate_block.
+  /// max_block_lanes() (blocks of kLanes and kFloat32LaneScale times evaluate_block's widths); else evaluate_block.
+  /// A lane's bits depend on its own parameters only, as in evaluate_block.
   virtual void evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data,
                                       SumSet wanted, MetricSums* out) const {
     evaluate_block(batch, first, count, data, wanted, out);
