@@ -12,26 +12,31 @@
 namespace dampbench::fvd {
 namespace {
 
-/// Per-sample quantities shared by every candidate lane.
-struct Sample {
-  double x, x2, v, a, sgn_v, log_abs_v;
+/// Per-sample quantities shared by every candidate lane, in the lanes' real type R (the laws run float32 lanes
+/// too: engine/kernels/lane_kernel.hpp, Float32).
+template <class R = double>
+struct SampleOf {
+  R x, x2, v, a, sgn_v, log_abs_v;
 };
+using Sample = SampleOf<double>;
 
-Sample prepare_sample(const Signals& s, std::size_t k) {
+template <class R = double>
+SampleOf<R> prepare_sample(const Signals& s, std::size_t k) {
   const double x = s.x_m[k];
-  return {x, x * x, s.v_m_s[k], s.a_m_s2[k], s.sgn_v[k], s.log_abs_v[k]};
+  return {static_cast<R>(x), static_cast<R>(x * x), static_cast<R>(s.v_m_s[k]), static_cast<R>(s.a_m_s2[k]),
+          static_cast<R>(s.sgn_v[k]), static_cast<R>(s.log_abs_v[k])};
 }
 
 /// The generalized viscous laws write |v|^α = exp(α·log|v|), their one vector exp: each gives the exp's argument
 /// (exp_argument) and its force from e = |v|^α (force_with_exp), and AlgebraicKernel runs the exps of 16 samples
 /// back to back (engine/kernels/algebraic_kernel.hpp). α·log|v|:
-template <class P>
-double abs_v_pow_argument(const P& p, int l, int ialpha, const Sample& s) {
+template <class P, class R = typename P::Real>
+R abs_v_pow_argument(const P& p, int l, int ialpha, const SampleOf<R>& s) {
   return p.p[ialpha][l] * s.log_abs_v;
 }
 /// C·sgn(v)|v|^α from e = |v|^α.
-template <class P>
-double generalized_viscous_force(const P& p, int l, int iC, const Sample& s, double e) {
+template <class P, class R = typename P::Real>
+R generalized_viscous_force(const P& p, int l, int iC, const SampleOf<R>& s, R e) {
   return p.p[iC][l] * s.sgn_v * e;
 }
 
@@ -56,14 +61,16 @@ std::vector<double> paper_units(std::span<const double> p, int iC, int ialpha, i
 struct LinearViscous {
   static constexpr int kParams = 2;
   using Sample = fvd::Sample;
+  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.linear_viscous", "fvd eq. 1", "F = m*a + C*v",
                              {kMass, {"C", "N*s/m", 0.0, 2e7, "kN/(mm/s)"}}};
     return i;
   }
-  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
-  template <class P>
-  static double force(const P& p, int l, const Sample& s) {
+  template <class R = double>
+  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
+  template <class P, class R = typename P::Real>
+  static R force(const P& p, int l, const SampleOf<R>& s) {
     return p.p[0][l] * s.a + p.p[1][l] * s.v;
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, -1, -1, -1); }
@@ -73,16 +80,18 @@ struct LinearViscous {
 struct GeneralizedViscous {
   static constexpr int kParams = 3;
   using Sample = fvd::Sample;
+  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.generalized_viscous", "fvd eq. 2", "F = m*a + C*sgn(v)*|v|^alpha",
                              {kMass, kCgen, kAlpha}};
     return i;
   }
-  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
-  template <class P>
-  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
-  template <class P>
-  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+  template <class R = double>
+  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
+  template <class P, class R = typename P::Real>
+  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P, class R = typename P::Real>
+  static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e);
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, -1, -1); }
@@ -92,16 +101,18 @@ struct GeneralizedViscous {
 struct GvLinearElastic {
   static constexpr int kParams = 4;
   using Sample = fvd::Sample;
+  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.gv_linear_elastic", "fvd eq. 5", "F = m*a + C*sgn(v)*|v|^alpha + K1*x",
                              {kMass, kCgen, kAlpha, kK1}};
     return i;
   }
-  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
-  template <class P>
-  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
-  template <class P>
-  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+  template <class R = double>
+  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
+  template <class P, class R = typename P::Real>
+  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P, class R = typename P::Real>
+  static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x;
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, -1); }
@@ -112,16 +123,18 @@ struct GvLinearElastic {
 struct GvQuadraticElastic {
   static constexpr int kParams = 5;
   using Sample = fvd::Sample;
+  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.gv_quadratic_elastic", "fvd eq. 6",
                              "F = m*a + C*sgn(v)*|v|^alpha + K1*x + K2*x^2", {kMass, kCgen, kAlpha, kK1, kK2}};
     return i;
   }
-  static Sample prepare(const Signals& s, std::size_t k) { return prepare_sample(s, k); }
-  template <class P>
-  static double exp_argument(const P& p, int l, const Sample& s) { return abs_v_pow_argument(p, l, 2, s); }
-  template <class P>
-  static double force_with_exp(const P& p, int l, const Sample& s, double e) {
+  template <class R = double>
+  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
+  template <class P, class R = typename P::Real>
+  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
+  template <class P, class R = typename P::Real>
+  static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x + p.p[4][l] * s.x2;
   }
   static std::vector<double> to_paper_units(std::span<const double> p) { return paper_units(p, 1, 2, 3, 4); }

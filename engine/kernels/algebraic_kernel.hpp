@@ -11,7 +11,13 @@
 // passes (arguments, exps, forces), so the libmvec calls run back to back: a call clobbers every vector
 // register, and in one pass the registers live across it are saved and restored around each call
 // (docs/performance.md has the gain). Same operations per lane, same bits.
+// A law with single-precision lanes (kFloat32Lanes) gives its samples in the lanes' real type:
+//   template <class R> static Sample<R> prepare(const Signals&, std::size_t k);
+// and its float exps take arguments no lower than kFloatExpFloor.
+#include <algorithm>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include "engine/kernels/lane_kernel.hpp"
 
@@ -19,6 +25,13 @@ namespace dampbench {
 
 template <class Law, int W>
 class AlgebraicKernel {
+  using R = lane_real_t<Law>;
+  static auto prepare(const Signals& data, std::size_t k) {
+    if constexpr (kLawHasFloat32<Law>) return Law::template prepare<R>(data, k);
+    else return Law::prepare(data, k);
+  }
+  using Sample = decltype(prepare(std::declval<const Signals&>(), 0));
+
  public:
   AlgebraicKernel(const LawLanes<Law, W>& p, const Signals& data) : p_(p), data_(data) {
     if (data.sgn_v.size() != data.size())  // laws read the invariant columns of prepare_signals
@@ -28,35 +41,43 @@ class AlgebraicKernel {
   /// Clones compiled without GCC's PRE pass: faster for the algebraic laws (engine/kernels/isa.hpp).
   static constexpr bool kWithoutTreePre = true;
 
-  static constexpr bool kOneExp = requires(const LawLanes<Law, W>& p, const typename Law::Sample& s) {
+  static constexpr bool kOneExp = requires(const LawLanes<Law, W>& p, const Sample& s) {
     Law::exp_argument(p, 0, s);
-    Law::force_with_exp(p, 0, s, 1.0);
+    Law::force_with_exp(p, 0, s, R(1));
   };
+  /// The float exps' lowest argument: above float's underflow (−87), where libmvec's vector exp would leave its
+  /// fast path for the whole vector (engine/common/vector_math.hpp); e^−80 is a zero for any force.
+  static constexpr float kFloatExpFloor = -80.0f;
 
   /// Force of every lane at sample k (a law with `force`).
-  void forces(std::size_t k, double* f) const
+  void forces(std::size_t k, R* f) const
     requires(!kOneExp)
   {
-    const auto s = Law::prepare(data_, k);
+    const auto s = prepare(data_, k);
 #pragma omp simd
     for (int l = 0; l < W; ++l) f[l] = Law::force(p_, l, s);
   }
   /// The forces of samples k0 … k0 + m − 1 (m ≤ kMaxChunk) of a one-exp law, in three passes (see the top of
   /// this file); lane l's force is force_with_exp(…, exp(exp_argument(…))), the same operations as one pass.
   static constexpr std::size_t kMaxChunk = 16;
-  void forces_chunk(std::size_t k0, std::size_t m, double (*f)[W]) const
+  void forces_chunk(std::size_t k0, std::size_t m, R (*f)[W]) const
     requires kOneExp
   {
-    alignas(64) double e[kMaxChunk][W];
-    typename Law::Sample s[kMaxChunk];
+    alignas(64) R e[kMaxChunk][W];
+    Sample s[kMaxChunk];
     for (std::size_t i = 0; i < m; ++i) {
-      s[i] = Law::prepare(data_, k0 + i);
+      s[i] = prepare(data_, k0 + i);
 #pragma omp simd
       for (int l = 0; l < W; ++l) e[i][l] = Law::exp_argument(p_, l, s[i]);
     }
     for (std::size_t i = 0; i < m; ++i) {
+      if constexpr (std::is_same_v<R, float>) {
 #pragma omp simd
-      for (int l = 0; l < W; ++l) e[i][l] = std::exp(e[i][l]);
+        for (int l = 0; l < W; ++l) e[i][l] = std::exp(std::max(e[i][l], kFloatExpFloor));
+      } else {
+#pragma omp simd
+        for (int l = 0; l < W; ++l) e[i][l] = std::exp(e[i][l]);
+      }
     }
     for (std::size_t i = 0; i < m; ++i) {
 #pragma omp simd

@@ -87,6 +87,7 @@ FitOutcome fit_group(const PartPlan& part, const GroupRef& g, const std::vector<
   request.settings.task_key = g.task_key;
   request.settings.metric = g.metric;
   request.settings.budget = opt.budget;
+  request.settings.search_precision = opt.search_precision;
   if (opt.auto_budget) request.auto_budget = AutoBudget{opt.spec, opt.max_total_evaluations, 0};
   return run_fit(request);
 }

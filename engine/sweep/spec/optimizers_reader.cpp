@@ -35,7 +35,7 @@ void read_budget_kind(const Reader& r, const toml::table& t, const std::string& 
 
 OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::string& key, int part_runs) {
   r.only_keys(t, key, {"label", "name", "population", "iterations", "runs", "settings", "max_evaluations", "target",
-                       "stall_iterations", "budget", "max_total_evaluations"});
+                       "stall_iterations", "budget", "max_total_evaluations", "precision"});
   OptimizerEntry o;
   o.spec.name = r.string(t, "name", key).value_or("pso");
   o.label = r.string(t, "label", key).value_or(o.spec.name);
@@ -46,6 +46,12 @@ OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::
   o.budget.stall_iterations = static_cast<int>(r.integer(t, "stall_iterations", key, 0, 0));
   if (auto target = r.number(t, "target", key)) o.budget.target = *target;
   read_budget_kind(r, t, key, part_runs, o);
+  if (const auto precision = r.string(t, "precision", key)) {
+    if (*precision != "double" && *precision != "mixed")
+      r.fail(t.get("precision"), Reader::join(key, "precision"),
+             fmt::format("expected \"double\" or \"mixed\" (the population search in float32 lanes), got '{}'", *precision));
+    o.search_precision = parse_search_precision(*precision, "precision");
+  }
   if (const toml::node* s = t.get("settings")) {
     if (!s->is_table()) r.fail(s, Reader::join(key, "settings"), "expected a table of settings, e.g. { pc = 0.6 }");
     for (const auto& [k, v] : *s->as_table())

@@ -219,6 +219,13 @@ TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
   EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.budget = "some"; })); })
                 .find("--budget: expected auto or fixed, got 'some'"),
             std::string::npos);
+  // --precision: the search's lanes (identification.hpp, search_precision)
+  EXPECT_EQ(prepare_fit(spec([](FitSpec&) {})).request().settings.search_precision, Precision::float64);
+  EXPECT_EQ(prepare_fit(spec([](FitSpec& s) { s.precision = "mixed"; })).request().settings.search_precision,
+            Precision::float32);
+  EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.precision = "single"; })); })
+                .find("--precision: expected double or mixed, got 'single'"),
+            std::string::npos);
   EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) {
               s.iterations = 10;
               s.max_evaluations = 1000;

@@ -24,10 +24,12 @@ struct Problem {
     for (std::size_t k = 0; k < d.F_N.size(); ++k) d.F_N[k] += 2e4 * std::tanh(d.v_m_s[k] / 0.01);
     data = prepare_signals(d);
   }
-  Identification run(std::uint64_t seed, int threads, int grain, int runs = 6) const {
+  Identification run(std::uint64_t seed, int threads, int grain, int runs = 6,
+                     Precision search = Precision::float64) const {
     IdentificationSettings s;
     s.runs = runs;
     s.seed = seed;
+    s.search_precision = search;
     s.task_key = task_key(model.id(), "two_sine", "pso");
     s.grain_blocks = grain;
     tbb::task_arena arena(threads);
@@ -57,6 +59,25 @@ TEST(Identification, SameSeedSameBitsWithOneAndTwoThreads) {
 TEST(Identification, BatchSplitDoesNotChangeResults) {
   const Problem p;
   expect_identical(p.run(3, 2, 1), p.run(3, 2, 4));
+}
+
+// --precision mixed: the search runs float32 lanes, with the same bits for any thread count and batch split; what
+// a run reports at its best is the float64 evaluation, not the search's float value.
+TEST(Identification, MixedPrecisionSearchIsReproducibleAndReportsFloat64Values) {
+  const Problem p;
+  const Identification mixed = p.run(3, 1, 1, 6, Precision::float32);
+  expect_identical(mixed, p.run(3, 2, 4, 6, Precision::float32));
+  const BatchEvaluator float64(p.model, p.data);
+  bool some_trace_differs = false;
+  for (const RunResult& r : mixed.runs) {
+    CandidateBatch best(p.model.dim(), 1);
+    best.set_candidate(0, r.best_params);
+    std::vector<double> value(1);
+    float64.evaluate(best, Metric::of_abs, value);
+    EXPECT_EQ(r.best_value, value[0]);
+    some_trace_differs |= r.trace.back() != r.best_value;  // the search's own value is a float32 lane's
+  }
+  EXPECT_TRUE(some_trace_differs) << "the search did not run float32 lanes";
 }
 
 TEST(Identification, RunsDoNotDependOnHowManyRunsShareTheBatch) {
