@@ -9,6 +9,9 @@
 #   RUNS [50] POP [50] GENS [100] SEED [1]   budget; GENS counts evaluated generations incl. the initial one
 #   SCIPY_BW_RUNS [5]   scipy runs on the Bouc–Wen problem (a run takes ~45 s; RUNS=50 would take ~40 min)
 #   THREADS [2]         threads for dampbench (--threads) and pagmo2 (thread_bfe / parallel runs)
+#   PRECISION [mixed]   dampbench fit --precision: mixed (the population search in float32 lanes, what is
+#                       reported in float64) or double
+#   ISA [""]            dampbench --isa (sse2, avx2, avx512; empty: the CPU's best), e.g. avx2 on an AVX-512 CPU
 #   REPEAT [2]          timed dampbench `fit --runs RUNS` repetitions; the best rate is reported
 #   SHORT_S [30] REPEAT_SHORT [5]  a measurement (peer or dampbench) shorter than SHORT_S s is repeated
 #                       REPEAT_SHORT times in all, best rate kept
@@ -36,6 +39,7 @@ RUNS="${RUNS:-50}" POP="${POP:-50}" GENS="${GENS:-100}" SEED="${SEED:-1}"
 SCIPY_BW_RUNS="${SCIPY_BW_RUNS:-5}" THREADS="${THREADS:-2}" REPEAT="${REPEAT:-2}" ONE_THREAD="${ONE_THREAD:-1}"
 BUSY_MAX="${BUSY_MAX:-0.25}" LOAD_WAIT="${LOAD_WAIT:-180}" START_WAIT="${START_WAIT:-900}"
 SHORT_S="${SHORT_S:-30}" REPEAT_SHORT="${REPEAT_SHORT:-5}"
+PRECISION="${PRECISION:-mixed}" ISA="${ISA:-}"
 PROBLEMS="${PROBLEMS:-fvd bw}"
 PEER_ALGOS="${PEER_ALGOS:-de ga pso cmaes}"
 PEER_ALGOS="${PEER_ALGOS//,/ }"
@@ -188,7 +192,7 @@ sys.exit(r.returncode)' "$@"
 ours() {
   local prob=$1 opt=$2 rates=() cpu_rates=() rate1=null loads=()
   local args=(fit --model "${MODEL[$prob]}" --data "${DB_DATA[$prob]}" --metric of_abs --optimizer "$opt"
-              --pop "$POP" --iters "$GENS" --format json)
+              --pop "$POP" --iters "$GENS" --precision "$PRECISION" --format json ${ISA:+--isa "$ISA"})
   local n=$REPEAT wall
   for ((i = 0; i < n; i++)); do
     wait_quiet
@@ -263,11 +267,11 @@ header="## dampbench vs peers — $(date -u +'%Y-%m-%d %H:%M UTC')
 Budget: population $POP × $GENS generations (initial one included) × $RUNS runs (scipy on bw: $SCIPY_BW_RUNS runs); \
 metric of_abs; dampbench default bounds; optimizers: $PEER_ALGOS; DE rand/1/bin F = $F, CR = $CR; CMA-ES λ = $POP, σ₀ = 0.3 of each range \
 (dampbench ipop restarts, its default; pagmo2 cmaes without restarts, ftol = xtol = 0, force_bounds). dampbench $(git -C "$REPO" describe --always --dirty 2>/dev/null || echo "?") \
-built Release ($([[ "${NATIVE:-0}" == 1 ]] && echo "DAMPBENCH_NATIVE=ON, -march=native; pagmo2 program -march=native too" || echo "portable x86-64, no -march=native")), --threads $THREADS; pagmo2 $(dpkg-query -W -f='${Version}' libpagmo-dev 2>/dev/null) on $THREADS threads; \
+built Release ($([[ "${NATIVE:-0}" == 1 ]] && echo "DAMPBENCH_NATIVE=ON, -march=native; pagmo2 program -march=native too" || echo "portable x86-64, no -march=native")), --threads $THREADS, --precision $PRECISION, vector kernels ${ISA:-of the CPU (its best)}; pagmo2 $(dpkg-query -W -f='${Version}' libpagmo-dev 2>/dev/null) on $THREADS threads; \
 scipy $("$PY" -c 'import scipy; print(scipy.__version__)'), numpy $("$PY" -c 'import numpy; print(numpy.__version__)'). \
 CPU: $cpu, $(nproc) cores. Candidate-samples/s = evaluations × samples / wall time."
 header+="
-Script settings: RUNS=$RUNS POP=$POP GENS=$GENS SEED=$SEED PEER_ALGOS=\"$PEER_ALGOS\" SCIPY_BW_RUNS=$SCIPY_BW_RUNS THREADS=$THREADS REPEAT=$REPEAT \
+Script settings: RUNS=$RUNS POP=$POP GENS=$GENS SEED=$SEED PRECISION=$PRECISION ISA=${ISA:-} PEER_ALGOS=\"$PEER_ALGOS\" SCIPY_BW_RUNS=$SCIPY_BW_RUNS THREADS=$THREADS REPEAT=$REPEAT \
 SHORT_S=$SHORT_S REPEAT_SHORT=$REPEAT_SHORT ONE_THREAD=$ONE_THREAD BUSY_MAX=$BUSY_MAX LOAD_WAIT=$LOAD_WAIT START_WAIT=$START_WAIT \
 SKIP_BUILD=${SKIP_BUILD:-0} (dampbench binary built $(date -r "$DB" +'%F %T'))."
 "$PY" "$HERE/make_table.py" "$RESULTS" --out "$OUT" --header "$header" \
