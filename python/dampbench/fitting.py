@@ -56,14 +56,15 @@ def _laws_text(laws):
 
 def fit(model, records, *, laws=None, bounds=None, metric="of_abs", optimizer=None, optimizer_settings=None,
         pop=None, iters=None, runs=None, budget=None, max_evals=None, max_seconds=None, seed=1, start=None,
-        predict=(), folds=None, reference=None, report=None, save_model=None, threads=None, isa=None,
+        precision="double", predict=(), folds=None, reference=None, report=None, save_model=None, threads=None, isa=None,
         units=None, columns=None, transform=None, average_cycles=None, conditions=None, set=None):
     """Identifies `model` on one or more records, as `dampbench fit` with the same options and defaults.
 
     records: a Record, a file path, or a list of them (files read with the loader options units, columns,
     transform, average_cycles, conditions, set, as load_record). laws: {"c0": "poly(I,1)"} or the command line's
     text, or "auto"; bounds: {"c0": (lo, hi)} in SI or "c0=lo:hi"; optimizer, optimizer_settings ({"pc": 0.6}),
-    pop, iters, runs, budget ("auto" or "fixed"), max_evals, max_seconds, seed, start ("per-file"), predict (files),
+    pop, iters, runs, budget ("auto" or "fixed"), max_evals, max_seconds, seed, start ("per-file"), precision
+    ("double" or "mixed": the population search in float32 lanes), predict (files),
     folds, reference, report (HTML file), save_model (model file) as the command line's options. threads: worker
     threads (default every core); isa: "sse2", "avx2" or "avx512" for this call.
 
@@ -78,7 +79,7 @@ def fit(model, records, *, laws=None, bounds=None, metric="of_abs", optimizer=No
     text = _core.fit(model, as_records(records, loader), laws=_laws_text(laws), bounds=_bounds_text(bounds),
                      metric=metric, optimizer=optimizer, optimizer_settings=key_values(optimizer_settings, "optimizer_settings"),
                      pop=pop, iters=iters, runs=runs, budget=budget or "", max_evals=max_evals,
-                     max_seconds=max_seconds, seed=seed, start=start or "", predict=[str(p) for p in predict],
+                     max_seconds=max_seconds, seed=seed, start=start or "", precision=precision, predict=[str(p) for p in predict],
                      loader=loader_args(**loader), folds=folds or "", reference=reference or "",
                      report=str(report or ""), save_model=str(save_model or ""), threads=threads, isa=isa)
     return FitResult.from_json(json.loads(text))

@@ -18,7 +18,7 @@ void bind_fit(py::module_& m) {
          const std::string& bounds, const std::string& metric, std::optional<std::string> optimizer,
          const std::string& optimizer_settings, std::optional<int> pop, std::optional<int> iters,
          std::optional<int> runs, const std::string& budget, std::optional<long long> max_evals,
-         std::optional<double> max_seconds, std::uint64_t seed, const std::string& start,
+         std::optional<double> max_seconds, std::uint64_t seed, const std::string& start, const std::string& precision,
          const std::vector<std::string>& predict, const std::vector<std::string>& loader, const std::string& folds, const std::string& reference, const std::string& report,
          const std::string& save_model, std::optional<int> threads, std::optional<std::string> isa) {
         std::atomic<bool> stop{false};
@@ -40,6 +40,7 @@ void bind_fit(py::module_& m) {
         spec.max_seconds = max_seconds;
         spec.seed = seed;
         spec.start = start;
+        spec.precision = precision;
         spec.stop = &stop;
         // Loader options for the --predict files, as the records' were read (units, columns, transform,
         // average_cycles, conditions, set).
@@ -55,7 +56,8 @@ void bind_fit(py::module_& m) {
       },
       py::arg("model"), py::arg("records"), py::arg("laws"), py::arg("bounds"), py::arg("metric"), py::arg("optimizer"),
       py::arg("optimizer_settings"), py::arg("pop"), py::arg("iters"), py::arg("runs"), py::arg("budget"),
-      py::arg("max_evals"), py::arg("max_seconds"), py::arg("seed"), py::arg("start"), py::arg("predict"),
+      py::arg("max_evals"), py::arg("max_seconds"), py::arg("seed"), py::arg("start"), py::arg("precision"),
+      py::arg("predict"),
       py::arg("loader"), py::arg("folds"), py::arg("reference"), py::arg("report"), py::arg("save_model"),
       py::arg("threads"), py::arg("isa"));
 }
