@@ -46,8 +46,8 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
                 "wall-clock cap of the automatic budget (a fit it stops is not reproducible bit for bit)");
   c->add_option("--seed", fit.seed, "seed (default 1)");
   c->add_option("--precision", fit.precision,
-                "double (default), or mixed: the population search in single-precision lanes (twice the lanes per "
-                "vector) for the models that have them; local stages and every reported value in double");
+                "mixed (default): the population search in single-precision lanes (twice the lanes per vector) for the "
+                "models that have them, local stages and every reported value in double; or double throughout");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--start", fit.start,
                 "per-file: start the search from the laws fitted to each record's own fit (member 0 of each run)");

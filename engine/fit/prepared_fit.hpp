@@ -33,8 +33,8 @@ struct FitSpec {
   std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
   std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
-  /// "double", or "mixed": the population phase in single-precision lanes (IdentificationSettings::search_precision)
-  std::string precision = "double";
+  /// "mixed" (default): the population phase in single-precision lanes (IdentificationSettings::search_precision), or "double"
+  std::string precision = "mixed";
   /// Once set, the fit stops at the next generation with Interrupted (the Python module's Ctrl-C); may be null.
   const std::atomic<bool>* stop = nullptr;
 };

@@ -11,8 +11,12 @@ std::vector<TracePoint> improvement_points(const RunResult& run) {
   for (std::size_t i = 0; i < run.trace.size(); ++i)
     if (i == 0 || run.trace[i] < run.trace[i - 1] || i + 1 == run.trace.size())
       t.push_back({run.trace_evaluations[i], run.trace[i]});
-  if (!t.empty() && (run.best_value < t.back().value || run.evaluations != t.back().evaluations))
+  // The end: a local stage's evaluations, or, after a float32 search (`--precision mixed`), the float64 value of the
+  // best where it is lower than the search's own; the history stays non-increasing either way.
+  if (!t.empty() && run.evaluations != t.back().evaluations)
     t.push_back({run.evaluations, std::min(run.best_value, t.back().value)});
+  else if (!t.empty())
+    t.back().value = std::min(run.best_value, t.back().value);
   return t;
 }
 

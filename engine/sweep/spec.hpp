@@ -71,9 +71,10 @@ struct OptimizerEntry {
   /// Restarts until the runs converge (engine/fit/auto_budget.hpp): `budget = "auto"`, or no budget key given.
   bool auto_budget = false;
   long long max_total_evaluations = 0;  ///< the automatic budget's cap (0: its default)
-  /// `precision = "mixed"`: the population search in float32 lanes (IdentificationSettings::search_precision); the
-  /// key is in the spec's canonical text, so a store's spec hash tells the two apart.
-  Precision search_precision = Precision::float64;
+  /// `precision`: "mixed" (default), the population search in float32 lanes (IdentificationSettings::search_precision),
+  /// or "double"; the key is in the spec's canonical text and its default in the hash's salt, so a store's spec hash
+  /// tells the two apart.
+  Precision search_precision = Precision::float32;
 };
 
 /// One condition: every listed variable takes one of its values and the dataset name is one of `names`

@@ -56,7 +56,7 @@ def _laws_text(laws):
 
 def fit(model, records, *, laws=None, bounds=None, metric="of_abs", optimizer=None, optimizer_settings=None,
         pop=None, iters=None, runs=None, budget=None, max_evals=None, max_seconds=None, seed=1, start=None,
-        precision="double", predict=(), folds=None, reference=None, report=None, save_model=None, threads=None, isa=None,
+        precision="mixed", predict=(), folds=None, reference=None, report=None, save_model=None, threads=None, isa=None,
         units=None, columns=None, transform=None, average_cycles=None, conditions=None, set=None):
     """Identifies `model` on one or more records, as `dampbench fit` with the same options and defaults.
 
@@ -64,7 +64,7 @@ def fit(model, records, *, laws=None, bounds=None, metric="of_abs", optimizer=No
     transform, average_cycles, conditions, set, as load_record). laws: {"c0": "poly(I,1)"} or the command line's
     text, or "auto"; bounds: {"c0": (lo, hi)} in SI or "c0=lo:hi"; optimizer, optimizer_settings ({"pc": 0.6}),
     pop, iters, runs, budget ("auto" or "fixed"), max_evals, max_seconds, seed, start ("per-file"), precision
-    ("double" or "mixed": the population search in float32 lanes), predict (files),
+    ("mixed", the default: the population search in float32 lanes; or "double"), predict (files),
     folds, reference, report (HTML file), save_model (model file) as the command line's options. threads: worker
     threads (default every core); isa: "sse2", "avx2" or "avx512" for this call.
 

@@ -203,11 +203,19 @@ def main():
     check(p.returncode != 0 and "is not running the same computation as rank 0" in p.stderr,
           f"ranks with different sweep files: exit {p.returncode}, {p.stderr[-800:]}")
 
-    # The whole job killed with SIGKILL mid-way, resumed by another mpirun.
-    single_store = os.path.join(WORK, "fvd-single", "store.sqlite")
+    # The whole job killed with SIGKILL mid-way, resumed by another mpirun. The kills need groups that take a while:
+    # the fvd preset with 4x the iterations (0.1-0.3 s a group on one thread), with its own one-process reference.
+    slow = os.path.join(WORK, "fvd-slow.toml")
+    with open(FVD) as f, open(slow, "w") as g:
+        text = f.read()
+        check("iterations = 100" in text, "the fvd preset no longer sets iterations = 100 (the kill tests slow it down)")
+        g.write(text.replace("iterations = 100", "iterations = 400")
+                .replace('file = "../fvd/', f'file = "{support.ROOT}/datasets/fvd/'))
+    run(["run", slow, "-o", "fvd-slow-single", "--quiet", "--no-report"])
+    single_store = os.path.join(WORK, "fvd-slow-single", "store.sqlite")
     store = os.path.join(WORK, "killed", "store.sqlite")
     # One thread per rank, so that groups finish one by one and the kill lands mid-way on any machine.
-    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", FVD, "-o", "killed", "--quiet",
+    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", slow, "-o", "killed", "--quiet",
            "--no-report"]
     proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
@@ -218,13 +226,13 @@ def main():
     stored = support.stored_groups(store)
     check(reached and 3 <= stored < total_groups(store), f"kill -9 of the job: {stored} groups stored (expected some, not all)")
     check(wait_unlocked(store), "kill -9 of the job: a rank still holds the store's lock after 60 s")
-    run(["run", FVD, "-o", "killed", "--quiet", "--no-report"], mpi=2)
+    run(["run", slow, "-o", "killed", "--quiet", "--no-report"], mpi=2)
     same_as_single(f"job killed after {stored} groups, resumed on 2 ranks", store, single_store)
     print(f"fvd: job killed after {stored} groups and resumed: identical to one process", flush=True)
 
     # A worker rank killed mid-way: the job ends with an error and a valid store, which one process resumes.
     store = os.path.join(WORK, "worker-died", "store.sqlite")
-    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", FVD, "-o", "worker-died", "--quiet",
+    cmd = [MPIRUN, "--oversubscribe", "-np", "3", DAMPBENCH, "--threads", "1", "run", slow, "-o", "worker-died", "--quiet",
            "--no-report"]
     proc = subprocess.Popen(cmd, cwd=WORK, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
@@ -245,7 +253,7 @@ def main():
     stored = support.stored_groups(store)
     check(stored < total_groups(store), f"worker death: the job stored all {stored} groups (killed too late)")
     check(wait_unlocked(store), "worker death: a rank still holds the store's lock after 60 s")
-    run(["run", FVD, "-o", "worker-died", "--quiet", "--no-report"])
+    run(["run", slow, "-o", "worker-died", "--quiet", "--no-report"])
     same_as_single(f"worker killed after {stored} stored groups, resumed in one process", store, single_store)
     print(f"fvd: worker killed after {stored} groups; job ended with exit {proc.returncode}; resumed: identical", flush=True)
 

@@ -58,11 +58,11 @@ def test_ode_model_from_file_and_arrays_equals_cli(exe, tmp_path):
     cli = cli_json(exe, "fit", "--model", "mrd.bouc_wen", "--data", path, "--pop", 16, "--iters", 10, "--runs", 2,
                    "--seed", 7)
     assert_same_fit(dampbench.fit("mrd.bouc_wen", path, **budget), cli)
-    # the population search in float32 lanes: the command line's bits too
-    mixed = cli_json(exe, "fit", "--model", "mrd.bouc_wen", "--data", path, "--pop", 16, "--iters", 10, "--runs", 2,
-                     "--seed", 7, "--precision", "mixed")
-    assert mixed["precision"] == "mixed" and cli["precision"] == "double"
-    assert_same_fit(dampbench.fit("mrd.bouc_wen", path, precision="mixed", **budget), mixed)
+    # the population search in float64 lanes (the default is mixed): the command line's bits too
+    dbl = cli_json(exe, "fit", "--model", "mrd.bouc_wen", "--data", path, "--pop", 16, "--iters", 10, "--runs", 2,
+                   "--seed", 7, "--precision", "double")
+    assert dbl["precision"] == "double" and cli["precision"] == "mixed"
+    assert_same_fit(dampbench.fit("mrd.bouc_wen", path, precision="double", **budget), dbl)
     assert_same_fit(dampbench.fit("mrd.bouc_wen", from_arrays(path), **budget), cli)
     # The record is noise-free: the fit reproduces its force (a known answer, not only agreement).
     assert cli["metrics"]["of_abs"] < 1e-6

@@ -220,9 +220,9 @@ TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
                 .find("--budget: expected auto or fixed, got 'some'"),
             std::string::npos);
   // --precision: the search's lanes (identification.hpp, search_precision)
-  EXPECT_EQ(prepare_fit(spec([](FitSpec&) {})).request().settings.search_precision, Precision::float64);
-  EXPECT_EQ(prepare_fit(spec([](FitSpec& s) { s.precision = "mixed"; })).request().settings.search_precision,
-            Precision::float32);
+  EXPECT_EQ(prepare_fit(spec([](FitSpec&) {})).request().settings.search_precision, Precision::float32);
+  EXPECT_EQ(prepare_fit(spec([](FitSpec& s) { s.precision = "double"; })).request().settings.search_precision,
+            Precision::float64);
   EXPECT_NE(testing::error_of([&] { prepare_fit(spec([](FitSpec& s) { s.precision = "single"; })); })
                 .find("--precision: expected double or mixed, got 'single'"),
             std::string::npos);

@@ -147,19 +147,19 @@ TEST_F(SpecErrors, BudgetKindAndCap) {
   EXPECT_TRUE(load_sweep(x()).parts.at(0).optimizers.at(0).auto_budget);
 }
 
-// `precision`: the population search's lanes of an optimizer entry; the key changes the spec hash (stores of the two
-// are told apart).
+// `precision`: the population search's lanes of an optimizer entry, "mixed" by default; the key changes the spec hash
+// (stores of the two are told apart).
 TEST_F(SpecErrors, SearchPrecision) {
   expect(kHead + "[optimizer]\nprecision = \"single\"\n" + kData,
          x() + ":4: key 'optimizer.precision': expected \"double\" or \"mixed\" (the population search in float32 "
                "lanes), got 'single'");
   write(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\n");
   const SweepSpec plain = load_sweep(x());
-  EXPECT_EQ(plain.parts.at(0).optimizers.at(0).search_precision, Precision::float64);
-  write(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\nprecision = \"mixed\"\n");
-  const SweepSpec mixed = load_sweep(x());
-  EXPECT_EQ(mixed.parts.at(0).optimizers.at(0).search_precision, Precision::float32);
-  EXPECT_NE(plain.hash, mixed.hash);
+  EXPECT_EQ(plain.parts.at(0).optimizers.at(0).search_precision, Precision::float32);  // the default: mixed
+  write(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\nprecision = \"double\"\n");
+  const SweepSpec dbl = load_sweep(x());
+  EXPECT_EQ(dbl.parts.at(0).optimizers.at(0).search_precision, Precision::float64);
+  EXPECT_NE(plain.hash, dbl.hash);
 }
 
 TEST_F(SpecErrors, BoundsAreCheckedBeforeFiles) {
