@@ -57,18 +57,28 @@ std::vector<double> paper_units(std::span<const double> p, int iC, int ialpha, i
   return out;
 }
 
-/// fvd eq. 1, linear viscous: F = m·a + C·v.
-struct LinearViscous {
-  static constexpr int kParams = 2;
+/// What the four laws share: their samples, in any lane real type (float32 lanes too).
+struct FvdLaw {
   using Sample = fvd::Sample;
   static constexpr bool kFloat32Lanes = true;
+  template <class R = double>
+  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
+};
+
+/// The generalized viscous laws' one exp: α·log|v| with α in slot 2.
+struct GeneralizedViscousLaw : FvdLaw {
+  template <class P, class R = typename P::Real>
+  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
+};
+
+/// fvd eq. 1, linear viscous: F = m·a + C·v.
+struct LinearViscous : FvdLaw {
+  static constexpr int kParams = 2;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.linear_viscous", "fvd eq. 1", "F = m*a + C*v",
                              {kMass, {"C", "N*s/m", 0.0, 2e7, "kN/(mm/s)"}}};
     return i;
   }
-  template <class R = double>
-  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
   template <class P, class R = typename P::Real>
   static R force(const P& p, int l, const SampleOf<R>& s) {
     return p.p[0][l] * s.a + p.p[1][l] * s.v;
@@ -77,19 +87,13 @@ struct LinearViscous {
 };
 
 /// fvd eq. 2, generalized viscous (Constantinou): F = m·a + C·sgn(v)|v|^α.
-struct GeneralizedViscous {
+struct GeneralizedViscous : GeneralizedViscousLaw {
   static constexpr int kParams = 3;
-  using Sample = fvd::Sample;
-  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.generalized_viscous", "fvd eq. 2", "F = m*a + C*sgn(v)*|v|^alpha",
                              {kMass, kCgen, kAlpha}};
     return i;
   }
-  template <class R = double>
-  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
-  template <class P, class R = typename P::Real>
-  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
   template <class P, class R = typename P::Real>
   static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e);
@@ -98,19 +102,13 @@ struct GeneralizedViscous {
 };
 
 /// fvd eq. 5, generalized viscous – linear elastic (generalized Kelvin–Voigt): F = m·a + C·sgn(v)|v|^α + K1·x.
-struct GvLinearElastic {
+struct GvLinearElastic : GeneralizedViscousLaw {
   static constexpr int kParams = 4;
-  using Sample = fvd::Sample;
-  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.gv_linear_elastic", "fvd eq. 5", "F = m*a + C*sgn(v)*|v|^alpha + K1*x",
                              {kMass, kCgen, kAlpha, kK1}};
     return i;
   }
-  template <class R = double>
-  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
-  template <class P, class R = typename P::Real>
-  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
   template <class P, class R = typename P::Real>
   static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x;
@@ -120,19 +118,13 @@ struct GvLinearElastic {
 
 /// fvd eq. 6, generalized viscous – quadratic elastic (eq. 4 without K0):
 /// F = m·a + C·sgn(v)|v|^α + K1·x + K2·x².
-struct GvQuadraticElastic {
+struct GvQuadraticElastic : GeneralizedViscousLaw {
   static constexpr int kParams = 5;
-  using Sample = fvd::Sample;
-  static constexpr bool kFloat32Lanes = true;
   static const ModelInfo& info() {
     static const ModelInfo i{"fvd.gv_quadratic_elastic", "fvd eq. 6",
                              "F = m*a + C*sgn(v)*|v|^alpha + K1*x + K2*x^2", {kMass, kCgen, kAlpha, kK1, kK2}};
     return i;
   }
-  template <class R = double>
-  static SampleOf<R> prepare(const Signals& s, std::size_t k) { return prepare_sample<R>(s, k); }
-  template <class P, class R = typename P::Real>
-  static R exp_argument(const P& p, int l, const SampleOf<R>& s) { return abs_v_pow_argument(p, l, 2, s); }
   template <class P, class R = typename P::Real>
   static R force_with_exp(const P& p, int l, const SampleOf<R>& s, R e) {
     return p.p[0][l] * s.a + generalized_viscous_force(p, l, 1, s, e) + p.p[3][l] * s.x + p.p[4][l] * s.x2;
