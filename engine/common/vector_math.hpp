@@ -41,13 +41,15 @@ inline double log_abs_for_pow(double z) { return std::log(std::fabs(z) + 1e-100)
 /// the call, so the vector exp still sees the raw argument.)
 inline double abs_pow(double z, double n) { return std::exp(n * log_abs_for_pow(z)); }
 
+/// exp of a lane: plain in double; in float with the argument floored at −80, above float's underflow (−87),
+/// where libmvec would leave its fast path for the whole vector, as abs_pow(double) explains. e^−80 is a zero for
+/// any force.
+inline double lane_exp(double x) { return std::exp(x); }
+inline float lane_exp(float x) { return std::exp(std::max(x, -80.0f)); }
+
 /// The single-precision lanes' overloads (engine/kernels/lane_kernel.hpp, Float32).
 inline float sign(float v) { return static_cast<float>(v > 0.0f) - static_cast<float>(v < 0.0f); }
-/// |z|^n in float: exp(max(n·log(|z| + 1e−30), −80)). The floor keeps the float exp's argument above its
-/// underflow (−87), where libmvec would leave its fast path for the whole vector, as abs_pow(double) explains;
-/// it changes |z|^n only where that is below 2e−35, a zero for any force.
-inline float abs_pow(float z, float n) {
-  return std::exp(std::max(n * std::log(std::fabs(z) + 1e-30f), -80.0f));
-}
+/// |z|^n in float: lane_exp(n·log(|z| + 1e−30)), which differs from |z|^n only where that is below 2e−35.
+inline float abs_pow(float z, float n) { return lane_exp(n * std::log(std::fabs(z) + 1e-30f)); }
 
 }  // namespace dampbench

@@ -6,11 +6,13 @@
 #include "engine/model/batch.hpp"
 
 namespace dampbench {
+namespace {
+constexpr std::array<int, 3> kWidths{kLanes, kWideLanes, kWidestLanes};  // the float64 widths, those of BlockTimes
+}  // namespace
 
 std::vector<LaneBlock> cut_lane_blocks(std::span<const double> costs, int max_lanes, const BlockTimes& times) {
   std::vector<BlockShape> shapes;
-  const std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
-  for (std::size_t w = 0; w < widths.size() && widths[w] <= max_lanes; ++w) shapes.push_back({widths[w], times[w]});
+  for (std::size_t w = 0; w < kWidths.size() && kWidths[w] <= max_lanes; ++w) shapes.push_back({kWidths[w], times[w]});
   return cut_lane_blocks(costs, shapes);
 }
 
@@ -19,9 +21,8 @@ std::vector<BlockShape> float32_block_shapes(int max_lanes, const BlockTimes& ti
   // more than half the time of the next width (docs/performance.md, "Mixed precision").
   constexpr double kNarrowest = 0.6;
   std::vector<BlockShape> shapes{{kLanes, kNarrowest * times[0]}};
-  const std::array<int, 3> widths{kLanes, kWideLanes, kWidestLanes};
-  for (std::size_t w = 0; w < widths.size() && kFloat32LaneScale * widths[w] <= max_lanes; ++w)
-    shapes.push_back({kFloat32LaneScale * widths[w], times[w]});
+  for (std::size_t w = 0; w < kWidths.size() && kFloat32LaneScale * kWidths[w] <= max_lanes; ++w)
+    shapes.push_back({kFloat32LaneScale * kWidths[w], times[w]});
   return shapes;
 }
 

@@ -19,9 +19,14 @@ std::uint64_t task_key(std::string_view model_id, std::string_view dataset_name,
   return hash_key({hash_name(model_id), hash_name(dataset_name), hash_name(optimizer)});
 }
 
-Precision parse_search_precision(std::string_view text, std::string_view where) {
+std::optional<Precision> search_precision_of(std::string_view text) {
   if (text == "double") return Precision::float64;
   if (text == "mixed") return Precision::float32;
+  return std::nullopt;
+}
+
+Precision parse_search_precision(std::string_view text, std::string_view where) {
+  if (const auto p = search_precision_of(text)) return *p;
   throw InputError(fmt::format("{}: expected double or mixed, got '{}'", where, text));
 }
 

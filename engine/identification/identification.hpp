@@ -6,6 +6,7 @@
 #include <string>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "engine/evaluation/batch_evaluator.hpp"
@@ -44,7 +45,9 @@ struct IdentificationSettings {
 };
 
 /// `--precision` (fit) and a sweep entry's `precision`: "double" → float64 search lanes, "mixed" → float32 search
-/// lanes (IdentificationSettings::search_precision); InputError naming `where` otherwise.
+/// lanes (IdentificationSettings::search_precision); nullopt for any other text.
+std::optional<Precision> search_precision_of(std::string_view text);
+/// search_precision_of, or InputError naming `where`.
 Precision parse_search_precision(std::string_view text, std::string_view where);
 /// "double" or "mixed", the name parse_search_precision reads.
 std::string_view search_precision_name(Precision p);

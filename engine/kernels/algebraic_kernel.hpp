@@ -13,10 +13,8 @@
 // (docs/performance.md has the gain). Same operations per lane, same bits.
 // A law with single-precision lanes (kFloat32Lanes) gives its samples in the lanes' real type:
 //   template <class R> static Sample<R> prepare(const Signals&, std::size_t k);
-// and its float exps take arguments no lower than kFloatExpFloor.
-#include <algorithm>
+// and its float exps take arguments no lower than −80 (lane_exp, engine/common/vector_math.hpp).
 #include <stdexcept>
-#include <type_traits>
 #include <utility>
 
 #include "engine/kernels/lane_kernel.hpp"
@@ -45,9 +43,6 @@ class AlgebraicKernel {
     Law::exp_argument(p, 0, s);
     Law::force_with_exp(p, 0, s, R(1));
   };
-  /// The float exps' lowest argument: above float's underflow (−87), where libmvec's vector exp would leave its
-  /// fast path for the whole vector (engine/common/vector_math.hpp); e^−80 is a zero for any force.
-  static constexpr float kFloatExpFloor = -80.0f;
 
   /// Force of every lane at sample k (a law with `force`).
   void forces(std::size_t k, R* f) const
@@ -71,13 +66,8 @@ class AlgebraicKernel {
       for (int l = 0; l < W; ++l) e[i][l] = Law::exp_argument(p_, l, s[i]);
     }
     for (std::size_t i = 0; i < m; ++i) {
-      if constexpr (std::is_same_v<R, float>) {
 #pragma omp simd
-        for (int l = 0; l < W; ++l) e[i][l] = std::exp(std::max(e[i][l], kFloatExpFloor));
-      } else {
-#pragma omp simd
-        for (int l = 0; l < W; ++l) e[i][l] = std::exp(e[i][l]);
-      }
+      for (int l = 0; l < W; ++l) e[i][l] = lane_exp(e[i][l]);
     }
     for (std::size_t i = 0; i < m; ++i) {
 #pragma omp simd

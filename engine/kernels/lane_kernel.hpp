@@ -262,14 +262,17 @@ class KernelModel final : public Model {
   }
 
   [[nodiscard]] std::vector<double> simulate_float32(std::span<const double> params, const Signals& data) const override {
-    if constexpr (kLawHasFloat32<Law>) {
-      const auto lanes = broadcast_lanes<Float32<Law>, kFloat32LaneScale * kLanes>(params);
-      std::vector<double> force(data.size());
-      IsaClones<LaneBlockRun<Float32<Law>, KernelT, kFloat32LaneScale * kLanes, false>>::call(&lanes, &data, 1, force.data());
-      return force;
-    } else {
-      return simulate(params, data);
-    }
+    if constexpr (kLawHasFloat32<Law>) return simulate_lanes<kFloat32LaneScale * kLanes, Float32<Law>>(params, data);
+    else return simulate(params, data);
+  }
+
+  /// One candidate's force, from a block of W lanes of the law L (Law, or Float32<Law>).
+  template <int W, class L = Law>
+  static std::vector<double> simulate_lanes(std::span<const double> params, const Signals& data) {
+    const auto lanes = broadcast_lanes<L, W>(params);
+    std::vector<double> force(data.size());
+    IsaClones<LaneBlockRun<L, KernelT, W, false>>::call(&lanes, &data, 1, force.data());
+    return force;
   }
 
   /// evaluate_block with a block of W lanes of the law L (Law, or Float32<Law>).
@@ -302,10 +305,7 @@ class KernelModel final : public Model {
   }
 
   [[nodiscard]] std::vector<double> simulate(std::span<const double> params, const Signals& data) const override {
-    const auto lanes = broadcast_lanes<Law, kLanes>(params);
-    std::vector<double> force(data.size());
-    ForcesBlock::call(&lanes, &data, 1, force.data());
-    return force;
+    return simulate_lanes<kLanes>(params, data);
   }
 
   void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const override {

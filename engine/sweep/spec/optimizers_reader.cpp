@@ -47,10 +47,11 @@ OptimizerEntry read_optimizer(const Reader& r, const toml::table& t, const std::
   if (auto target = r.number(t, "target", key)) o.budget.target = *target;
   read_budget_kind(r, t, key, part_runs, o);
   if (const auto precision = r.string(t, "precision", key)) {
-    if (*precision != "double" && *precision != "mixed")
+    const auto p = search_precision_of(*precision);
+    if (!p)
       r.fail(t.get("precision"), Reader::join(key, "precision"),
              fmt::format("expected \"double\" or \"mixed\" (the population search in float32 lanes), got '{}'", *precision));
-    o.search_precision = parse_search_precision(*precision, "precision");
+    o.search_precision = *p;
   }
   if (const toml::node* s = t.get("settings")) {
     if (!s->is_table()) r.fail(s, Reader::join(key, "settings"), "expected a table of settings, e.g. { pc = 0.6 }");
