@@ -81,6 +81,7 @@ def main():
     names = sys.argv[1].split(',') if len(sys.argv) > 1 else list(all_problems)
     opts = sys.argv[2].split(',') if len(sys.argv) > 2 else list(OPTIMIZERS)
     cells, best = {}, {}
+    log = open(os.path.join(OUT, 'cells_progress.jsonl'), 'w')  # each cell as it ends, for a run cut short
     for p in names:
         refs = ([('de', '50', '1000', '10'), ('cmaes', '50', '1000', '10')] if not p.startswith(('spencer', 'bouc'))
                 else [('ga-lm', '24', '300', '4')])
@@ -92,6 +93,8 @@ def main():
             r = cells[(p, o)] = fit(all_problems[p] + optimizer_args(o))
             best[p] = min(best[p], r.get('best', math.inf))
             print(p, o, r.get('verdict', r.get('error')), f"{r.get('wall', 0):.1f}s", file=sys.stderr, flush=True)
+            log.write(json.dumps({'problem': p, 'optimizer': o, **r}) + '\n')
+            log.flush()
     with open(os.path.join(OUT, 'cells.jsonl'), 'w') as f:
         for (p, o), r in cells.items():
             f.write(json.dumps({'problem': p, 'optimizer': o, 'best_known': best[p], **r}) + '\n')
@@ -107,7 +110,7 @@ def main():
             ratio = r['best'] / best[p]
             state = 'C' if r['verdict'] == 'converged' else ('cap' if r['budget'].get('stop') == 'cap' else r['verdict'])
             row.append(f"{state} {ratio:.4f}{'' if ratio <= 1.001 else ' ✗'} "
-                       f"({len(r['budget'].get('populations', []))}r, {r['wall']:.0f}s)")
+                       f"({r['budget'].get('rounds', 1)}r, {r['wall']:.0f}s)")
         print(f'| {p} | {best[p]:.6g} | ' + ' | '.join(row) + ' |')
 
 

@@ -95,10 +95,11 @@ WORK="$BUILD_DIR/peers-data"
 mkdir -p "$WORK" "$(dirname "$OUT")"
 RESULTS="$WORK/results.jsonl"
 : >"$RESULTS"
-"$DB" models --format json >"$WORK/models.json"
-bounds() {  # bounds MODEL lower|upper -> comma list in dampbench's parameter order
-  "$PY" -c 'import json,sys; m=json.load(open(sys.argv[1]))["models"][sys.argv[2]]
-print(",".join(repr(float(p[sys.argv[3]])) for p in m["parameters"]))' "$WORK/models.json" "$1" "$2"
+bounds() {  # bounds MODEL DATA lower|upper -> comma list in dampbench's parameter order: the box `fit` searches on
+  # that record (the model's defaults scaled to the record: mrd.bouc_wen's are, fvd's are not), from fit's JSON
+  "$DB" fit --model "$1" --data "$2" --metric of_abs --optimizer de --pop 4 --iters 2 --runs 2 --budget fixed \
+    --format json | "$PY" -c 'import json,sys; b=json.load(sys.stdin)["bounds"][sys.argv[1]]
+print(",".join(repr(float(v)) for v in b.values()))' "$3"
 }
 # The Bouc–Wen sub-step rule's constant, read from the model so the peers follow it.
 SUBSTEPS=$(sed -n '/^struct BoucWen/,/^};/p' "$REPO/models/mrd.cpp" | sed -n 's/.*kSubstepsPerStroke = \([0-9.e+]*\);.*/\1/p')
@@ -240,8 +241,8 @@ if ((START_WAIT > 0)); then
 fi
 log "start: load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; budget pop $POP × $GENS generations × $RUNS runs; optimizers: $PEER_ALGOS"
 for prob in $PROBLEMS; do
-  lo=$(bounds "${MODEL[$prob]}" lower)
-  hi=$(bounds "${MODEL[$prob]}" upper)
+  lo=$(bounds "${MODEL[$prob]}" "${DB_DATA[$prob]}" lower)
+  hi=$(bounds "${MODEL[$prob]}" "${DB_DATA[$prob]}" upper)
   common=(--problem "$prob" --data "${PEER_DATA[$prob]}" --lower "$lo" --upper "$hi" --pop "$POP" --gens "$GENS"
           --seed "$SEED" --substeps-per-stroke "$SUBSTEPS")
   scipy_runs=$RUNS

@@ -108,6 +108,7 @@ nlohmann::ordered_json convergence_json(const Convergence& c) {
           {"median_above_best_rel", json_number(c.median_above_best_rel)},
           {"worst_above_best_rel", json_number(c.worst_above_best_rel)},
           {"late_gain_rel", json_number(c.late_gain_rel)},
+          {"unconfirmed", c.unconfirmed},
           {"rule", {{"agree_rel", rule.agree_rel}, {"late_gain_rel", rule.late_gain_rel},
                     {"late_fraction", rule.late_fraction}, {"abs_tol", rule.abs_tol}}}};
 }
@@ -177,17 +178,15 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
 std::string not_converged_advice(const FitOutcome& fit) {
   if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
   if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
-  if (fit.auto_budget->stop == "population limit")
-    return ": do not trust this fit; its runs do not agree even at the largest population: try another "
-           "--optimizer, or more --iters with --budget auto";
   return ": do not trust this fit; raise --max-evals";
 }
 
 nlohmann::ordered_json budget_json(const FitOutcome& fit) {
   if (!fit.auto_budget) return {{"kind", "fixed"}};
   const AutoBudgetReport& b = *fit.auto_budget;
-  return {{"kind", "auto"}, {"rounds", b.populations.size()}, {"populations", b.populations},
-          {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop}};
+  return {{"kind", "auto"}, {"rounds", b.iterations.size()}, {"iterations", b.iterations},
+          {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop},
+          {"last_restart_rel", json_number(b.last_restart_rel)}};
 }
 
 }  // namespace
@@ -224,6 +223,8 @@ nlohmann::ordered_json fit_json(const FitOptions& o, const FitRun& run) {
     return named_values;
   };
   j["best_params"] = named(best.best_params);
+  // The box searched: the model's defaults scaled to the records (engine/model/bounds.hpp), then --bounds.
+  j["bounds"] = {{"lower", named(fit.bounds.lower)}, {"upper", named(fit.bounds.upper)}};
   nlohmann::ordered_json metrics = nlohmann::ordered_json::object();
   for (int i = 0; i < kMetricCount; ++i) metrics[std::string(metric_name(kAllMetrics[i]))] = json_number(best.best_metrics[i]);
   j["metrics"] = metrics;

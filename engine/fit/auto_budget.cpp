@@ -16,26 +16,25 @@ namespace dampbench {
 
 std::string AutoBudgetReport::summary() const {
   std::string sizes;
-  for (int p : populations) sizes += fmt::format("{}{}", sizes.empty() ? "" : ", ", p);
-  const std::string why =
-      stop == "converged"          ? "converged"
-      : stop == "time cap"         ? "stopped by the time cap (not reproducible bit for bit)"
-      : stop == "population limit" ? fmt::format("stopped at the population limit ({}) before converging",
-                                                 max_population)
-                                   : "stopped at the cap before converging";
-  return fmt::format("{} round{} (population {}), {} of {} evaluations: {}", populations.size(),
-                     populations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
+  for (int i : iterations) sizes += fmt::format("{}{}", sizes.empty() ? "" : ", ", i);
+  const std::string gain =
+      !std::isfinite(last_restart_rel) ? "no restart yet"
+      : last_restart_rel <= 0
+          ? fmt::format("the last restart improved the best by {:.2g} %", -100 * last_restart_rel)
+          : fmt::format("the last restart ended {:.2g} % above the best", 100 * last_restart_rel);
+  const std::string why = stop == "converged" ? "converged, " + gain
+                          : stop == "time cap"
+                              ? "stopped by the time cap (not reproducible bit for bit); " + gain
+                              : "stopped at the cap before converging; " + gain;
+  return fmt::format("{} round{} (iterations {}), {} of {} evaluations: {}", iterations.size(),
+                     iterations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
 }
 
 long long default_cap(int runs, int population, int iterations) {
   return 64LL * runs * population * iterations;
 }
 
-int round_population(const OptimizerSpec& optimizer, int free_parameters, int round) {
-  if (optimizer.population == 0 && round == 0) return 0;
-  const int base = optimizer.population > 0 ? optimizer.population : cmaes_default_population(free_parameters);
-  return base << round;
-}
+int round_iterations(const OptimizerSpec& optimizer, int round) { return optimizer.iterations << round; }
 
 namespace {
 
@@ -81,6 +80,13 @@ int free_parameters(const Bounds& bounds) {
   return n;
 }
 
+/// The chains' best value (+inf when no chain has a finite one).
+double best_of(const Identification& chains) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const RunResult& r : chains.runs) best = std::min(best, chain_best(r));
+  return best;
+}
+
 /// The smaller of a rule's limit and `limit`, where 0 switches the rule off.
 template <class T>
 T tighter(T rule, T limit) {
@@ -115,16 +121,16 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       budget.optimizer.population > 0 ? budget.optimizer.population : cmaes_default_population(free);
   const long long nominal = static_cast<long long>(runs) * population * budget.optimizer.iterations;
   report = {};
-  report.max_population = budget.max_population;
   report.cap = budget.max_evaluations > 0 ? budget.max_evaluations : default_cap(runs, population,
                                                                                  budget.optimizer.iterations);
+  report.last_restart_rel = std::numeric_limits<double>::infinity();
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
   Identification chains;
   for (int k = 0;; ++k) {
     OptimizerSpec spec = budget.optimizer;
-    spec.population = round_population(budget.optimizer, free, k);
+    spec.iterations = round_iterations(budget.optimizer, k);
     IdentificationSettings s = settings;
     if (k > 0) s.task_key = hash_key({settings.task_key, static_cast<std::uint64_t>(k)});
     if (k == 0 && nominal > report.cap)  // a starved cap cuts round 0's runs to their share of it
@@ -138,12 +144,21 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       timed_out = timed_out || r.stop_reason == "wall_time";
     }
     report.evaluations += spent;
-    report.populations.push_back(spec.population > 0 ? spec.population : population);
+    report.iterations.push_back(spec.iterations);
+    const double before = best_of(chains), restart = best_of(round);
     append_round(chains, round);
-    if (assess_convergence(chains).converged) report.stop = "converged";
+    const double after = best_of(chains);
+    // Confirmed: the restart ends within kRestartRel of the best before it, neither above (it did not find the
+    // best again) nor below (it found a better one, which no restart has confirmed yet).
+    const bool confirmed = k > 0 && std::isfinite(before) &&
+                           std::abs(restart - before) <= kRestartRel * std::abs(after) + ConvergenceRule{}.abs_tol;
+    if (k > 0 && std::isfinite(before))
+      report.last_restart_rel = (restart - before) / std::max(std::abs(after), std::numeric_limits<double>::min());
+    if (confirmed && assess_convergence(chains).converged) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
-    else if (spent == 0 || report.evaluations + 2 * spent > report.cap) report.stop = "cap";
-    else if (round_population(budget.optimizer, free, k + 1) > budget.max_population) report.stop = "population limit";
+    else if (spent == 0 || report.evaluations + 2 * spent > report.cap ||
+             budget.optimizer.iterations > (std::numeric_limits<int>::max() >> (k + 1)))
+      report.stop = "cap";
     if (!report.stop.empty()) return chains;
   }
 }

@@ -1,18 +1,27 @@
 #pragma once
 // The automatic budget (`fit --budget auto`, fit's default; sweep optimizer entries that set no budget): the runs
-// of a fit are extended by restarts until the convergence verdict holds (convergence.hpp) or a cap is reached.
+// of a fit are extended by restarts until the convergence verdict holds and a restart confirms the best (or a cap
+// is reached).
 //
 //   round 0     the fixed budget: R runs of population P × I iterations (the same bits as a fixed budget)
-//   round k ≥ 1 every run restarts with population P·2^k and the same I, its streams keyed (seed, task, k, run)
+//   round k ≥ 1 every run restarts with the same P and I·2^k iterations, its streams keyed (seed, task, k, run)
 //   run r       the chain of its rounds: best = the best over the chain, history = the chain's best-so-far
 //               over the evaluations of every round, restarts counted
+//   converged   the verdict (convergence.hpp) holds on the chains, and the last round, a restart with twice the
+//               iterations of the round before, found the chains' best again: its best within kRestartRel of
+//               it, neither above (not found again) nor below (a better one, not yet found twice)
 //
-// A restart with a larger population, not more iterations (IPOP, Auger & Hansen 2005), so that schedules over
-// the iterations (PSO's inertia, AGA's rates, a hybrid's hand-over to its local stage) keep their meaning, and a
-// larger population makes every algorithm more global. After each round: converged → stop; otherwise the next
-// round starts only if it fits in the cap, its cost estimated as twice the last round's; else stop at the cap.
-// The schedule depends only on results, so the same inputs give the same bits, unless the optional wall-clock
-// cap fires (and then the outcome says so).
+// Restarts, not longer runs: each round is a new run with its own schedule over its iterations (PSO's inertia,
+// AGA's rates, a hybrid's hand-over to its local stage), so the schedules keep their meaning. Longer, not wider
+// (IPOP, Auger & Hansen 2005, doubles the population): with a fixed generation count, a larger population makes
+// GA, PSO and DE more global but ends them less precisely, and on the damper problems the runs' precision is
+// what their 100 generations lack (docs/performance.md, "The automatic budget"); cmaes's own ipop restarts
+// widen its population inside every run. The confirming restart is what tells a basin every run agrees on from
+// the best one: runs that agree can all sit in the same wider, higher basin (the Kwok record's μ–ξ plateau), and
+// a restart that merely fails to beat the best has not shown that it is the best.
+// After each round: converged → stop; otherwise the next round starts only if it fits in the cap, its cost
+// estimated as twice the last round's; else stop at the cap. The schedule depends only on results, so the same
+// inputs give the same bits, unless the optional wall-clock cap fires (and then the outcome says so).
 #include <string>
 #include <vector>
 
@@ -21,36 +30,35 @@
 
 namespace dampbench {
 
-/// The largest population a restart may have: a round's lockstep batch holds runs × population candidates, so a
-/// cap far above the default must not grow it without bound.
-inline constexpr int kMaxAutoPopulation = 1 << 16;
+/// A restart confirms the best when its own best is within this fraction of it: the 0.1 % of COCO-style targets.
+inline constexpr double kRestartRel = 1e-3;
 
 struct AutoBudget {
-  OptimizerSpec optimizer;        ///< round 0's optimizer; later rounds double its population
+  OptimizerSpec optimizer;        ///< round 0's optimizer; later rounds double its iterations
   long long max_evaluations = 0;  ///< cap over every round and run (local phases included); 0 = default_cap
   double max_seconds = 0;         ///< wall-clock cap; 0 = none
-  int max_population = kMaxAutoPopulation;  ///< no round beyond this population
 };
 
 /// What the restarts did, for the output.
 struct AutoBudgetReport {
-  std::vector<int> populations;  ///< of each round run, in order
-  int max_population = 0;        ///< the population limit in force
+  std::vector<int> iterations;   ///< of each round run, in order
   long long evaluations = 0;     ///< spent over every round and run
   long long cap = 0;             ///< the evaluation cap in force
-  /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap";
-  /// "population limit" (the next round's population would pass AutoBudget::max_population).
+  /// (the last round's best − the chains' best before it) / the chains' best after it: negative when the restart
+  /// improved the best; +inf after round 0 alone or when the best before it was not finite.
+  double last_restart_rel = 0;
+  /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap".
   std::string stop;
-  /// "3 rounds (population 50, 100, 200), 1750000 of 16000000 evaluations: converged".
+  /// "4 rounds (iterations 100, 200, 400, 800), 750000 of 1280000 evaluations: converged, the last restart
+  /// ended 0.0001 % above the best".
   [[nodiscard]] std::string summary() const;
 };
 
-/// 64 × round 0's population budget R·P·I: room for five restarts (1 + 2 + 4 + 8 + 16 + 32 = 63).
+/// 64 × round 0's budget R·P·I: room for five restarts (1 + 2 + 4 + 8 + 16 + 32 = 63).
 long long default_cap(int runs, int population, int iterations);
 
-/// The population of round k: P·2^k. A cmaes population of 0 (Hansen's default λ₀) stays 0 in round 0, so that
-/// round 0 is the fixed budget bit for bit, and is λ₀(free parameters)·2^k after.
-int round_population(const OptimizerSpec& optimizer, int free_parameters, int round);
+/// The iterations of round k: I·2^k.
+int round_iterations(const OptimizerSpec& optimizer, int round);
 
 /// Appends one round's runs to the chains (run r to chain r): bests compared, histories and evaluations offset
 /// by what the chain had spent. An empty `chains` becomes `round`.

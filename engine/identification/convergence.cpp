@@ -26,6 +26,7 @@ std::string Convergence::verdict() const {
   if (single_run) return stalled ? "one run" : (no_history ? "one run, no history" : "one run, still improving");
   if (no_history) return runs_agree ? "no history" : "runs disagree, no history";
   if (!runs_agree && !stalled) return "runs disagree, still improving";
+  if (runs_agree && stalled) return "not confirmed by a restart";
   return runs_agree ? "still improving" : "runs disagree";
 }
 

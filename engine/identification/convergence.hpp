@@ -11,7 +11,8 @@
 //                  (hybrids: LM or SLSQP at a local optimum, or LM at its iteration cap gaining ≤ 0.01 % over
 //                  its last fifth; RunHistory::at_local_optimum), whose late gain
 //                  is by design
-//   converged   ⇔  runs agree and stalled
+//   converged   ⇔  runs agree and stalled (and, under the automatic budget, a restart confirmed the best:
+//                  engine/fit/auto_budget.hpp; Convergence::unconfirmed)
 // abs_tol keeps differences that no metric can show (noise-free synthetic fits reaching 1e-9 and 1e-8)
 // from counting as disagreement. A single run cannot show agreement (a run stuck in a local minimum
 // stalls too): it is never called converged, and its verdict says "one run".
@@ -49,7 +50,11 @@ struct Convergence {
   bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
   bool single_run = false;   ///< one run: agreement cannot be shown
   bool best_at_local_optimum = false;  ///< the best run's local stage ended at its optimum (its late gain is by design)
+  /// Set by the automatic budget when it stopped before a restart confirmed the best (no restart ran, or the last
+  /// one still improved it): then not converged, whatever the runs' agreement.
+  bool unconfirmed = false;
   /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
+  /// "not confirmed by a restart" (runs agree and stalled, but `unconfirmed`),
   /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed", and for a
   /// single run "one run" or "one run, still improving".
   [[nodiscard]] std::string verdict() const;

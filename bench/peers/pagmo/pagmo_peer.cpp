@@ -230,6 +230,7 @@ void run_algorithm(const std::string& name, const Options& o, const std::shared_
   const unsigned dim = static_cast<unsigned>(o.lower.size());
   const bool bfe_mode = o.parallel.empty() ? name == "pso_gen" : o.parallel == "bfe";
   std::vector<double> values(o.runs);
+  std::vector<std::vector<double>> champions(o.runs);  // so that dampbench can re-evaluate them on its own function
   record->evaluations = 0;
   const auto t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_s();
@@ -240,10 +241,14 @@ void run_algorithm(const std::string& name, const Options& o, const std::shared_
     if (use_bfe) {
       pagmo::population pop{prob, pagmo::bfe{pagmo::thread_bfe{}}, o.pop, seed};
       if (name == "pso_gen") algo.extract<pagmo::pso_gen>()->set_bfe(pagmo::bfe{pagmo::thread_bfe{}});
-      values[run] = algo.evolve(pop).champion_f()[0];
+      pop = algo.evolve(pop);
+      values[run] = pop.champion_f()[0];
+      champions[run] = pop.champion_x();
     } else {
       pagmo::population pop{prob, o.pop, seed};
-      values[run] = algo.evolve(pop).champion_f()[0];
+      pop = algo.evolve(pop);
+      values[run] = pop.champion_f()[0];
+      champions[run] = pop.champion_x();
     }
   };
   if (bfe_mode) {
@@ -269,6 +274,12 @@ void run_algorithm(const std::string& name, const Options& o, const std::shared_
               o.problem.c_str(), name.c_str(), bfe_mode ? "thread_bfe" : "runs", o.threads, o.runs, record->size(),
               evals, wall, rate, cpu, static_cast<double>(evals) * static_cast<double>(record->size()) / cpu, sorted.front(), median(values), sorted.back());
   for (unsigned i = 0; i < o.runs; ++i) std::printf("%s%.17g", i ? ", " : "", values[i]);
+  std::printf("], \"champions\": [");
+  for (unsigned i = 0; i < o.runs; ++i) {
+    std::printf("%s[", i ? ", " : "");
+    for (std::size_t j = 0; j < champions[i].size(); ++j) std::printf("%s%.17g", j ? ", " : "", champions[i][j]);
+    std::printf("]");
+  }
   std::printf("]}\n");
   std::fflush(stdout);
   std::fprintf(stderr, "pagmo2 %s %s: %lld evaluations in %.2f s, %.3g candidate-samples/s, median %.6g\n",
