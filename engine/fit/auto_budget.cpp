@@ -34,6 +34,12 @@ long long default_cap(int runs, int population, int iterations) {
   return 64LL * runs * population * iterations;
 }
 
+bool restart_confirms(double before, double restart) {
+  if (!std::isfinite(before) || !std::isfinite(restart)) return false;
+  return std::abs(restart - before) <= kRestartRel * std::min(std::abs(before), std::abs(restart)) +
+                                           ConvergenceRule{}.abs_tol;
+}
+
 int round_iterations(const OptimizerSpec& optimizer, int round) { return optimizer.iterations << round; }
 
 namespace {
@@ -148,10 +154,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     const double before = best_of(chains), restart = best_of(round);
     append_round(chains, round);
     const double after = best_of(chains);
-    // Confirmed: the restart ends within kRestartRel of the best before it, neither above (it did not find the
-    // best again) nor below (it found a better one, which no restart has confirmed yet).
-    const bool confirmed = k > 0 && std::isfinite(before) &&
-                           std::abs(restart - before) <= kRestartRel * std::abs(after) + ConvergenceRule{}.abs_tol;
+    const bool confirmed = k > 0 && restart_confirms(before, restart);
     if (k > 0 && std::isfinite(before))
       report.last_restart_rel = (restart - before) / std::max(std::abs(after), std::numeric_limits<double>::min());
     if (confirmed && assess_convergence(chains).converged) report.stop = "converged";

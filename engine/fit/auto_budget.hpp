@@ -57,6 +57,10 @@ struct AutoBudgetReport {
 /// 64 × round 0's budget R·P·I: room for five restarts (1 + 2 + 4 + 8 + 16 + 32 = 63).
 long long default_cap(int runs, int population, int iterations);
 
+/// Whether a restart whose best is `restart` confirms the chains' best `before` it: |restart − before| within
+/// kRestartRel of the better of the two (plus ConvergenceRule::abs_tol); never when either is not finite.
+bool restart_confirms(double before, double restart);
+
 /// The iterations of round k: I·2^k.
 int round_iterations(const OptimizerSpec& optimizer, int round);
 

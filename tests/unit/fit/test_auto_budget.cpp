@@ -63,6 +63,19 @@ TEST(AutoBudget, AppendRoundChainsEachRunsHistory) {
   EXPECT_DOUBLE_EQ(chains.wall_time_s, 4.0);
 }
 
+// A restart confirms the best only by landing on it again: not above it (not found again), not below it (a new
+// best, found once).
+TEST(AutoBudget, ARestartConfirmsByFindingTheBestAgain) {
+  EXPECT_TRUE(restart_confirms(2.0, 2.0));
+  EXPECT_TRUE(restart_confirms(2.0, 2.0 * (1 + 0.9e-3)));
+  EXPECT_TRUE(restart_confirms(2.0, 2.0 * (1 - 0.9e-3)));
+  EXPECT_FALSE(restart_confirms(2.0, 2.0 * (1 + 1.1e-3)));  // ended above: the best was not found again
+  EXPECT_FALSE(restart_confirms(2.0, 2.0 * (1 - 1.1e-3)));  // ended below: a better best, found once
+  EXPECT_FALSE(restart_confirms(std::numeric_limits<double>::infinity(), 2.0));  // nothing to confirm before
+  EXPECT_FALSE(restart_confirms(2.0, std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_TRUE(restart_confirms(0.0, 1e-10));  // values no metric can tell apart (ConvergenceRule::abs_tol)
+}
+
 TEST(AutoBudget, RoundIterationsDouble) {
   EXPECT_EQ(round_iterations({"ga", 50, 100}, 0), 100);
   EXPECT_EQ(round_iterations({"ga", 50, 100}, 3), 800);
