@@ -301,7 +301,8 @@ FitRun run_fit_options(const FitOptions& o) {
     const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
     FitReport report{prepared.model.model, prepared.plan.optimizer,
                      std::string(DAMPBENCH_VERSION) + " (" + DAMPBENCH_BUILD_FLAGS + ")", prepared.metric,
-                     request.records, &fit.identification, {tables.params, tables.metrics, tables.runs},
+                     request.records, &fit.identification, fit.convergence.unconfirmed,
+                     {tables.params, tables.metrics, tables.runs},
                      run.held_out ? &*run.held_out : nullptr, o.held_out.folds};
     write_fit_report(o.report, report);
   }

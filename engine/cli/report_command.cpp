@@ -86,6 +86,7 @@ void write_fit_report(const std::string& path, const FitReport& fit) {
   f.optimizer = fit.optimizer;
   f.model = fit.model;
   f.metric = fit.metric;
+  f.unconfirmed = fit.unconfirmed;
   for (std::size_t r = 0; r < fit.identification->runs.size(); ++r)
     f.runs.push_back(sweep::run_record(static_cast<int>(r), fit.identification->runs[r]));
   in.fits.push_back(std::move(f));

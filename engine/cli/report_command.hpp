@@ -35,6 +35,7 @@ struct FitReport {
   Metric metric = Metric::of_abs;
   std::vector<const Signals*> records;
   const Identification* identification = nullptr;
+  bool unconfirmed = false;  ///< the automatic budget stopped before a restart confirmed the best
   std::vector<Table> tables;
   const HeldOut* held_out = nullptr;  ///< null without --predict, --folds or --reference
   std::string fold_rule;              ///< --folds (names the folds in the held-out tables)

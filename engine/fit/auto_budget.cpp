@@ -30,6 +30,10 @@ std::string AutoBudgetReport::summary() const {
                      iterations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
 }
 
+bool stopped_before_converging(std::string_view summary) {
+  return summary.find(" evaluations: stopped ") != std::string_view::npos;
+}
+
 long long default_cap(int runs, int population, int iterations) {
   return 64LL * runs * population * iterations;
 }

@@ -23,6 +23,7 @@
 // estimated as twice the last round's; else stop at the cap. The schedule depends only on results, so the same
 // inputs give the same bits, unless the optional wall-clock cap fires (and then the outcome says so).
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/identification/identification.hpp"
@@ -53,6 +54,9 @@ struct AutoBudgetReport {
   /// ended 0.0001 % above the best".
   [[nodiscard]] std::string summary() const;
 };
+
+/// Whether a summary() (a sweep group's stored message) says the budget stopped before converging.
+bool stopped_before_converging(std::string_view summary);
 
 /// 64 × round 0's budget R·P·I: room for five restarts (1 + 2 + 4 + 8 + 16 + 32 = 63).
 long long default_cap(int runs, int population, int iterations);

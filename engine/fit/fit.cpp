@@ -38,11 +38,7 @@ FitOutcome run_fit(const FitRequest& request) {
   } else {
     out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
   }
-  out.convergence = assess_convergence(out.identification);
-  if (out.auto_budget && out.auto_budget->stop != "converged") {
-    out.convergence.unconfirmed = true;
-    out.convergence.converged = false;
-  }
+  out.convergence = assess_convergence(out.identification, {}, out.auto_budget && out.auto_budget->stop != "converged");
   const RunResult& best = out.best();
   if (request.assess_failed_fit || std::isfinite(best.best_value))
     out.identifiability = assess_identifiability(model, request.records, out.bounds, best.best_params);

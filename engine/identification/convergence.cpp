@@ -44,7 +44,7 @@ double value_at(const std::vector<TracePoint>& trace, double evaluations) {
 
 }  // namespace
 
-Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule) {
+Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule, bool unconfirmed) {
   Convergence c;
   std::vector<double> values;
   const RunHistory* best = nullptr;
@@ -74,14 +74,15 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   c.no_history = best->trace.empty();
   c.best_at_local_optimum = best->at_local_optimum;
   c.stalled = !c.no_history && (best->at_local_optimum || gain <= rule.late_gain_rel * scale + rule.abs_tol);
-  c.converged = c.runs_agree && c.stalled;
+  c.unconfirmed = unconfirmed;
+  c.converged = c.runs_agree && c.stalled && !unconfirmed;
   return c;
 }
 
-Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule) {
+Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule, bool unconfirmed) {
   std::vector<RunHistory> runs;
   for (const RunResult& r : id.runs) runs.push_back({r.best_value, improvement_points(r), r.at_local_optimum});
-  return assess_convergence(runs, rule);
+  return assess_convergence(runs, rule, unconfirmed);
 }
 
 }  // namespace dampbench

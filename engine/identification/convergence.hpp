@@ -50,8 +50,8 @@ struct Convergence {
   bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
   bool single_run = false;   ///< one run: agreement cannot be shown
   bool best_at_local_optimum = false;  ///< the best run's local stage ended at its optimum (its late gain is by design)
-  /// Set by the automatic budget when it stopped before a restart confirmed the best (no restart ran, or the last
-  /// one still improved it): then not converged, whatever the runs' agreement.
+  /// The automatic budget stopped before a restart confirmed the best (no restart ran, or the last one did not
+  /// land on the best): then not converged, whatever the runs' agreement.
   bool unconfirmed = false;
   /// "converged", or what failed: "runs disagree", "still improving", "runs disagree, still improving",
   /// "not confirmed by a restart" (runs agree and stalled, but `unconfirmed`),
@@ -67,7 +67,9 @@ struct RunHistory {
   bool at_local_optimum = false;  ///< ended by a local refinement's own convergence test
 };
 
-Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule = {});
-Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule = {});
+/// `unconfirmed`: the automatic budget stopped before a restart confirmed the best (Convergence::unconfirmed).
+Convergence assess_convergence(std::span<const RunHistory> runs, const ConvergenceRule& rule = {},
+                               bool unconfirmed = false);
+Convergence assess_convergence(const Identification& id, const ConvergenceRule& rule = {}, bool unconfirmed = false);
 
 }  // namespace dampbench

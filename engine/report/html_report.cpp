@@ -192,7 +192,7 @@ json convergence_figures(const Condition& c) {
         runs.push_back(std::move(points));
       }
       const sweep::ConvergenceBand band = sweep::convergence_band(traces);
-      const Convergence verdict = assess_convergence(histories);
+      const Convergence verdict = assess_convergence(histories, {}, f->unconfirmed);
       series.push_back({{"optimizer", f->optimizer},
                         {"metric", metric_name(f->metric)},
                         {"converged", verdict.converged},

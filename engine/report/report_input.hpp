@@ -31,6 +31,7 @@ struct FitInput {
   Metric metric = Metric::of_abs;
   std::vector<int> fit, predict;  ///< indices into ReportInput::records
   std::vector<sweep::RunRecord> runs;  ///< with their best-so-far traces
+  bool unconfirmed = false;  ///< the automatic budget stopped before a restart confirmed the best (not converged)
 };
 
 /// One law of a regression, drawn over the identified points.

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "engine/common/error.hpp"
+#include "engine/fit/auto_budget.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/tables.hpp"
 
@@ -58,6 +59,7 @@ class StoreSources {
       for (int d : fs.fit) f.fit.push_back(h.dataset(g.part, d));
       for (int d : fs.predict) f.predict.push_back(h.dataset(g.part, d));
       f.runs = g.run_results;
+      f.unconfirmed = stopped_before_converging(g.message);
       input_.fits.push_back(std::move(f));
     }
     for (int p = 0; p < results_.part_count(); ++p) {

@@ -110,6 +110,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     const Identification& id = fit.identification;
     rec.wall_time_s = id.wall_time_s;
     rec.candidate_samples = id.candidate_samples;
+    if (fit.auto_budget) rec.message = fit.auto_budget->summary();
     for (int r = 0; r < g.runs; ++r) {
       rec.evaluations += id.runs[r].evaluations;
       rec.run_results.push_back(run_record(r, id.runs[r]));

@@ -15,6 +15,7 @@
 
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/table_command.hpp"
+#include "engine/fit/auto_budget.hpp"
 #include "engine/identification/convergence.hpp"
 #include "engine/model/metrics.hpp"
 #include "engine/sweep/store.hpp"
@@ -182,7 +183,8 @@ class StoreReader {
       c["best_value"].append(best < 0 ? std::nan("") : g.run_results[static_cast<std::size_t>(best)].best_value);
       std::vector<RunHistory> runs;
       for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
-      const Convergence conv = runs.empty() ? Convergence{} : assess_convergence(runs);
+      const Convergence conv =
+          runs.empty() ? Convergence{} : assess_convergence(runs, {}, !g.failed && stopped_before_converging(g.message));
       c["converged"].append(runs.empty() ? py::none() : py::cast(conv.converged));
       c["verdict"].append(runs.empty() ? py::none() : py::cast(conv.verdict()));
       const auto& id = g.identifiability;

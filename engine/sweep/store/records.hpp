@@ -103,6 +103,7 @@ struct GroupRef {
 /// One finished task group, as written and as read back.
 struct GroupRecord : GroupRef {
   bool failed = false;
+  /// A failed group's error; a done group's automatic budget summary (AutoBudgetReport::summary), else empty.
   std::string message;
   double wall_time_s = 0, candidate_samples = 0;
   long long evaluations = 0;

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/fit/auto_budget.hpp"
+
 namespace dampbench::sweep::tables {
 
 std::string file_stem(std::string s) {
@@ -123,7 +125,7 @@ std::vector<double> best_values(const GroupRecord& g) {
 Convergence group_convergence(const GroupRecord& g) {
   std::vector<RunHistory> runs;
   for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
-  return assess_convergence(runs);
+  return assess_convergence(runs, {}, !g.failed && stopped_before_converging(g.message));
 }
 
 std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all) {

@@ -294,6 +294,38 @@ TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
   EXPECT_EQ(generous.output.find("†"), std::string::npos) << generous.output;
 }
 
+// A group under the automatic budget that a cap stops before a restart confirms its best is not converged in the
+// tables, although its runs agree (the store keeps the budget's summary as the group's message); with room for the
+// confirming restart the same group is.
+TEST(SweepConvergence, AnAutomaticBudgetStoppedBeforeItsConfirmingRestartIsMarked) {
+  const fs::path dir = temp_dir();
+  write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
+  const auto table = [&](const std::string& cap) {
+    write(dir / "s.toml", fmt::format(R"toml(name = "auto_budget"
+runs = 4
+metric = "nrmse"
+models = ["fvd.generalized_viscous"]
+[optimizer]
+name = "de"
+{}
+[[datasets]]
+name = "d"
+glob = "{}/data/*.csv"
+)toml",
+                                      cap, dir.string()));
+    const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(),
+                                               (dir / "out").string()));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    return run_dampbench(fmt::format("table {} --kind runs --format csv", (dir / "out" / "store.sqlite").string()));
+  };
+  // Round 0 is 4 runs × 50 × 100 = 20 000 evaluations; a round 1 of 40 000 more does not fit in 40 000.
+  const auto capped = table("max_total_evaluations = 40000");
+  EXPECT_NE(capped.output.find("† not confirmed by a restart"), std::string::npos) << capped.output;
+  const auto confirmed = table("");
+  EXPECT_NE(confirmed.output.find(",4,yes"), std::string::npos) << confirmed.output;
+  EXPECT_EQ(confirmed.output.find("†"), std::string::npos) << confirmed.output;
+}
+
 // Identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
 // the stiffness (m·a = −mω²x: only K1 − mω² is determined), so both are marked ‡ in the params table and the
 // relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
