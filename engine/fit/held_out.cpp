@@ -150,7 +150,8 @@ FitOutcome per_file_fit(const Model& model, const Signals& record, Metric metric
   resolved.bounds = default_bounds(model);
   resolved.bounds_option = "--bounds";
   const FitPlan plan = fit_plan(model, std::nullopt, std::nullopt, std::nullopt, std::nullopt);
-  const OptimizerFactory factory = make_optimizer_factory({plan.optimizer, plan.population, plan.iterations});
+  const OptimizerSpec optimizer{plan.optimizer, plan.population, plan.iterations};
+  const OptimizerFactory factory = make_optimizer_factory(optimizer);
   FitRequest r;
   r.model = &resolved;
   r.records = {&record};
@@ -160,6 +161,7 @@ FitOutcome per_file_fit(const Model& model, const Signals& record, Metric metric
   r.settings.metric = metric;
   r.settings.task_key = task_key(model.id(), record.name, plan.optimizer);  // as PreparedFit::request names it
   r.assess_failed_fit = true;
+  r.auto_budget = AutoBudget{optimizer, 0, 0};  // `fit`'s default budget, so the reference is what fit prints
   return run_fit(r);
 }
 
