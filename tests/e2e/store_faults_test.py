@@ -71,10 +71,16 @@ def lock():
     out = os.path.join(WORK, "lock")
     first = start(out)
     check(wait_for_groups(os.path.join(out, "store.sqlite"), 1), "lock: the first run stored nothing")
-    second = run(out)
-    expect_error(second, 4, "is in use by another dampbench run", "a second run on the same store")
-    fresh = run(out, "--fresh")
-    expect_error(fresh, 4, "is in use by another dampbench run", "a second run with --fresh on the same store")
+    # Stopped, the first run keeps its lock and cannot finish before the others try: a sweep of about a second
+    # would otherwise race them on a loaded machine.
+    first.send_signal(signal.SIGSTOP)
+    try:
+        second = run(out)
+        expect_error(second, 4, "is in use by another dampbench run", "a second run on the same store")
+        fresh = run(out, "--fresh")
+        expect_error(fresh, 4, "is in use by another dampbench run", "a second run with --fresh on the same store")
+    finally:
+        first.send_signal(signal.SIGCONT)
     first.communicate()
     check(first.returncode == 0, f"lock: the first run ended with {first.returncode}")
     same_as_reference(out, "lock")
