@@ -18,7 +18,8 @@ std::string AutoBudgetReport::summary() const {
   std::string sizes;
   for (int i : iterations) sizes += fmt::format("{}{}", sizes.empty() ? "" : ", ", i);
   const std::string gain =
-      !std::isfinite(last_restart_rel) ? "no restart yet"
+      std::isnan(last_restart_rel)       ? "every run of the last restart failed"
+      : !std::isfinite(last_restart_rel) ? "no restart yet"
       : last_restart_rel <= 0
           ? fmt::format("the last restart improved the best by {:.2g} %", -100 * last_restart_rel)
           : fmt::format("the last restart ended {:.2g} % above the best", 100 * last_restart_rel);
@@ -160,7 +161,9 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     const double after = best_of(chains);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
     if (k > 0 && std::isfinite(before))
-      report.last_restart_rel = (restart - before) / std::max(std::abs(after), std::numeric_limits<double>::min());
+      report.last_restart_rel = std::isfinite(restart) ? (restart - before) / std::max(std::abs(after),
+                                                                                       std::numeric_limits<double>::min())
+                                                       : std::numeric_limits<double>::quiet_NaN();
     if (confirmed && assess_convergence(chains).converged) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
     else if (spent == 0 || report.evaluations + 2 * spent > report.cap ||

@@ -46,7 +46,8 @@ struct AutoBudgetReport {
   long long evaluations = 0;     ///< spent over every round and run
   long long cap = 0;             ///< the evaluation cap in force
   /// (the last round's best − the chains' best before it) / the chains' best after it: negative when the restart
-  /// improved the best; +inf after round 0 alone or when the best before it was not finite.
+  /// improved the best; +inf after round 0 alone or when the best before it was not finite; NaN when every run
+  /// of the last restart failed.
   double last_restart_rel = 0;
   /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap".
   std::string stop;
