@@ -158,12 +158,12 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     report.iterations.push_back(spec.iterations);
     const double before = best_of(chains), restart = best_of(round);
     append_round(chains, round);
-    const double after = best_of(chains);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
-    if (k > 0 && std::isfinite(before))
-      report.last_restart_rel = std::isfinite(restart) ? (restart - before) / std::max(std::abs(after),
-                                                                                       std::numeric_limits<double>::min())
-                                                       : std::numeric_limits<double>::quiet_NaN();
+    if (k > 0 && std::isfinite(before))  // relative to the chains' best after the round, min(before, restart)
+      report.last_restart_rel =
+          std::isfinite(restart)
+              ? (restart - before) / std::max(std::abs(std::min(before, restart)), std::numeric_limits<double>::min())
+              : std::numeric_limits<double>::quiet_NaN();
     if (confirmed && assess_convergence(chains).converged) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
     else if (spent == 0 || report.evaluations + 2 * spent > report.cap ||

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "engine/common/table.hpp"
+#include "engine/identification/convergence.hpp"
 #include "engine/model/model.hpp"
 #include "engine/model/parameter_law.hpp"
 #include "engine/sweep/analysis.hpp"
@@ -40,6 +41,10 @@
 #include "engine/sweep/store.hpp"
 
 namespace dampbench::sweep {
+
+/// Whether a group's runs converged (engine/identification/convergence.hpp), from its stored runs and traces and,
+/// under the automatic budget, whether it stopped before a confirming restart (its stored budget summary).
+Convergence group_convergence(const GroupRecord& g);
 
 /// The table kinds a sweep file may ask for (`sweep` is only for the command line).
 std::vector<std::string> table_kinds();

@@ -15,7 +15,6 @@
 
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/table_command.hpp"
-#include "engine/fit/auto_budget.hpp"
 #include "engine/identification/convergence.hpp"
 #include "engine/model/metrics.hpp"
 #include "engine/sweep/store.hpp"
@@ -181,12 +180,10 @@ class StoreReader {
       const int best = g.best_run();
       c["best_run"].append(best < 0 ? py::none() : py::cast(g.run_results[static_cast<std::size_t>(best)].run));
       c["best_value"].append(best < 0 ? std::nan("") : g.run_results[static_cast<std::size_t>(best)].best_value);
-      std::vector<RunHistory> runs;
-      for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
-      const Convergence conv =
-          runs.empty() ? Convergence{} : assess_convergence(runs, {}, !g.failed && stopped_before_converging(g.message));
-      c["converged"].append(runs.empty() ? py::none() : py::cast(conv.converged));
-      c["verdict"].append(runs.empty() ? py::none() : py::cast(conv.verdict()));
+      const bool ran = !g.run_results.empty();
+      const Convergence conv = ran ? sweep::group_convergence(g) : Convergence{};
+      c["converged"].append(ran ? py::cast(conv.converged) : py::none());
+      c["verdict"].append(ran ? py::cast(conv.verdict()) : py::none());
       const auto& id = g.identifiability;
       c["identifiable"].append(id ? py::cast(id->all_identifiable()) : py::none());
       c["identifiability"].append(id ? py::cast(id->summary(R.model(g.part, g.model))) : py::none());

@@ -122,11 +122,6 @@ std::vector<double> best_values(const GroupRecord& g) {
   return v;
 }
 
-Convergence group_convergence(const GroupRecord& g) {
-  std::vector<RunHistory> runs;
-  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
-  return assess_convergence(runs, {}, !g.failed && stopped_before_converging(g.message));
-}
 
 std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all) {
   std::map<std::pair<int, int>, std::vector<Series>> out;
@@ -154,3 +149,13 @@ std::string series_column(const Context& c, const Series& s) {
 }
 
 }  // namespace dampbench::sweep::tables
+
+namespace dampbench::sweep {
+
+Convergence group_convergence(const GroupRecord& g) {
+  std::vector<RunHistory> runs;
+  for (const auto& r : g.run_results) runs.push_back({r.best_value, r.trace, r.at_local_optimum});
+  return assess_convergence(runs, {}, !g.failed && stopped_before_converging(g.message));
+}
+
+}  // namespace dampbench::sweep

@@ -71,9 +71,6 @@ struct Context {
 
 std::vector<double> best_values(const GroupRecord& g);
 
-/// Whether a group's runs converged (engine/identification/convergence.hpp), from its stored runs and traces.
-Convergence group_convergence(const GroupRecord& g);
-
 inline constexpr const char* kUnconvergedMark = "†";
 inline constexpr const char* kUnconvergedNote =
     "† not converged: the runs disagree (median run > 2 % above the best), a single run cannot show agreement, or "
