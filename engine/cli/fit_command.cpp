@@ -37,8 +37,8 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("--iters", fit.iterations, "iterations (default 30 for ga-lm on internal states, else 100)");
   c->add_option("--runs", fit.runs, "independent runs (default 4 for internal states, else 50)");
   c->add_option("--budget", fit.budget,
-                "auto (default unless --pop, --iters or --runs is given: restart the runs with a doubled population "
-                "until they converge) or fixed");
+                "auto (default unless --pop, --iters or --runs is given: restart the runs with twice the iterations "
+                "until they converge and a second opinion finds nothing lower) or fixed");
   c->add_option("--max-evals", fit.max_evaluations,
                 "cap of the automatic budget, in evaluations over every run and restart (default 64 x the first "
                 "round's runs x pop x iters)");
@@ -178,6 +178,14 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
 std::string not_converged_advice(const FitOutcome& fit) {
   if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
   if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
+  const AutoBudgetReport& b = *fit.auto_budget;
+  if (b.second_opinion_rel < -kRestartRel)
+    return fmt::format(": do not trust this fit; {} found a lower value (fit with --optimizer {}{}, or raise "
+                       "--max-evals)",
+                       b.second_opinion, b.second_opinion.substr(0, b.second_opinion.find('+')),
+                       b.second_opinion.find('+') == std::string::npos
+                           ? ""
+                           : " --optimizer-settings global=" + b.second_opinion.substr(b.second_opinion.find('+') + 1));
   return ": do not trust this fit; raise --max-evals";
 }
 
@@ -186,7 +194,11 @@ nlohmann::ordered_json budget_json(const FitOutcome& fit) {
   const AutoBudgetReport& b = *fit.auto_budget;
   return {{"kind", "auto"}, {"rounds", b.iterations.size()}, {"iterations", b.iterations},
           {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop},
-          {"last_restart_rel", json_number(b.last_restart_rel)}};
+          {"last_restart_rel", json_number(b.last_restart_rel)},
+          {"second_opinion", b.second_opinion.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(b.second_opinion)},
+          {"second_opinion_best", json_number(b.second_opinion_best)},
+          {"second_opinion_rel", json_number(b.second_opinion_rel)},
+          {"second_opinion_evaluations", b.second_opinion_evaluations}};
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
+#include "engine/fit/fit_defaults.hpp"
 #include "engine/identification/convergence.hpp"
 #include "optimizers/cmaes/cmaes.hpp"
 
@@ -23,12 +25,21 @@ std::string AutoBudgetReport::summary() const {
       : last_restart_rel <= 0
           ? fmt::format("the last restart improved the best by {:.2g} %", -100 * last_restart_rel)
           : fmt::format("the last restart ended {:.2g} % above the best", 100 * last_restart_rel);
+  const std::string second =
+      second_opinion.empty() ? ""
+      : std::isnan(second_opinion_rel)
+          ? fmt::format("; every run of a second opinion ({}) failed", second_opinion)
+      : second_opinion_rel < -kRestartRel
+          ? fmt::format("; a second opinion ({}) found {:.2g} % lower: the runs share a basin that is not the lowest",
+                        second_opinion, -100 * second_opinion_rel)
+          : fmt::format("; a second opinion ({}) ended {:.2g} % {} the best", second_opinion,
+                        100 * std::abs(second_opinion_rel), second_opinion_rel < 0 ? "below" : "above");
   const std::string why = stop == "converged" ? "converged, " + gain
                           : stop == "time cap"
                               ? "stopped by the time cap (not reproducible bit for bit); " + gain
                               : "stopped at the cap before converging; " + gain;
-  return fmt::format("{} round{} (iterations {}), {} of {} evaluations: {}", iterations.size(),
-                     iterations.size() == 1 ? "" : "s", sizes, evaluations, cap, why);
+  return fmt::format("{} round{} (iterations {}), {} of {} evaluations: {}{}", iterations.size(),
+                     iterations.size() == 1 ? "" : "s", sizes, evaluations, cap, why, second);
 }
 
 bool stopped_before_converging(std::string_view summary) {
@@ -43,6 +54,17 @@ bool restart_confirms(double before, double restart) {
   if (!std::isfinite(before) || !std::isfinite(restart)) return false;
   return std::abs(restart - before) <= kRestartRel * std::min(std::abs(before), std::abs(restart)) +
                                            ConvergenceRule{}.abs_tol;
+}
+
+OptimizerSpec second_opinion(const Model& model, const OptimizerSpec& optimizer) {
+  const auto global = optimizer.settings.find("global");
+  const bool ga_lm_with_ga = optimizer.name == "ga-lm" && (global == optimizer.settings.end() || global->second == "ga");
+  const bool states = model.has_internal_states();
+  const std::string name = !states && optimizer.name != "de" ? "de" : "ga-lm";
+  const FitPlan plan = fit_plan(model, name, std::nullopt, std::nullopt, std::nullopt);
+  OptimizerSpec s{name, plan.population, plan.iterations};
+  if (name == "ga-lm" && ga_lm_with_ga) s.settings["global"] = "cmaes";
+  return s;
 }
 
 int round_iterations(const OptimizerSpec& optimizer, int round) { return optimizer.iterations << round; }
@@ -96,6 +118,14 @@ double best_of(const Identification& chains) {
   double best = std::numeric_limits<double>::infinity();
   for (const RunResult& r : chains.runs) best = std::min(best, chain_best(r));
   return best;
+}
+
+/// The second opinion's streams: keyed apart from every round's (hash_key({task, k}) for small k).
+constexpr std::uint64_t kSecondOpinionKey = hash_name("auto-budget second opinion");
+
+/// `difference` relative to `best` (guarded against a best of 0).
+double relative_to(double difference, double best) {
+  return difference / std::max(std::abs(best), std::numeric_limits<double>::min());
 }
 
 /// The smaller of a rule's limit and `limit`, where 0 switches the rule off.
@@ -159,12 +189,31 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     const double before = best_of(chains), restart = best_of(round);
     append_round(chains, round);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
+    const double best = best_of(chains);
     if (k > 0 && std::isfinite(before))  // relative to the chains' best after the round, min(before, restart)
-      report.last_restart_rel =
-          std::isfinite(restart)
-              ? (restart - before) / std::max(std::abs(std::min(before, restart)), std::numeric_limits<double>::min())
-              : std::numeric_limits<double>::quiet_NaN();
-    if (confirmed && assess_convergence(chains).converged) report.stop = "converged";
+      report.last_restart_rel = std::isfinite(restart) ? relative_to(restart - before, best)
+                                                       : std::numeric_limits<double>::quiet_NaN();
+    const bool agreed = confirmed && assess_convergence(chains).converged;
+    if (agreed && report.second_opinion.empty()) {
+      const OptimizerSpec other = second_opinion(model, budget.optimizer);
+      IdentificationSettings o = settings;
+      o.task_key = hash_key({settings.task_key, kSecondOpinionKey});
+      if (budget.max_seconds > 0) o.budget.max_wall_time_s = tighter(o.budget.max_wall_time_s, budget.max_seconds - elapsed());
+      const Identification opinion = identify(model, data, bounds, make_optimizer_factory(other), o);
+      for (const RunResult& r : opinion.runs) {
+        report.second_opinion_evaluations += r.evaluations;
+        timed_out = timed_out || r.stop_reason == "wall_time";
+      }
+      report.evaluations += report.second_opinion_evaluations;
+      report.second_opinion = other.name + (other.settings.count("global") ? "+" + other.settings.at("global") : "");
+      report.second_opinion_best = best_of(opinion);
+    }
+    if (!report.second_opinion.empty())
+      report.second_opinion_rel = std::isfinite(report.second_opinion_best)
+                                      ? relative_to(report.second_opinion_best - best, best)
+                                      : std::numeric_limits<double>::quiet_NaN();
+    const bool lower_elsewhere = report.second_opinion_best < best && !restart_confirms(best, report.second_opinion_best);
+    if (agreed && !lower_elsewhere) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
     else if (spent == 0 || report.evaluations + 2 * spent > report.cap ||
              budget.optimizer.iterations > (std::numeric_limits<int>::max() >> (k + 1)))

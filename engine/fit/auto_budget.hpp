@@ -9,7 +9,14 @@
 //               over the evaluations of every round, restarts counted
 //   converged   the verdict (convergence.hpp) holds on the chains, and the last round, a restart with twice the
 //               iterations of the round before, found the chains' best again: its best within kRestartRel of
-//               it, neither above (not found again) nor below (a better one, not yet found twice)
+//               it, neither above (not found again) nor below (a better one, not yet found twice); and a second
+//               opinion found nothing lower
+//   second      run once, the first time the rest holds: another optimizer (second_opinion()) at its own
+//   opinion     default budget for the model, with the fit's run count and its own streams. When its best lies
+//               more than kRestartRel below the chains' best, the chains share a basin that is not the lowest:
+//               the rounds go on until the chains reach the second opinion's best and a restart confirms it, or
+//               the cap stops them and the summary says what the second opinion found. Its runs count in the
+//               evaluations and the cap, never in the result: the fit stays the chosen optimizer's.
 //
 // Restarts, not longer runs: each round is a new run with its own schedule over its iterations (PSO's inertia,
 // AGA's rates, a hybrid's hand-over to its local stage), so the schedules keep their meaning. Longer, not wider
@@ -18,10 +25,13 @@
 // what their 100 generations lack (docs/performance.md, "The automatic budget"); cmaes's own ipop restarts
 // widen its population inside every run. The confirming restart is what tells a basin every run agrees on from
 // the best one: runs that agree can all sit in the same wider, higher basin (the Kwok record's μ–ξ plateau), and
-// a restart that merely fails to beat the best has not shown that it is the best.
+// a restart that merely fails to beat the best has not shown that it is the best. Restarts of one optimizer can
+// share its bias (every CMA-ES run and restart lands on that plateau): the second opinion, another optimizer,
+// searches the box differently.
 // After each round: converged → stop; otherwise the next round starts only if it fits in the cap, its cost
 // estimated as twice the last round's; else stop at the cap. The schedule depends only on results, so the same
 // inputs give the same bits, unless the optional wall-clock cap fires (and then the outcome says so).
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,8 +61,13 @@ struct AutoBudgetReport {
   double last_restart_rel = 0;
   /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap".
   std::string stop;
+  std::string second_opinion;        ///< the second opinion's optimizer ("de", "ga-lm", "ga-lm+cmaes"); "" when it has not run
+  double second_opinion_best = std::numeric_limits<double>::quiet_NaN();  ///< its best value (NaN: not run)
+  /// (its best − the chains' final best) / the chains' final best: negative when it found lower; NaN: not run
+  double second_opinion_rel = std::numeric_limits<double>::quiet_NaN();
+  long long second_opinion_evaluations = 0;  ///< included in `evaluations`
   /// "4 rounds (iterations 100, 200, 400, 800), 750000 of 1280000 evaluations: converged, the last restart
-  /// ended 0.0001 % above the best".
+  /// ended 0.0001 % above the best; a second opinion (ga-lm) ended 0.2 % above it".
   [[nodiscard]] std::string summary() const;
 };
 
@@ -65,6 +80,12 @@ long long default_cap(int runs, int population, int iterations);
 /// Whether a restart whose best is `restart` confirms the chains' best `before` it: |restart − before| within
 /// kRestartRel of the better of the two (plus ConvergenceRule::abs_tol); never when either is not finite.
 bool restart_confirms(double before, double restart);
+
+/// The second opinion on a fit by `optimizer`: on an algebraic model de (for de itself ga-lm), whose runs cover the
+/// box widely and cost one pass over the record each; on a model with internal states ga-lm (a GA global stage,
+/// then Levenberg–Marquardt: the best within the fewest integrations), for ga-lm itself ga-lm with a CMA-ES global
+/// stage. Population and iterations are fit's defaults for `model` and that optimizer (fit_defaults.hpp).
+OptimizerSpec second_opinion(const Model& model, const OptimizerSpec& optimizer);
 
 /// The iterations of round k: I·2^k.
 int round_iterations(const OptimizerSpec& optimizer, int round);

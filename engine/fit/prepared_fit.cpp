@@ -77,7 +77,8 @@ PreparedFit prepare_fit(const FitSpec& spec) {
     p.auto_budget.reset();
   }
   if (p.auto_budget)
-    p.plan.why += fmt::format("{}automatic budget: the runs restart with a doubled population until they converge, "
+    p.plan.why += fmt::format("{}automatic budget: the runs restart with twice the iterations until they converge and a "
+                              "second opinion finds nothing lower, "
                               "within {} evaluations (--max-evals; --budget fixed or --pop, --iters, --runs for a "
                               "fixed budget)",
                               p.plan.why.empty() ? "" : "; ",

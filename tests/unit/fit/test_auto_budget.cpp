@@ -128,7 +128,9 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   EXPECT_LE(generous.evaluations, generous.cap);
   long long spent = 0;
   for (const RunResult& r : chains.runs) spent += r.evaluations;
-  EXPECT_EQ(spent, generous.evaluations);
+  EXPECT_EQ(generous.second_opinion, "de");
+  EXPECT_GT(generous.second_opinion_evaluations, 0);
+  EXPECT_EQ(spent + generous.second_opinion_evaluations, generous.evaluations);
   EXPECT_LE(chains.runs[chains.best_run()].best_value, fixed.runs[fixed.best_run()].best_value);
 
   AutoBudgetReport starved;
@@ -159,6 +161,52 @@ TEST(AutoBudget, AgreeingRunsWaitForARestartToConfirmTheBest) {
   const double best = chains.runs[chains.best_run()].best_value;
   EXPECT_LT(best, fixed_best * (1 - kRestartRel)) << report.summary();
   EXPECT_LE(std::abs(report.last_restart_rel), kRestartRel);
+}
+
+// Every CMA-ES run and restart on this record lands on the μ–ξ plateau, where the runs agree and a restart
+// confirms the best: only another optimizer shows a lower basin. The second opinion (de) finds it, so the fit is
+// not called converged; the rounds go on to the cap, and the result stays cmaes's own.
+TEST(AutoBudget, ASecondOpinionKeepsASharedHigherBasinFromPassingAsConverged) {
+  const KwokProblem p;
+  const OptimizerSpec cmaes{"cmaes", 50, 100};
+  const int runs = 50;  // fit's default for an algebraic model
+  const Identification fixed = p.fixed(cmaes, runs);
+  ASSERT_TRUE(assess_convergence(fixed).converged) << "cmaes's runs disagree: the case tests nothing";
+  AutoBudgetReport report;
+  const long long round0 = 1LL * runs * 50 * 100;
+  const Identification chains = p.run({cmaes, 8 * round0, 0}, runs, report);
+  ASSERT_EQ(report.second_opinion, "de") << report.summary();
+  const double best = chains.runs[chains.best_run()].best_value;
+  EXPECT_LT(report.second_opinion_best, best * (1 - kRestartRel)) << report.summary();
+  EXPECT_LT(report.second_opinion_rel, -kRestartRel);
+  EXPECT_EQ(report.stop, "cap") << report.summary();
+  EXPECT_GE(report.iterations.size(), 3u) << "the rounds stopped at the second opinion: " << report.summary();
+  EXPECT_NE(report.summary().find("a second opinion (de) found"), std::string::npos) << report.summary();
+  EXPECT_FALSE(assess_convergence(chains, {}, report.stop != "converged").converged);
+}
+
+// The second opinion is another optimizer at fit's defaults for the model: de on an algebraic model (ga-lm for de
+// itself), ga-lm on a model with internal states (ga-lm with a CMA-ES global stage for ga-lm itself).
+TEST(AutoBudget, TheSecondOpinionIsAnotherOptimizer) {
+  const Model& kwok = find_model("crfd.kwok");
+  const Model& bouc_wen = find_model("mrd.bouc_wen");
+  const OptimizerSpec of_pso = second_opinion(kwok, {"pso", 20, 30});
+  EXPECT_EQ(of_pso.name, "de");
+  EXPECT_TRUE(of_pso.settings.empty());
+  EXPECT_EQ(of_pso.population, 50);
+  EXPECT_EQ(of_pso.iterations, 100);
+  EXPECT_EQ(second_opinion(kwok, {"de", 50, 100}).name, "ga-lm");
+  EXPECT_EQ(second_opinion(kwok, {"ga-lm", 50, 100}).name, "de");
+  EXPECT_TRUE(second_opinion(kwok, {"ga-lm", 50, 100}).settings.empty());
+  const OptimizerSpec of_pso_ode = second_opinion(bouc_wen, {"pso", 50, 100});
+  EXPECT_EQ(of_pso_ode.name, "ga-lm");
+  EXPECT_TRUE(of_pso_ode.settings.empty());
+  EXPECT_EQ(of_pso_ode.population, 24);
+  EXPECT_EQ(of_pso_ode.iterations, 30);
+  const OptimizerSpec of_ga_lm = second_opinion(bouc_wen, {"ga-lm", 24, 30});
+  EXPECT_EQ(of_ga_lm.name, "ga-lm");
+  EXPECT_EQ(of_ga_lm.settings, (std::map<std::string, std::string>{{"global", "cmaes"}}));
+  EXPECT_TRUE(second_opinion(bouc_wen, {"ga-lm", 24, 30, {{"global", "cmaes"}}}).settings.empty());
 }
 
 // Round 0 is the fixed budget, with the same bits; with no room for a restart the fit stops there at the cap,
@@ -266,6 +314,7 @@ TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
             std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
 
 }  // namespace
 }  // namespace dampbench
