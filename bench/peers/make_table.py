@@ -12,6 +12,7 @@ Writes the Markdown tables to --out and prints them.
 import argparse
 import json
 import math
+import random
 import statistics
 import sys
 
@@ -20,6 +21,34 @@ MATCH = {("scipy", "de"): ("de", 50.0), ("pagmo2", "de"): ("de", 10.0), ("pagmo2
          ("pagmo2", "pso_gen"): ("pso", 10.0), ("pagmo2", "cmaes"): ("cmaes", 10.0)}
 # Metric ties: on fvd every algorithm reaches the same floor (0.0175908...) and differs in the 8th digit.
 REL_TOL = 1e-6
+BOOTSTRAP_RESAMPLES = 4000
+
+
+def median_ratio_interval(ours, peer, resamples=BOOTSTRAP_RESAMPLES, seed=1):
+    """95 % percentile-bootstrap interval of median(ours) / median(peer), each side resampled with replacement
+    (a fixed seed: the same files give the same table). None when either side has fewer than 2 values.
+    A median of some 50 stochastic runs moves by a percent or more from one set of seeds to the next, so a
+    difference whose interval contains 1 is no difference the runs can show."""
+    if len(ours) < 2 or len(peer) < 2 or not all(map(math.isfinite, ours + peer)):
+        return None
+    rng = random.Random(seed)
+    ratios = sorted(statistics.median(rng.choices(ours, k=len(ours))) /
+                    statistics.median(rng.choices(peer, k=len(peer))) for _ in range(resamples))
+    return ratios[int(0.025 * resamples)], ratios[int(0.975 * resamples) - 1]
+
+
+def interval_text(ours_median, peer_median, interval):
+    ratio = ours_median / peer_median if peer_median not in (0, math.inf) else math.nan
+    return f"{ratio:.4f}" + ("" if interval is None else f" [{interval[0]:.4f}, {interval[1]:.4f}]")
+
+
+def median_verdict(ours_median, peer_median, interval):
+    """"better or equal" (ours ≤ peer), "equal within the runs' spread" (the interval contains 1), or "no"."""
+    if peer_median == math.inf or ours_median <= peer_median * (1 + REL_TOL):
+        return "yes", True
+    if interval is not None and interval[0] <= 1 <= interval[1]:
+        return "equal within the runs' spread", True
+    return "no", False
 
 
 def rate(r):
@@ -61,9 +90,10 @@ def main():
              "|---|---|---:|---:|---:|---|---:|---:|---:|---:|---|---|"]
     quality = ["### Final of_abs over the runs (same budget)", "",
                "| problem | peer algorithm / dampbench | peer runs | peer best | peer median | peer worst "
-               "| dampbench runs | dampbench best | dampbench median | dampbench worst | dampbench median ≤ peer median "
+               "| dampbench runs | dampbench best | dampbench median | dampbench worst "
+               "| median ratio dampbench / peer, 95 % bootstrap interval | dampbench median equal or better "
                "| evaluations per run: peer / dampbench |",
-               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
+               "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
     verdicts = []
     for p in peers:
         ours_alg, target = MATCH[(p["peer"], p["algorithm"])]
@@ -75,7 +105,8 @@ def main():
         c_peer = max(p.get("cpu_rates") or [math.nan])
         ratio = r_ours / r_peer
         met = ratio >= target
-        med_ok = p["median"] == math.inf or d["median"] <= p["median"] * (1 + REL_TOL)
+        interval = median_ratio_interval(d["values"], p.get("values") or [])
+        med_text, med_ok = median_verdict(d["median"], p["median"], interval)
         # The medians compare at equal budgets only; a count missing from the JSON is shown as "?".
         e_peer = per_run(p.get("evaluations"), p.get("runs"))
         e_ours = per_run(d.get("evaluations"), d["timed_runs"].get("count"))
@@ -91,7 +122,7 @@ def main():
         quality.append(
             f"| {p['problem']} | {name} | {p['runs']} | {metric(p['best'])} | {metric(p['median'])} "
             f"| {metric(p['worst'])} | {len(d['values'])} | {metric(d['best'])} | {metric(d['median'])} "
-            f"| {metric(d['worst'])} | {'yes' if med_ok else 'no'} "
+            f"| {metric(d['worst'])} | {interval_text(d['median'], p['median'], interval)} | {med_text} "
             f"| {count(e_peer)} / {count(e_ours)}{'' if evals_ok else ' NOT equal'} |")
 
     notes = [
