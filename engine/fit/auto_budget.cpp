@@ -168,6 +168,22 @@ Identification identify_until_converged(const Model& model, const std::vector<co
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
+  // One identify() under the wall-clock cap's remainder: its runs, the evaluations they spent, whether it fired.
+  struct Pass {
+    Identification id;
+    long long spent = 0;
+    bool timed_out = false;
+  };
+  const auto pass = [&](const OptimizerSpec& spec, IdentificationSettings s) {
+    if (budget.max_seconds > 0) s.budget.max_wall_time_s = tighter(s.budget.max_wall_time_s, budget.max_seconds - elapsed());
+    Pass p{identify(model, data, bounds, make_optimizer_factory(spec), s)};
+    for (const RunResult& r : p.id.runs) {
+      p.spent += r.evaluations;
+      p.timed_out = p.timed_out || r.stop_reason == "wall_time";
+    }
+    return p;
+  };
+
   Identification chains;
   for (int k = 0;; ++k) {
     OptimizerSpec spec = budget.optimizer;
@@ -176,18 +192,12 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     if (k > 0) s.task_key = hash_key({settings.task_key, static_cast<std::uint64_t>(k)});
     if (k == 0 && nominal > report.cap)  // a starved cap cuts round 0's runs to their share of it
       s.budget.max_evaluations = tighter(s.budget.max_evaluations, std::max<long long>(1, report.cap / runs));
-    if (budget.max_seconds > 0) s.budget.max_wall_time_s = tighter(s.budget.max_wall_time_s, budget.max_seconds - elapsed());
-    const Identification round = identify(model, data, bounds, make_optimizer_factory(spec), s);
-    long long spent = 0;
-    bool timed_out = false;
-    for (const RunResult& r : round.runs) {
-      spent += r.evaluations;
-      timed_out = timed_out || r.stop_reason == "wall_time";
-    }
-    report.evaluations += spent;
+    const Pass round = pass(spec, s);
+    bool timed_out = round.timed_out;
+    report.evaluations += round.spent;
     report.iterations.push_back(spec.iterations);
-    const double before = best_of(chains), restart = best_of(round);
-    append_round(chains, round);
+    const double before = best_of(chains), restart = best_of(round.id);
+    append_round(chains, round.id);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
     const double best = best_of(chains);
     if (k > 0 && std::isfinite(before))  // relative to the chains' best after the round, min(before, restart)
@@ -198,15 +208,12 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       const OptimizerSpec other = second_opinion(model, budget.optimizer);
       IdentificationSettings o = settings;
       o.task_key = hash_key({settings.task_key, kSecondOpinionKey});
-      if (budget.max_seconds > 0) o.budget.max_wall_time_s = tighter(o.budget.max_wall_time_s, budget.max_seconds - elapsed());
-      const Identification opinion = identify(model, data, bounds, make_optimizer_factory(other), o);
-      for (const RunResult& r : opinion.runs) {
-        report.second_opinion_evaluations += r.evaluations;
-        timed_out = timed_out || r.stop_reason == "wall_time";
-      }
-      report.evaluations += report.second_opinion_evaluations;
+      const Pass opinion = pass(other, o);
+      timed_out = timed_out || opinion.timed_out;
+      report.second_opinion_evaluations = opinion.spent;
+      report.evaluations += opinion.spent;
       report.second_opinion = other.name + (other.settings.count("global") ? "+" + other.settings.at("global") : "");
-      report.second_opinion_best = best_of(opinion);
+      report.second_opinion_best = best_of(opinion.id);
     }
     if (!report.second_opinion.empty())
       report.second_opinion_rel = std::isfinite(report.second_opinion_best)
@@ -215,7 +222,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     const bool lower_elsewhere = report.second_opinion_best < best && !restart_confirms(best, report.second_opinion_best);
     if (agreed && !lower_elsewhere) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
-    else if (spent == 0 || report.evaluations + 2 * spent > report.cap ||
+    else if (round.spent == 0 || report.evaluations + 2 * round.spent > report.cap ||
              budget.optimizer.iterations > (std::numeric_limits<int>::max() >> (k + 1)))
       report.stop = "cap";
     if (!report.stop.empty()) return chains;
