@@ -67,6 +67,10 @@ OptimizerSpec second_opinion(const Model& model, const OptimizerSpec& optimizer)
   return s;
 }
 
+int second_opinion_runs(const Model& model, int runs) {
+  return std::max(runs, fit_plan(model, std::nullopt, std::nullopt, std::nullopt, std::nullopt).runs);
+}
+
 int round_iterations(const OptimizerSpec& optimizer, int round) { return optimizer.iterations << round; }
 
 namespace {
@@ -208,6 +212,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       const OptimizerSpec other = second_opinion(model, budget.optimizer);
       IdentificationSettings o = settings;
       o.task_key = hash_key({settings.task_key, kSecondOpinionKey});
+      o.runs = second_opinion_runs(model, settings.runs);
       const Pass opinion = pass(other, o);
       timed_out = timed_out || opinion.timed_out;
       report.second_opinion_evaluations = opinion.spent;

@@ -12,7 +12,8 @@
 //               it, neither above (not found again) nor below (a better one, not yet found twice); and a second
 //               opinion found nothing lower
 //   second      run once, the first time the rest holds: another optimizer (second_opinion()) at its own
-//   opinion     default budget for the model, with the fit's run count and its own streams. When its best lies
+//   opinion     default budget for the model, with the fit's run count (at least fit's default,
+//               second_opinion_runs()) and its own streams. When its best lies
 //               more than kRestartRel below the chains' best, the chains share a basin that is not the lowest:
 //               the rounds go on until the chains reach the second opinion's best and a restart confirms it, or
 //               the cap stops them and the summary says what the second opinion found. Its runs count in the
@@ -86,6 +87,10 @@ bool restart_confirms(double before, double restart);
 /// then Levenberg–Marquardt: the best within the fewest integrations), for ga-lm itself ga-lm with a CMA-ES global
 /// stage. Population and iterations are fit's defaults for `model` and that optimizer (fit_defaults.hpp).
 OptimizerSpec second_opinion(const Model& model, const OptimizerSpec& optimizer);
+
+/// The second opinion's run count: the fit's, and at least fit's default for `model` (50 on an algebraic model,
+/// 4 with internal states), so that a fit of few runs still gets a second opinion that can find a narrow basin.
+int second_opinion_runs(const Model& model, int runs);
 
 /// The iterations of round k: I·2^k.
 int round_iterations(const OptimizerSpec& optimizer, int round);

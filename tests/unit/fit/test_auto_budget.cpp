@@ -186,7 +186,8 @@ TEST(AutoBudget, ASecondOpinionKeepsASharedHigherBasinFromPassingAsConverged) {
 }
 
 // The second opinion is another optimizer at fit's defaults for the model: de on an algebraic model (ga-lm for de
-// itself), ga-lm on a model with internal states (ga-lm with a CMA-ES global stage for ga-lm itself).
+// itself), ga-lm on a model with internal states (ga-lm with a CMA-ES global stage for ga-lm itself), with at
+// least fit's default run count.
 TEST(AutoBudget, TheSecondOpinionIsAnotherOptimizer) {
   const Model& kwok = find_model("crfd.kwok");
   const Model& bouc_wen = find_model("mrd.bouc_wen");
@@ -207,6 +208,11 @@ TEST(AutoBudget, TheSecondOpinionIsAnotherOptimizer) {
   EXPECT_EQ(of_ga_lm.name, "ga-lm");
   EXPECT_EQ(of_ga_lm.settings, (std::map<std::string, std::string>{{"global", "cmaes"}}));
   EXPECT_TRUE(second_opinion(bouc_wen, {"ga-lm", 24, 30, {{"global", "cmaes"}}}).settings.empty());
+  // Its runs: the fit's, at least fit's default for the model.
+  EXPECT_EQ(second_opinion_runs(kwok, 10), 50);
+  EXPECT_EQ(second_opinion_runs(kwok, 80), 80);
+  EXPECT_EQ(second_opinion_runs(bouc_wen, 4), 4);
+  EXPECT_EQ(second_opinion_runs(bouc_wen, 2), 4);
 }
 
 // Round 0 is the fixed budget, with the same bits; with no room for a restart the fit stops there at the cap,
