@@ -3,7 +3,8 @@
 # line, tests, benchmarks) and runs the whole test suite through ctest; then the hardening stages:
 #   - the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan), without the tests
 #     listed in SANITIZER_SKIP below (they re-run long optimizations that the release run already covers; mpi
-#     runs OpenMPI, whose own allocations LeakSanitizer would report; bouc_wen_benchmark fits twice);
+#     runs OpenMPI, whose own allocations LeakSanitizer would report; bouc_wen_benchmark fits twice), and with
+#     readme_examples skipping the README's real-data fits (DAMPBENCH_README_SKIP_REAL_DATA);
 #   - every libFuzzer target for FUZZ_SECONDS (default 30 here, 60 when scripts/fuzz.sh runs alone) each, one
 #     target per core at a time (scripts/fuzz.sh, build-fuzz).
 # The sanitizer and fuzz builds compile the lane kernels once, at the baseline vector level (DAMPBENCH_ISA_DISPATCH
@@ -25,7 +26,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDAMPBENCH_
   -DDAMPBENCH_ISA_DISPATCH=OFF
 cmake --build build-asan --parallel "$(nproc)"
 SANITIZER_SKIP="${SANITIZER_SKIP:-store_soak|RealData|Utfsm|ModelRecovery|StandardFunctions|Conformance|bouc_wen_ga_lm|^mpi$|^bouc_wen_benchmark$}"
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 DAMPBENCH_README_SKIP_REAL_DATA=1 \
   ctest --test-dir build-asan --output-on-failure --timeout 900 -j "$(nproc)" -E "$SANITIZER_SKIP"
 
 echo "== fuzzing"
