@@ -179,13 +179,14 @@ std::string not_converged_advice(const FitOutcome& fit) {
   if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
   if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
   const AutoBudgetReport& b = *fit.auto_budget;
-  if (b.second_opinion_rel < -kRestartRel)
+  if (b.second_opinion_lower) {
+    std::string settings;
+    for (const auto& [key, value] : b.second_opinion_optimizer->settings)
+      settings += fmt::format("{}{}={}", settings.empty() ? " --optimizer-settings " : ",", key, value);
     return fmt::format(": do not trust this fit; {} found a lower value (fit with --optimizer {}{}, or raise "
                        "--max-evals)",
-                       b.second_opinion, b.second_opinion.substr(0, b.second_opinion.find('+')),
-                       b.second_opinion.find('+') == std::string::npos
-                           ? ""
-                           : " --optimizer-settings global=" + b.second_opinion.substr(b.second_opinion.find('+') + 1));
+                       b.second_opinion_label(), b.second_opinion_optimizer->name, settings);
+  }
   return ": do not trust this fit; raise --max-evals";
 }
 
@@ -195,7 +196,8 @@ nlohmann::ordered_json budget_json(const FitOutcome& fit) {
   return {{"kind", "auto"}, {"rounds", b.iterations.size()}, {"iterations", b.iterations},
           {"evaluations", b.evaluations}, {"cap", b.cap}, {"stop", b.stop},
           {"last_restart_rel", json_number(b.last_restart_rel)},
-          {"second_opinion", b.second_opinion.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(b.second_opinion)},
+          {"second_opinion",
+           b.second_opinion_optimizer ? nlohmann::ordered_json(b.second_opinion_label()) : nlohmann::ordered_json()},
           {"second_opinion_best", json_number(b.second_opinion_best)},
           {"second_opinion_rel", json_number(b.second_opinion_rel)},
           {"second_opinion_evaluations", b.second_opinion_evaluations}};

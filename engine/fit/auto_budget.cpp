@@ -25,14 +25,15 @@ std::string AutoBudgetReport::summary() const {
       : last_restart_rel <= 0
           ? fmt::format("the last restart improved the best by {:.2g} %", -100 * last_restart_rel)
           : fmt::format("the last restart ended {:.2g} % above the best", 100 * last_restart_rel);
+  const std::string label = second_opinion_label();
   const std::string second =
-      second_opinion.empty() ? ""
+      label.empty() ? ""
       : std::isnan(second_opinion_rel)
-          ? fmt::format("; every run of a second opinion ({}) failed", second_opinion)
-      : second_opinion_rel < -kRestartRel
+          ? fmt::format("; every run of a second opinion ({}) failed", label)
+      : second_opinion_lower
           ? fmt::format("; a second opinion ({}) found {:.2g} % lower: the runs share a basin that is not the lowest",
-                        second_opinion, -100 * second_opinion_rel)
-          : fmt::format("; a second opinion ({}) ended {:.2g} % {} the best", second_opinion,
+                        label, -100 * second_opinion_rel)
+          : fmt::format("; a second opinion ({}) ended {:.2g} % {} the best", label,
                         100 * std::abs(second_opinion_rel), second_opinion_rel < 0 ? "below" : "above");
   const std::string why = stop == "converged" ? "converged, " + gain
                           : stop == "time cap"
@@ -40,6 +41,13 @@ std::string AutoBudgetReport::summary() const {
                               : "stopped at the cap before converging; " + gain;
   return fmt::format("{} round{} (iterations {}), {} of {} evaluations: {}{}", iterations.size(),
                      iterations.size() == 1 ? "" : "s", sizes, evaluations, cap, why, second);
+}
+
+std::string AutoBudgetReport::second_opinion_label() const {
+  if (!second_opinion_optimizer) return "";
+  const auto global = second_opinion_optimizer->settings.find("global");
+  return second_opinion_optimizer->name +
+         (global == second_opinion_optimizer->settings.end() ? "" : "+" + global->second);
 }
 
 bool stopped_before_converging(std::string_view summary) {
@@ -132,6 +140,15 @@ double relative_to(double difference, double best) {
   return difference / std::max(std::abs(best), std::numeric_limits<double>::min());
 }
 
+/// The second opinion's best against the chains' best `best`: relative, and whether it is lower by more than a
+/// restart could confirm.
+void compare_second_opinion(AutoBudgetReport& report, double best) {
+  report.second_opinion_rel = std::isfinite(report.second_opinion_best)
+                                  ? relative_to(report.second_opinion_best - best, best)
+                                  : std::numeric_limits<double>::quiet_NaN();
+  report.second_opinion_lower = report.second_opinion_best < best && !restart_confirms(best, report.second_opinion_best);
+}
+
 /// The smaller of a rule's limit and `limit`, where 0 switches the rule off.
 template <class T>
 T tighter(T rule, T limit) {
@@ -208,7 +225,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       report.last_restart_rel = std::isfinite(restart) ? relative_to(restart - before, best)
                                                        : std::numeric_limits<double>::quiet_NaN();
     const bool agreed = confirmed && assess_convergence(chains).converged;
-    if (agreed && report.second_opinion.empty()) {
+    if (agreed && !report.second_opinion_optimizer) {
       const OptimizerSpec other = second_opinion(model, budget.optimizer);
       IdentificationSettings o = settings;
       o.task_key = hash_key({settings.task_key, kSecondOpinionKey});
@@ -217,15 +234,11 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       timed_out = timed_out || opinion.timed_out;
       report.second_opinion_evaluations = opinion.spent;
       report.evaluations += opinion.spent;
-      report.second_opinion = other.name + (other.settings.count("global") ? "+" + other.settings.at("global") : "");
+      report.second_opinion_optimizer = other;
       report.second_opinion_best = best_of(opinion.id);
     }
-    if (!report.second_opinion.empty())
-      report.second_opinion_rel = std::isfinite(report.second_opinion_best)
-                                      ? relative_to(report.second_opinion_best - best, best)
-                                      : std::numeric_limits<double>::quiet_NaN();
-    const bool lower_elsewhere = report.second_opinion_best < best && !restart_confirms(best, report.second_opinion_best);
-    if (agreed && !lower_elsewhere) report.stop = "converged";
+    if (report.second_opinion_optimizer) compare_second_opinion(report, best);
+    if (agreed && !report.second_opinion_lower) report.stop = "converged";
     else if (timed_out || (budget.max_seconds > 0 && elapsed() >= budget.max_seconds)) report.stop = "time cap";
     else if (round.spent == 0 || report.evaluations + 2 * round.spent > report.cap ||
              budget.optimizer.iterations > (std::numeric_limits<int>::max() >> (k + 1)))

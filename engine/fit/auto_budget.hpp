@@ -33,6 +33,7 @@
 // estimated as twice the last round's; else stop at the cap. The schedule depends only on results, so the same
 // inputs give the same bits, unless the optional wall-clock cap fires (and then the outcome says so).
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,11 +63,15 @@ struct AutoBudgetReport {
   double last_restart_rel = 0;
   /// "converged"; "cap" (the next round would pass the cap, or round 0 was cut by it); "time cap".
   std::string stop;
-  std::string second_opinion;        ///< the second opinion's optimizer ("de", "ga-lm", "ga-lm+cmaes"); "" when it has not run
+  std::optional<OptimizerSpec> second_opinion_optimizer;  ///< the second opinion's optimizer; empty before it ran
   double second_opinion_best = std::numeric_limits<double>::quiet_NaN();  ///< its best value (NaN: not run)
   /// (its best − the chains' final best) / the chains' final best: negative when it found lower; NaN: not run
   double second_opinion_rel = std::numeric_limits<double>::quiet_NaN();
   long long second_opinion_evaluations = 0;  ///< included in `evaluations`
+  /// The second opinion found more than kRestartRel below the chains' best: the fit is not converged.
+  bool second_opinion_lower = false;
+  /// "de", "ga-lm", "ga-lm+cmaes" (the optimizer and its global stage); "" before it ran.
+  [[nodiscard]] std::string second_opinion_label() const;
   /// "4 rounds (iterations 100, 200, 400, 800), 750000 of 1280000 evaluations: converged, the last restart
   /// ended 0.0001 % above the best; a second opinion (ga-lm) ended 0.2 % above it".
   [[nodiscard]] std::string summary() const;

@@ -122,7 +122,6 @@ std::vector<double> best_values(const GroupRecord& g) {
   return v;
 }
 
-
 std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all) {
   std::map<std::pair<int, int>, std::vector<Series>> out;
   for (const auto& s : all) out[{s.split, static_cast<int>(s.metric)}].push_back(s);

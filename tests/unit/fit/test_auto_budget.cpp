@@ -128,7 +128,7 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   EXPECT_LE(generous.evaluations, generous.cap);
   long long spent = 0;
   for (const RunResult& r : chains.runs) spent += r.evaluations;
-  EXPECT_EQ(generous.second_opinion, "de");
+  EXPECT_EQ(generous.second_opinion_label(), "de");
   EXPECT_GT(generous.second_opinion_evaluations, 0);
   EXPECT_EQ(spent + generous.second_opinion_evaluations, generous.evaluations);
   EXPECT_LE(chains.runs[chains.best_run()].best_value, fixed.runs[fixed.best_run()].best_value);
@@ -175,7 +175,7 @@ TEST(AutoBudget, ASecondOpinionKeepsASharedHigherBasinFromPassingAsConverged) {
   AutoBudgetReport report;
   const long long round0 = 1LL * runs * 50 * 100;
   const Identification chains = p.run({cmaes, 8 * round0, 0}, runs, report);
-  ASSERT_EQ(report.second_opinion, "de") << report.summary();
+  ASSERT_EQ(report.second_opinion_label(), "de") << report.summary();
   const double best = chains.runs[chains.best_run()].best_value;
   EXPECT_LT(report.second_opinion_best, best * (1 - kRestartRel)) << report.summary();
   EXPECT_LT(report.second_opinion_rel, -kRestartRel);
@@ -320,7 +320,6 @@ TEST(AutoBudget, FitChoosesTheBudgetFromItsOptions) {
             std::string::npos);
   std::filesystem::remove_all(dir);
 }
-
 
 }  // namespace
 }  // namespace dampbench
