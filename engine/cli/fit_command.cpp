@@ -305,6 +305,7 @@ FitRun run_fit_options(const FitOptions& o) {
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
   held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
   FitRequest seeded = prepared.request();
+  seeded.progress = held_out_plan.progress;
   seed_from_record_fits(prepared, seeded, &held_out_plan.record_fits, held_out_plan.progress);
   run.outcome = prepared.auto_laws ? fit_with_chosen_laws(prepared, run.spec, held_out_plan, run.selection)
                                    : run_fit(seeded);

@@ -155,6 +155,14 @@ T tighter(T rule, T limit) {
   return rule > 0 ? std::min(rule, limit) : limit;
 }
 
+/// The progress line of round k: where the chains stand and what is spent.
+std::string round_line(int k, int iterations, const Identification& chains, const AutoBudgetReport& report) {
+  const Convergence c = assess_convergence(chains);
+  return fmt::format("automatic budget: round {} ({} iterations): best {:.6g}, median run {:.3g} % above it; "
+                     "{} of {} evaluations",
+                     k, iterations, best_of(chains), 100 * c.median_above_best_rel, report.evaluations, report.cap);
+}
+
 }  // namespace
 
 void append_round(Identification& chains, const Identification& round) {
@@ -171,7 +179,8 @@ void append_round(Identification& chains, const Identification& round) {
 
 Identification identify_until_converged(const Model& model, const std::vector<const Signals*>& data,
                                         const Bounds& bounds, const AutoBudget& budget,
-                                        const IdentificationSettings& settings, AutoBudgetReport& report) {
+                                        const IdentificationSettings& settings, AutoBudgetReport& report,
+                                        const BudgetProgress& progress) {
   const int runs = settings.runs;
   if (runs < 2)
     throw InputError(fmt::format("the automatic budget needs at least 2 runs (one run cannot show that runs agree), "
@@ -225,6 +234,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       report.last_restart_rel = std::isfinite(restart) ? relative_to(restart - before, best)
                                                        : std::numeric_limits<double>::quiet_NaN();
     const bool agreed = confirmed && assess_convergence(chains).converged;
+    if (progress) progress(round_line(k, spec.iterations, chains, report));
     if (agreed && !report.second_opinion_optimizer) {
       const OptimizerSpec other = second_opinion(model, budget.optimizer);
       IdentificationSettings o = settings;
@@ -236,6 +246,9 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       report.evaluations += opinion.spent;
       report.second_opinion_optimizer = other;
       report.second_opinion_best = best_of(opinion.id);
+      if (progress)
+        progress(fmt::format("automatic budget: second opinion ({}, {} runs): best {:.6g}",
+                                    report.second_opinion_label(), o.runs, report.second_opinion_best));
     }
     if (report.second_opinion_optimizer) compare_second_opinion(report, best);
     if (agreed && !report.second_opinion_lower) report.stop = "converged";

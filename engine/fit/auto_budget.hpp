@@ -32,6 +32,7 @@
 // After each round: converged → stop; otherwise the next round starts only if it fits in the cap, its cost
 // estimated as twice the last round's; else stop at the cap. The schedule depends only on results, so the same
 // inputs give the same bits, unless the optional wall-clock cap fires (and then the outcome says so).
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -104,10 +105,14 @@ int round_iterations(const OptimizerSpec& optimizer, int round);
 /// by what the chain had spent. An empty `chains` becomes `round`.
 void append_round(Identification& chains, const Identification& round);
 
+/// Told one line after each round and after the second opinion; may be empty.
+using BudgetProgress = std::function<void(const std::string&)>;
+
 /// identify() in rounds, as the header says. `settings.runs` must be at least 2 (one run cannot show agreement).
 /// InputError for fewer runs and whatever identify() rejects.
 Identification identify_until_converged(const Model& model, const std::vector<const Signals*>& data,
                                         const Bounds& bounds, const AutoBudget& budget,
-                                        const IdentificationSettings& settings, AutoBudgetReport& report);
+                                        const IdentificationSettings& settings, AutoBudgetReport& report,
+                                        const BudgetProgress& progress = {});
 
 }  // namespace dampbench

@@ -34,7 +34,7 @@ FitOutcome run_fit(const FitRequest& request) {
   if (request.auto_budget) {
     out.auto_budget.emplace();
     out.identification = identify_until_converged(model, request.records, out.bounds, *request.auto_budget,
-                                                  request.settings, *out.auto_budget);
+                                                  request.settings, *out.auto_budget, request.progress);
   } else {
     out.identification = identify(model, request.records, out.bounds, *request.optimizer, request.settings);
   }

@@ -33,6 +33,9 @@ struct FitRequest {
   /// Restarts until the runs converge (auto_budget.hpp), its optimizer the one `optimizer` makes; absent: the
   /// fixed budget of `optimizer` and `settings`.
   std::optional<AutoBudget> auto_budget;
+  /// Told the automatic budget's rounds as they end (a fit of a law model on many records runs for many
+  /// minutes); may be empty.
+  BudgetProgress progress;
 };
 
 struct FitOutcome {

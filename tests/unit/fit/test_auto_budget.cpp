@@ -3,6 +3,7 @@
 // rules for when it applies.
 #include "engine/fit/auto_budget.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -104,8 +105,9 @@ struct KwokProblem {
   Identification fixed(const OptimizerSpec& optimizer, int runs) const {
     return identify(model, {&data}, default_bounds(model), make_optimizer_factory(optimizer), settings(runs));
   }
-  Identification run(const AutoBudget& budget, int runs, AutoBudgetReport& report) const {
-    return identify_until_converged(model, {&data}, default_bounds(model), budget, settings(runs), report);
+  Identification run(const AutoBudget& budget, int runs, AutoBudgetReport& report,
+                     const BudgetProgress& progress = {}) const {
+    return identify_until_converged(model, {&data}, default_bounds(model), budget, settings(runs), report, progress);
   }
 };
 
@@ -119,8 +121,18 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   ASSERT_FALSE(assess_convergence(fixed).converged) << "the fixed budget converges: the case tests nothing";
 
   AutoBudgetReport generous;
-  const Identification chains = p.run({ga, 0, 0}, 10, generous);
+  std::vector<std::string> told;
+  const Identification chains = p.run({ga, 0, 0}, 10, generous, [&](const std::string& l) { told.push_back(l); });
   EXPECT_EQ(generous.stop, "converged") << generous.summary();
+  // One progress line per round, and one for the second opinion after the round that asked for it.
+  ASSERT_EQ(told.size(), generous.iterations.size() + 1);
+  EXPECT_EQ(told[0].rfind("automatic budget: round 0 (100 iterations): best ", 0), 0u) << told[0];
+  EXPECT_NE(told[1].find(fmt::format("of {} evaluations", generous.cap)), std::string::npos) << told[1];
+  int opinions = 0;
+  for (const std::string& line : told)
+    opinions += line.rfind("automatic budget: second opinion (de, 50 runs): best ", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(opinions, 1);
+  EXPECT_EQ(told.front().find("second opinion"), std::string::npos);
   EXPECT_TRUE(assess_convergence(chains).converged);
   ASSERT_GT(generous.iterations.size(), 1u);
   EXPECT_EQ(generous.iterations[1], 200);
