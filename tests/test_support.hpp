@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -101,19 +103,34 @@ inline Signals sine_signals(double amp_m, double freq_hz, double cycles, double 
 
 struct CommandResult {
   int exit_code = -1;
-  std::string output;  ///< stdout and stderr together
+  std::string output;  ///< stdout and stderr together (run_dampbench), or stdout alone (run_dampbench_json)
+  std::string errors;  ///< stderr, when run_dampbench_json keeps it apart
 };
 
-/// Runs the dampbench executable with the given argument string (shell syntax).
-inline CommandResult run_dampbench(const std::string& args) {
+/// Runs a shell command; its stdout in `output`.
+inline CommandResult run_shell(const std::string& cmd) {
   CommandResult r;
-  const std::string cmd = std::string(DAMPBENCH_EXE) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf{};
   while (std::fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+/// Runs the dampbench executable with the given argument string (shell syntax).
+inline CommandResult run_dampbench(const std::string& args) {
+  return run_shell(std::string(DAMPBENCH_EXE) + " " + args + " 2>&1");
+}
+
+/// Runs dampbench for an output to parse (--format json): stdout in `output`, stderr (progress lines, messages)
+/// apart in `errors`.
+inline CommandResult run_dampbench_json(const std::string& args) {
+  const auto err = test_temp_dir("stderr") / "stderr.txt";
+  CommandResult r = run_shell(std::string(DAMPBENCH_EXE) + " " + args + " 2>" + err.string());
+  std::ifstream in(err);
+  r.errors.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return r;
 }
 

@@ -20,6 +20,7 @@ namespace {
 
 using testing::retry;
 using testing::run_dampbench;
+using testing::run_dampbench_json;
 
 std::filesystem::path temp_dir() {
   auto dir = std::filesystem::temp_directory_path() /
@@ -89,9 +90,11 @@ TEST(Cli, FitDefaultsRecoverASyntheticSpencerRecord) {
                          "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " + csv.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   retry(3, [&](int attempt) {
-    r = run_dampbench("fit --model mrd.spencer --metric nrmse --format json --seed " + std::to_string(attempt + 1) +
-                      " --data " + csv.string());
-    EXPECT_EQ(r.exit_code, 0) << r.output;
+    r = run_dampbench_json("fit --model mrd.spencer --metric nrmse --format json --seed " +
+                           std::to_string(attempt + 1) + " --data " + csv.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output << r.errors;
+    // The automatic budget's progress lines go to stderr, apart from the JSON.
+    EXPECT_NE(r.errors.find("automatic budget: round 0"), std::string::npos) << r.errors;
     const auto j = nlohmann::json::parse(r.output);
     EXPECT_EQ(j.at("optimizer").at("name"), "ga-lm");
     EXPECT_EQ(j.at("runs").at("count"), 4);
