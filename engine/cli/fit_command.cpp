@@ -59,6 +59,10 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
 
 namespace {
 
+/// Progress lines (per-record fits, law choices, the automatic budget's rounds) go to stderr, apart from the
+/// output.
+void tell_stderr(const std::string& line) { std::cerr << line << std::endl; }
+
 /// What a fit prints: the best run's parameters with their identifiability, its metrics, and the spread of runs.
 struct FitTables {
   Table params, metrics, runs;
@@ -155,7 +159,7 @@ void print_operating(const FitRecords& records) {
 FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, HeldOutPlan& held_out, LawSelection& selection) {
   LawSearch search = law_search(prepared, prepared.request());
   search.record_fits = &held_out.record_fits;  // the folds reuse each record's own fit
-  search.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  search.progress = tell_stderr;
   ResolvedModel fitted;
   FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
   prepared.model = std::move(fitted);
@@ -303,7 +307,7 @@ FitRun run_fit_options(const FitOptions& o) {
   FitRun run{o.fit, prepare_fit(o.fit), {}, {}, {}};
   PreparedFit& prepared = run.prepared;
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
-  held_out_plan.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+  held_out_plan.progress = tell_stderr;
   FitRequest seeded = prepared.request();
   seeded.progress = held_out_plan.progress;
   seed_from_record_fits(prepared, seeded, &held_out_plan.record_fits, held_out_plan.progress);

@@ -156,11 +156,10 @@ T tighter(T rule, T limit) {
 }
 
 /// The progress line of round k: where the chains stand and what is spent.
-std::string round_line(int k, int iterations, const Identification& chains, const AutoBudgetReport& report) {
-  const Convergence c = assess_convergence(chains);
+std::string round_line(int k, int iterations, double best, const Convergence& verdict, const AutoBudgetReport& report) {
   return fmt::format("automatic budget: round {} ({} iterations): best {:.6g}, median run {:.3g} % above it; "
                      "{} of {} evaluations",
-                     k, iterations, best_of(chains), 100 * c.median_above_best_rel, report.evaluations, report.cap);
+                     k, iterations, best, 100 * verdict.median_above_best_rel, report.evaluations, report.cap);
 }
 
 }  // namespace
@@ -233,8 +232,9 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     if (k > 0 && std::isfinite(before))  // relative to the chains' best after the round, min(before, restart)
       report.last_restart_rel = std::isfinite(restart) ? relative_to(restart - before, best)
                                                        : std::numeric_limits<double>::quiet_NaN();
-    const bool agreed = confirmed && assess_convergence(chains).converged;
-    if (progress) progress(round_line(k, spec.iterations, chains, report));
+    const Convergence verdict = assess_convergence(chains);
+    const bool agreed = confirmed && verdict.converged;
+    if (progress) progress(round_line(k, spec.iterations, best, verdict, report));
     if (agreed && !report.second_opinion_optimizer) {
       const OptimizerSpec other = second_opinion(model, budget.optimizer);
       IdentificationSettings o = settings;
@@ -248,7 +248,7 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       report.second_opinion_best = best_of(opinion.id);
       if (progress)
         progress(fmt::format("automatic budget: second opinion ({}, {} runs): best {:.6g}",
-                                    report.second_opinion_label(), o.runs, report.second_opinion_best));
+                             report.second_opinion_label(), o.runs, report.second_opinion_best));
     }
     if (report.second_opinion_optimizer) compare_second_opinion(report, best);
     if (agreed && !report.second_opinion_lower) report.stop = "converged";
