@@ -23,7 +23,7 @@ void add_table_options(CLI::App* cmd, TableOptions& o) {
   cmd->add_option("--model", o.models, "only this model (repeat for several)");
   cmd->add_option("--optimizer", o.optimizers, "only this optimizer label (repeat for several)");
   cmd->add_option("--metric", o.metric, "metric shown by errors (and the optimized metric chosen)");
-  cmd->add_option("--role", o.role, "errors: fit or predict");
+  cmd->add_option("--role", o.role, "errors and held-out: fit or predict");
   cmd->add_option("--target-rel", o.target_rel, "runtime: target = best known + this x |best known| (default 0.01)");
 }
 

@@ -15,6 +15,9 @@
 //                 bound; then params…_se, the relative standard errors (%) with the identifiability flags
 //   errors        metric of each model's best run on each dataset, fitted and predicted (crfd Table 8,
 //                 mfm Tables 4–5, fdsp Table 3)
+//   held-out      a model fitted on several records (laws across conditions) on each record it fitted and
+//                 predicted, beside the record's own fit (the same registered model fitted to it alone) and
+//                 their ratio, with the means and the worst ratio per role
 //   regression    the sweep's [[regressions]]: law coefficients, R², residuals (crfd Tables 5–7, mfm eqs.
 //                 5–11, fdsp eqs. 13–14); per law, on how many conditions the parameter was not
 //                 identifiable (‡ on those residual rows)

@@ -35,8 +35,8 @@ Context::Context(const StoreResults& results, int p, const TableSpec& request)
         std::find(t.optimizers.begin(), t.optimizers.end(), optimizer_label(g.optimizer)) == t.optimizers.end())
       continue;
     if (metric && g.metric != *metric) continue;
-    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors.
-    if (!t.where.everything() && t.kind != "errors") {
+    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors and held-out.
+    if (!t.where.everything() && t.kind != "errors" && t.kind != "held-out") {
       const auto& fs = fitset(g);
       if (std::none_of(fs.fit.begin(), fs.fit.end(), [&](int d) { return matches(t.where, d); })) continue;
     }
@@ -120,6 +120,38 @@ std::vector<double> best_values(const GroupRecord& g) {
   std::vector<double> v;
   for (const auto& r : g.run_results) v.push_back(r.best_value);
   return v;
+}
+
+std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int d, bool predicted, int metric) {
+  const auto& fs = c.fitset(g);
+  const auto& best = g.run_results[static_cast<std::size_t>(g.best_run())];
+  if (!predicted && fs.fit.size() == 1 && fs.fit[0] == d) return best.metrics[static_cast<std::size_t>(metric)];
+  for (const auto& x : g.dataset_metrics)
+    if (x.run == best.run && x.dataset == d && x.predicted == predicted) return x.metrics[static_cast<std::size_t>(metric)];
+  return std::nullopt;
+}
+
+SeriesValue series_value(const Context& c, const Series& s, int d, int metric, bool fits, bool predictions) {
+  SeriesValue out;
+  for (const bool role : {false, true}) {
+    if (out.value || (role ? !predictions : !fits)) continue;
+    double sum = 0;
+    int n = 0;
+    bool all_converged = true;
+    for (const GroupRecord* g : s.groups)
+      if (auto v = dataset_value(c, *g, d, role, metric)) {
+        sum += *v;
+        ++n;
+        all_converged &= group_convergence(*g).converged;
+      }
+    if (n > 0) {
+      out.value = sum / n;
+      out.predicted = role;
+      out.averaged = n > 1;
+      out.unconverged = !all_converged;
+    }
+  }
+  return out;
 }
 
 std::map<std::pair<int, int>, std::vector<Series>> by_split_metric(const std::vector<Series>& all) {

@@ -3,6 +3,7 @@
 // of one split, model, optimizer and optimized metric, ordered by fit set), with the names, labels and file
 // stems that tell the series apart. Shared by the kinds (kinds.hpp); not part of the sweep's interface.
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,9 +40,10 @@ struct Context {
   /// Selects the part's finished groups that the request's splits, models, optimizers, metric and `where` keep.
   Context(const StoreResults& results, int p, const TableSpec& request);
 
-  [[nodiscard]] std::string model_name(int m) const {
-    return R.header.models.at(static_cast<std::size_t>(R.header.model(part, m))).name;
+  [[nodiscard]] const StoreModel& store_model(int m) const {
+    return R.header.models.at(static_cast<std::size_t>(R.header.model(part, m)));
   }
+  [[nodiscard]] std::string model_name(int m) const { return store_model(m).name; }
   [[nodiscard]] std::string optimizer_label(int o) const {
     return R.header.optimizers.at(static_cast<std::size_t>(R.header.optimizer(part, o))).label;
   }
@@ -70,6 +72,18 @@ struct Context {
 };
 
 std::vector<double> best_values(const GroupRecord& g);
+
+/// Metric `metric` of group `g`'s best run on dataset `d`: as fitted (its own fit or a joint fit's dataset), or as
+/// predicted; none when the group does not fit (or predict) `d`.
+std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int d, bool predicted, int metric);
+
+/// One series' value on one dataset: the fit value when the series fits it (and `fits`), else the prediction of it
+/// (when `predictions`), the mean over the series' groups that fit or predict it.
+struct SeriesValue {
+  std::optional<double> value;
+  bool predicted = false, unconverged = false, averaged = false;
+};
+SeriesValue series_value(const Context& c, const Series& s, int d, int metric, bool fits, bool predictions);
 
 inline constexpr const char* kUnconvergedMark = "†";
 inline constexpr const char* kUnconvergedNote =

@@ -1,6 +1,5 @@
 // errors: the metric of each model's best run on each dataset, fitted and predicted.
 #include <map>
-#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -8,49 +7,6 @@
 #include "engine/sweep/tables/kinds.hpp"
 
 namespace dampbench::sweep::tables {
-namespace {
-
-std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int d, bool predicted, int metric) {
-  const auto& fs = c.fitset(g);
-  const int best = g.run_results[static_cast<std::size_t>(g.best_run())].run;
-  if (!predicted && fs.fit.size() == 1 && fs.fit[0] == d)
-    return g.run_results[static_cast<std::size_t>(g.best_run())].metrics[static_cast<std::size_t>(metric)];
-  for (const auto& x : g.dataset_metrics)
-    if (x.run == best && x.dataset == d && x.predicted == predicted) return x.metrics[static_cast<std::size_t>(metric)];
-  return std::nullopt;
-}
-
-/// One series' value on one dataset: the fit value when the series fits it, else the (mean) prediction of it.
-struct SeriesValue {
-  std::optional<double> value;
-  bool predicted = false, unconverged = false, averaged = false;
-};
-
-SeriesValue series_value(const Context& c, const Series& s, int d, int m, bool fits, bool predictions) {
-  SeriesValue out;
-  for (const bool role : {false, true}) {
-    if (out.value || (role ? !predictions : !fits)) continue;
-    double sum = 0;
-    int n = 0;
-    bool all_converged = true;
-    for (const GroupRecord* g : s.groups)
-      if (auto v = dataset_value(c, *g, d, role, m)) {
-        sum += *v;
-        ++n;
-        all_converged &= group_convergence(*g).converged;
-      }
-    if (n > 0) {
-      out.value = sum / n;
-      out.predicted = role;
-      out.averaged = n > 1;
-      out.unconverged = !all_converged;
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 void errors_tables(const Context& c, std::vector<Table>& out) {
   // One table per optimized metric; a column per series (model, and optimizer or split when they vary).
   std::map<int, std::vector<Series>> by_metric;

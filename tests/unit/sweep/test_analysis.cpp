@@ -403,7 +403,7 @@ TEST_F(TinyStore, EveryRegisteredKindMakesItsTablesAndNoOtherNameDoes) {
   // The registry is the one list of kinds: each name it gives makes tables whose ids carry the kind's name (the
   // fvd set numbers its tables instead), and a name it does not give is refused with the list.
   const std::vector<std::string> kinds = table_kinds();
-  ASSERT_EQ(kinds.size(), 14u);
+  ASSERT_EQ(kinds.size(), 15u);
   for (const std::string& kind : kinds) {
     std::vector<Table> made;
     EXPECT_NO_THROW(made = tables(kind)) << kind;
@@ -506,6 +506,38 @@ TEST_F(TinyStore, ErrorsOfJointFitAndPrediction) {
   const Table& x = find(each, "errors");
   EXPECT_EQ(x.columns.size(), 4u);
   EXPECT_DOUBLE_EQ(value(x, 2, 1), 3.0);
+}
+
+TEST_F(TinyStore, HeldOutBesideEachRecordsOwnFit) {
+  // The joint group (fitted on d0+d1, predicting d2; best run 1: rmse 7, 8 and 9) beside each record's own fit of
+  // mrd.bingham: the lowest best of the single-record groups of that model without laws, over both model entries
+  // and both optimizers: d0 min(1, 4, 0.5) = 0.5, d1 2, d2 3. The per-dataset groups fit one record each and
+  // predict none, so they get no table.
+  const auto all = tables("held-out");
+  ASSERT_EQ(all.size(), 1u);
+  const Table& h = all[0];
+  EXPECT_TRUE(h.id.starts_with("held-out")) << h.id;
+  ASSERT_EQ(h.rows.size(), 5u);
+  EXPECT_EQ(h.rows[0][0].text, "d0");
+  EXPECT_EQ(h.rows[0][1].text, "fitted");
+  EXPECT_DOUBLE_EQ(value(h, 0, 2), 7.0);
+  EXPECT_DOUBLE_EQ(value(h, 0, 3), 0.5);
+  EXPECT_DOUBLE_EQ(value(h, 0, 4), 14.0);
+  EXPECT_DOUBLE_EQ(value(h, 1, 4), 4.0);
+  // The fitted mean row: (7 + 8)/2 = 7.5 against (0.5 + 2)/2 = 1.25, the ratio of the means 6 (not the mean ratio 9).
+  EXPECT_EQ(h.rows[2][0].text, "mean of 2");
+  EXPECT_DOUBLE_EQ(value(h, 2, 2), 7.5);
+  EXPECT_DOUBLE_EQ(value(h, 2, 3), 1.25);
+  EXPECT_DOUBLE_EQ(value(h, 2, 4), 6.0);
+  EXPECT_EQ(h.rows[3][1].text, "held out");
+  EXPECT_DOUBLE_EQ(value(h, 3, 4), 3.0);
+  EXPECT_NE(h.note.find("Worst fitted: d0 (14)"), std::string::npos) << h.note;
+  EXPECT_NE(h.note.find("Worst held out: d2 (3)"), std::string::npos) << h.note;
+  // role = predict keeps only the held-out rows.
+  const auto predicted = tables("held-out", [](TableSpec& t) { t.role = "predict"; });
+  ASSERT_EQ(predicted.size(), 1u);
+  ASSERT_EQ(predicted[0].rows.size(), 2u);
+  EXPECT_EQ(predicted[0].rows[0][0].text, "d2");
 }
 
 TEST_F(TinyStore, RegressionOfPerConditionFits) {

@@ -1,0 +1,107 @@
+// held-out: a model fitted on several records at once (parameter laws across conditions) on every record it fitted
+// and every record it predicted, beside that record's own fit (the same registered model fitted to it alone) and
+// their ratio. A model of the whole damper gives up some accuracy against describing each test alone; the ratio
+// says how much, and on the records it never saw it is the honest measure of prediction.
+#include <optional>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "engine/sweep/tables/kinds.hpp"
+
+namespace dampbench::sweep::tables {
+namespace {
+
+/// Whether a series fits several records jointly or predicts some: the series this table is about.
+bool spans_records(const Context& c, const Series& s) {
+  for (const GroupRecord* g : s.groups)
+    if (c.fitset(*g).fit.size() > 1 || !c.fitset(*g).predict.empty()) return true;
+  return false;
+}
+
+/// The per-file reference of dataset `d`: the lowest `metric` of the best runs of the part's groups that fit `d`
+/// alone with the registered model `model_id`, no laws and no fixture, optimized for `optimized`.
+std::optional<double> per_file_reference(const Context& c, const std::string& model_id, Metric optimized, int d,
+                                         int metric) {
+  std::optional<double> best;
+  for (const GroupRecord& g : c.R.groups) {
+    if (g.part != c.part || g.failed || g.run_results.empty() || g.metric != optimized) continue;
+    const StoreModel& m = c.store_model(g.model);
+    const StoreFitSet& fs = c.fitset(g);
+    if (m.model_id != model_id || !m.laws.empty() || !m.fixture.empty() || fs.fit.size() != 1 || fs.fit[0] != d)
+      continue;
+    const std::optional<double> v = dataset_value(c, g, d, false, metric);
+    if (v && (!best || *v < *best)) best = v;
+  }
+  return best;
+}
+
+/// The means of one role's records that have a reference, and the worst ratio among them.
+struct RoleSummary {
+  double value = 0, reference = 0, worst_ratio = 0;
+  int count = 0;
+  std::string worst;
+
+  void add(const std::string& dataset, double v, double ref) {
+    value += v;
+    reference += ref;
+    ++count;
+    if (v / ref > worst_ratio) {
+      worst_ratio = v / ref;
+      worst = dataset;
+    }
+  }
+};
+
+Table held_out_table(const Context& c, const Series& s) {
+  const Metric shown = c.t.metric.empty() ? s.metric : parse_metric(c.t.metric);
+  const int m = static_cast<int>(shown);
+  const std::string& model_id = c.store_model(s.model).model_id;
+  Table r = c.table("held-out" + c.suffix(s),
+                    fmt::format("{}: {} of each record it fitted and predicted, beside the record's own fit ({} "
+                                "fitted to it alone)",
+                                c.describe(s), metric_name(shown), model_id),
+                    {"Dataset", "role", c.model_name(s.model), "own fit", "ratio"});
+  bool unconverged_any = false, missing_any = false;
+  std::string summary_note;
+  for (const bool predicted : {false, true}) {
+    if (c.t.role == (predicted ? "fit" : "predict")) continue;
+    std::set<int> datasets;
+    for (const GroupRecord* g : s.groups) {
+      const std::vector<int>& list = predicted ? c.fitset(*g).predict : c.fitset(*g).fit;
+      datasets.insert(list.begin(), list.end());
+    }
+    const char* role = predicted ? "held out" : "fitted";
+    RoleSummary sum;
+    for (int d : datasets) {
+      if (!c.t.where.everything() && !c.matches(c.t.where, d)) continue;
+      const SeriesValue v = series_value(c, s, d, m, !predicted, predicted);
+      if (!v.value) continue;
+      const std::optional<double> ref = per_file_reference(c, model_id, s.metric, d, m);
+      unconverged_any |= v.unconverged;
+      missing_any |= !ref;
+      const std::string name = c.dataset(d).name;
+      r.rows.push_back({txt(name), txt(role), {format_number(*v.value) + (v.unconverged ? kUnconvergedMark : ""), *v.value},
+                        ref ? num(*ref) : none(), ref && *ref > 0 ? num(*v.value / *ref) : none()});
+      if (ref && *ref > 0) sum.add(name, *v.value, *ref);
+    }
+    if (sum.count == 0) continue;
+    r.rows.push_back({txt(fmt::format("mean of {}", sum.count)), txt(role), num(sum.value / sum.count),
+                      num(sum.reference / sum.count), num(sum.value / sum.reference)});
+    summary_note += fmt::format(" Worst {}: {} ({:.3g}).", role, sum.worst, sum.worst_ratio);
+  }
+  r.note = "ratio = the model's value / the record's own fit; a mean row's ratio is the ratio of the means." +
+           summary_note;
+  if (missing_any) r.note += " - : the sweep has no fit of that record alone with " + model_id + ".";
+  if (unconverged_any) r.note += std::string(" ") + kUnconvergedNote;
+  return r;
+}
+
+}  // namespace
+
+void held_out_tables(const Context& c, std::vector<Table>& out) {
+  for (const Series& s : c.series())
+    if (spans_records(c, s)) out.push_back(held_out_table(c, s));
+}
+
+}  // namespace dampbench::sweep::tables
