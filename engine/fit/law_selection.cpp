@@ -140,15 +140,19 @@ Table fold_table(const Scoring& s, const LawSet& shared, const LawSet& chosen) {
 
 }  // namespace
 
-LawSearch law_search(const PreparedFit& fit, const FitRequest& request) {
+LawSearch law_search(const FitRequest& request, const Model& model, std::string optimizer_name) {
   LawSearch search;
-  const auto* law = dynamic_cast<const LawModel*>(fit.model.model);
-  search.base = law ? &law->base() : fit.model.model;
+  const auto* law = dynamic_cast<const LawModel*>(&model);
+  search.base = law ? &law->base() : &model;
   search.records = request.records;
   search.optimizer = request.optimizer;
-  search.optimizer_name = fit.plan.optimizer;
+  search.optimizer_name = std::move(optimizer_name);
   search.settings = request.settings;
   return search;
+}
+
+LawSearch law_search(const PreparedFit& fit, const FitRequest& request) {
+  return law_search(request, *fit.model.model, fit.plan.optimizer);
 }
 
 ResolvedModel gauged_model(const Model& base) {

@@ -49,6 +49,9 @@ struct LawSearch {
 /// The search of a prepared `--laws auto` fit on `request`'s records, with its optimizer and settings; the laws act
 /// on `fit`'s base model (its model itself before the laws are chosen, the chosen law model's base after).
 LawSearch law_search(const PreparedFit& fit, const FitRequest& request);
+/// The same for any request (a sweep group's): the laws act on `model`'s base (`model` itself when it has no laws);
+/// `optimizer_name` names the per-record fits' task keys.
+LawSearch law_search(const FitRequest& request, const Model& model, std::string optimizer_name);
 
 /// The base model with its gauge and no laws: the model of the per-record fits.
 ResolvedModel gauged_model(const Model& base);

@@ -20,6 +20,7 @@
 #include "engine/common/error.hpp"
 #include "engine/evaluation/sensitivity.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/record_start.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
 
@@ -89,6 +90,10 @@ FitOutcome fit_group(const PartPlan& part, const GroupRef& g, const std::vector<
   request.settings.budget = opt.budget;
   request.settings.search_precision = opt.search_precision;
   if (opt.auto_budget) request.auto_budget = AutoBudget{opt.spec, opt.max_total_evaluations, 0};
+  const ModelSpec& entry = part.spec->models[g.model];
+  if (entry.start == "per-file")  // as `fit --start per-file`: from the laws fitted to each record's own fit
+    request.start = start_from_record_fits(law_search(request, *request.model->model, opt.spec.name), entry,
+                                           *request.model->model);
   return run_fit(request);
 }
 

@@ -61,6 +61,9 @@ struct DatasetSpec {
 /// model id).
 struct ModelSpec : ModelChoice {
   std::vector<std::string> optimizers;  ///< optimizer labels this model is identified with (empty: all)
+  /// "per-file": a law model's search starts from the laws fitted to each fit record's own fit, as `fit --start
+  /// per-file` (engine/fit/record_start.hpp); "" from the box.
+  std::string start;
 };
 
 struct OptimizerEntry {

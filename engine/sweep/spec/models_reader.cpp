@@ -27,9 +27,9 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
     m.name = id;
     return m;
   }
-  if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers }");
+  if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers, start }");
   const toml::table& t = *n.as_table();
-  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers"});
+  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers", "start"});
   m.model = r.string(t, "model", key).value_or("");
   m.fixture = r.string(t, "fixture", key).value_or("");
   if (m.model.empty() == m.fixture.empty()) r.fail(&n, key, "expected exactly one of 'model' and 'fixture'");
@@ -39,6 +39,12 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
   m.bounds = r.string(t, "bounds", key).value_or("");
   m.name = r.string(t, "name", key).value_or(m.model.empty() ? m.fixture : m.model);
   m.optimizers = r.strings(t, "optimizers", key);
+  m.start = r.string(t, "start", key).value_or("");
+  if (!m.start.empty() && m.start != "per-file")
+    r.fail(t.get("start"), Reader::join(key, "start"), fmt::format("expected \"per-file\", got '{}'", m.start));
+  if (!m.start.empty() && (m.laws.empty() || m.model.empty()))
+    r.fail(t.get("start"), Reader::join(key, "start"),
+           "start = \"per-file\" starts a law model from its records' own fits: it needs 'model' and 'laws'");
   return m;
 }
 

@@ -4,6 +4,7 @@
 // are named by its task key: the sweep's key given to the fit request must reproduce the group, and the fit's own
 // key must reproduce what the command prints.
 #include "engine/fit/prepared_fit.hpp"
+#include "engine/fit/record_start.hpp"
 
 #include <gtest/gtest.h>
 
@@ -36,6 +37,7 @@ struct Case {
   std::vector<std::string> paths;
   RecordOptions data;
   std::string metric = "of_abs";
+  std::string start;  ///< "" or "per-file" (`fit --start`, a sweep model's `start`)
 };
 
 std::string utfsm(const std::string& file) {
@@ -60,6 +62,9 @@ std::vector<Case> cases() {
                "nrmse"});
   c.push_back({"bingham_laws_joint", "mrd.bingham", "f_c=poly(I,1);c0=poly(I,1)", "pso", 20, 15, 2, 5,
                {utfsm("10mm1Hz0A.txt"), utfsm("10mm1Hz1A.txt")}, utfsm_options(), "nrmse"});
+  c.push_back({"bingham_laws_start_per_file", "mrd.bingham", "f_c=poly(I,1);c0=poly(I,1)", "pso", 20, 15, 2, 5,
+               {utfsm("10mm1Hz0A.txt"), utfsm("10mm1Hz0x5A.txt"), utfsm("10mm1Hz1A.txt")}, utfsm_options(), "nrmse",
+               "per-file"});
   return c;
 }
 
@@ -76,7 +81,15 @@ FitSpec fit_spec(const Case& c) {
   s.iterations = c.iterations;
   s.runs = c.runs;
   s.seed = c.seed;
+  s.start = c.start;
   return s;
+}
+
+/// The request `fit` runs: with `--start per-file`, started from the laws fitted to its records' own fits.
+FitRequest started_request(const PreparedFit& prepared) {
+  FitRequest request = prepared.request();
+  seed_from_record_fits(prepared, request, nullptr, {});
+  return request;
 }
 
 /// The sweep file of the same fit: one model, one optimizer, the records fitted together in one group.
@@ -84,10 +97,12 @@ std::string sweep_text(const Case& c) {
   std::string t = fmt::format("name = \"same_fit\"\nseed = {}\nruns = {}\nmetric = \"{}\"\n", c.seed, c.runs, c.metric);
   if (c.laws.empty()) t += fmt::format("models = [\"{}\"]\n", c.model);
   else t += fmt::format("[[models]]\nname = \"{}\"\nmodel = \"{}\"\nlaws = \"{}\"\n", c.model, c.model, c.laws);
+  if (!c.start.empty()) t += fmt::format("start = \"{}\"\n", c.start);
   t += fmt::format("[optimizer]\nname = \"{}\"\npopulation = {}\niterations = {}\n", c.optimizer, c.population,
                    c.iterations);
   for (std::size_t i = 0; i < c.paths.size(); ++i) {
-    t += fmt::format("[[datasets]]\nname = \"d{}\"\nfile = \"{}\"\n", i, c.paths[i]);
+    // Named as `fit` names the record (its file's stem): the per-record fits of a start are keyed by record name.
+    t += fmt::format("[[datasets]]\nname = \"{}\"\nfile = \"{}\"\n", fs::path(c.paths[i]).stem().string(), c.paths[i]);
     if (!c.data.columns.empty()) t += fmt::format("columns = \"{}\"\n", c.data.columns);
     if (!c.data.units.empty()) t += fmt::format("units = \"{}\"\n", c.data.units);
     if (!c.data.conditions.empty()) t += fmt::format("conditions = \"{}\"\n", c.data.conditions);
@@ -123,7 +138,7 @@ TEST_P(FitPipeline, FitAndSweepGroupGiveTheSameBits) {
   ASSERT_FALSE(group.failed) << group.message;
 
   const PreparedFit prepared = prepare_fit(fit_spec(c));
-  FitRequest request = prepared.request();
+  FitRequest request = started_request(prepared);
   request.settings.task_key = group.task_key;  // the group's streams
   const FitOutcome fit = run_fit(request);
 
@@ -159,7 +174,7 @@ TEST_P(FitPipeline, FitAndSweepGroupGiveTheSameBits) {
   EXPECT_EQ(group.identifiability->flags, fit.identifiability->flags);
 
   // The streams are the request's: the fit's own key gives other runs (the comparison above could fail).
-  const FitOutcome own = run_fit(prepared.request());
+  const FitOutcome own = run_fit(started_request(prepared));
   EXPECT_NE(bits(own.identification.runs[0].best_params[0]), bits(fit.identification.runs[0].best_params[0]));
 }
 
@@ -170,6 +185,7 @@ TEST_P(FitPipeline, CommandPrintsTheRequestOutcome) {
                                  "--metric {}",
                                  c.model, c.optimizer, c.population, c.iterations, c.runs, c.seed, c.metric);
   if (!c.laws.empty()) args += " --laws '" + c.laws + "'";
+  if (!c.start.empty()) args += " --start " + c.start;
   for (const auto& p : c.paths) args += " --data " + p;
   if (!c.data.columns.empty()) args += " --columns " + c.data.columns + " --units " + c.data.units + " --conditions utfsm";
   const auto printed = testing::run_dampbench(args);
@@ -177,7 +193,7 @@ TEST_P(FitPipeline, CommandPrintsTheRequestOutcome) {
   const auto j = nlohmann::json::parse(printed.output.substr(printed.output.find('{')));
 
   const PreparedFit prepared = prepare_fit(fit_spec(c));
-  const FitOutcome fit = run_fit(prepared.request());
+  const FitOutcome fit = run_fit(started_request(prepared));
   const Model& model = *prepared.model.model;
   const RunResult& best = fit.best();
   for (int i = 0; i < model.dim(); ++i)

@@ -103,6 +103,11 @@ TEST_F(SpecErrors, NamesFileLineKeyAndExpectation) {
   expect("name = \"x\"\nmodels = [{ model = \"mrd.spencer_freq\", laws = \"n=2\" }]\n" + kData,
          "key 'models[0]': laws on mrd.spencer_freq, itself a law model, are not supported: write every law on its "
          "base model mrd.spencer_voltage");
+  expect("name = \"x\"\nmodels = [{ model = \"mrd.bingham\", laws = \"c0=poly(I,1)\", start = \"box\" }]\n" + kData,
+         "key 'models[0].start': expected \"per-file\", got 'box'");
+  expect("name = \"x\"\nmodels = [{ model = \"mrd.bingham\", start = \"per-file\" }]\n" + kData,
+         "key 'models[0].start': start = \"per-file\" starts a law model from its records' own fits: it needs 'model' "
+         "and 'laws'");
   expect(kHead + "[[datasets]]\nname = \"a\"\nfile = \"a.csv\"\ntransform = \"crank\"\n",
          "key 'datasets[0].transform': expected slider-crank or slider-crank-printed, got 'crank'");
   expect(kHead + "[[datasets]]\nname = \"a\"\nfile = \"a.csv\"\nunits = \"x=furlong\"\n", "key 'datasets[0].units': ");
