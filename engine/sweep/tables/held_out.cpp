@@ -19,11 +19,17 @@ bool spans_records(const Context& c, const Series& s) {
   return false;
 }
 
+/// A record's own fit: its metric, and whether that fit's runs converged.
+struct OwnFit {
+  double value = 0;
+  bool converged = true;
+};
+
 /// The per-file reference of dataset `d`: the lowest `metric` of the best runs of the part's groups that fit `d`
 /// alone with the registered model `model_id`, no laws and no fixture, optimized for `optimized`.
-std::optional<double> per_file_reference(const Context& c, const std::string& model_id, Metric optimized, int d,
+std::optional<OwnFit> per_file_reference(const Context& c, const std::string& model_id, Metric optimized, int d,
                                          int metric) {
-  std::optional<double> best;
+  std::optional<OwnFit> best;
   for (const GroupRecord& g : c.R.groups) {
     if (g.part != c.part || g.failed || g.run_results.empty() || g.metric != optimized) continue;
     const StoreModel& m = c.store_model(g.model);
@@ -31,7 +37,7 @@ std::optional<double> per_file_reference(const Context& c, const std::string& mo
     if (m.model_id != model_id || !m.laws.empty() || !m.fixture.empty() || fs.fit.size() != 1 || fs.fit[0] != d)
       continue;
     const std::optional<double> v = dataset_value(c, g, d, false, metric);
-    if (v && (!best || *v < *best)) best = v;
+    if (v && (!best || *v < best->value)) best = OwnFit{*v, group_convergence(g).converged};
   }
   return best;
 }
@@ -77,13 +83,15 @@ Table held_out_table(const Context& c, const Series& s) {
       if (!c.t.where.everything() && !c.matches(c.t.where, d)) continue;
       const SeriesValue v = series_value(c, s, d, m, !predicted, predicted);
       if (!v.value) continue;
-      const std::optional<double> ref = per_file_reference(c, model_id, s.metric, d, m);
-      unconverged_any |= v.unconverged;
+      const std::optional<OwnFit> ref = per_file_reference(c, model_id, s.metric, d, m);
+      unconverged_any |= v.unconverged || (ref && !ref->converged);
       missing_any |= !ref;
       const std::string name = c.dataset(d).name;
+      const bool usable = ref && ref->value > 0;
       r.rows.push_back({txt(name), txt(role), {format_number(*v.value) + (v.unconverged ? kUnconvergedMark : ""), *v.value},
-                        ref ? num(*ref) : none(), ref && *ref > 0 ? num(*v.value / *ref) : none()});
-      if (ref && *ref > 0) sum.add(name, *v.value, *ref);
+                        ref ? Cell{format_number(ref->value) + (ref->converged ? "" : kUnconvergedMark), ref->value} : none(),
+                        usable ? num(*v.value / ref->value) : none()});
+      if (usable) sum.add(name, *v.value, ref->value);
     }
     if (sum.count == 0) continue;
     r.rows.push_back({txt(fmt::format("mean of {}", sum.count)), txt(role), num(sum.value / sum.count),

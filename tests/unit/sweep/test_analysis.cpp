@@ -335,9 +335,9 @@ class TinyStore : public ::testing::Test {
     GroupRecord b = group(3, 0, 0, 0, 1);
     for (int r = 0; r < 3; ++r) b.run_results.push_back(run(r, 4.0 + r, {1, 2, 3}, {{50, 4.0 + r}, {100, 4.0 + r}}));
     store.write(b);
-    // Model 1 (bingham2), optimizer a, on d0: values {0.5, 0.5, 0.5}.
+    // Model 1 (bingham2), optimizer a, on d0: values {0.5, 0.5, 0.5}, reached by half of the budget (converged).
     GroupRecord m1 = group(4, 0, 0, 1, 0);
-    for (int r = 0; r < 3; ++r) m1.run_results.push_back(run(r, 0.5, {1, 2, 3}, {{100, 0.5}}));
+    for (int r = 0; r < 3; ++r) m1.run_results.push_back(run(r, 0.5, {1, 2, 3}, {{50, 0.5}, {100, 0.5}}));
     store.write(m1);
     // Split "joint": model 0, optimizer a, fitted on d0+d1 (per-dataset rmse 7 and 8 for the best run 1),
     // predicting d2 (rmse 9).
@@ -524,6 +524,9 @@ TEST_F(TinyStore, HeldOutBesideEachRecordsOwnFit) {
   EXPECT_DOUBLE_EQ(value(h, 0, 3), 0.5);
   EXPECT_DOUBLE_EQ(value(h, 0, 4), 14.0);
   EXPECT_DOUBLE_EQ(value(h, 1, 4), 4.0);
+  // An own fit whose runs disagree carries the unconverged mark: d1's (runs 2, 3, 4), not d0's (0.5 three times).
+  EXPECT_EQ(h.rows[0][3].text, "0.5");
+  EXPECT_EQ(h.rows[1][3].text, "2†");
   // The fitted mean row: (7 + 8)/2 = 7.5 against (0.5 + 2)/2 = 1.25, the ratio of the means 6 (not the mean ratio 9).
   EXPECT_EQ(h.rows[2][0].text, "mean of 2");
   EXPECT_DOUBLE_EQ(value(h, 2, 2), 7.5);
