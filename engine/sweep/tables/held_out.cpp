@@ -4,9 +4,11 @@
 // says how much, and on the records it never saw it is the honest measure of prediction.
 #include <optional>
 #include <set>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "engine/fit/held_out.hpp"
 #include "engine/sweep/tables/kinds.hpp"
 
 namespace dampbench::sweep::tables {
@@ -42,23 +44,6 @@ std::optional<OwnFit> per_file_reference(const Context& c, const std::string& mo
   return best;
 }
 
-/// The means of one role's records that have a reference, and the worst ratio among them.
-struct RoleSummary {
-  double value = 0, reference = 0, worst_ratio = 0;
-  int count = 0;
-  std::string worst;
-
-  void add(const std::string& dataset, double v, double ref) {
-    value += v;
-    reference += ref;
-    ++count;
-    if (v / ref > worst_ratio) {
-      worst_ratio = v / ref;
-      worst = dataset;
-    }
-  }
-};
-
 Table held_out_table(const Context& c, const Series& s) {
   const Metric shown = c.t.metric.empty() ? s.metric : parse_metric(c.t.metric);
   const int m = static_cast<int>(shown);
@@ -78,7 +63,7 @@ Table held_out_table(const Context& c, const Series& s) {
       datasets.insert(list.begin(), list.end());
     }
     const char* role = predicted ? "held out" : "fitted";
-    RoleSummary sum;
+    std::vector<RecordError> referenced;  // the records with an own fit to compare with
     for (int d : datasets) {
       if (!c.t.where.everything() && !c.matches(c.t.where, d)) continue;
       const SeriesValue v = series_value(c, s, d, m, !predicted, predicted);
@@ -91,12 +76,13 @@ Table held_out_table(const Context& c, const Series& s) {
       r.rows.push_back({txt(name), txt(role), {format_number(*v.value) + (v.unconverged ? kUnconvergedMark : ""), *v.value},
                         ref ? Cell{format_number(ref->value) + (ref->converged ? "" : kUnconvergedMark), ref->value} : none(),
                         usable ? num(*v.value / ref->value) : none()});
-      if (usable) sum.add(name, *v.value, ref->value);
+      if (usable) referenced.push_back({role, "", name, *v.value, ref->value, std::nullopt});
     }
-    if (sum.count == 0) continue;
-    r.rows.push_back({txt(fmt::format("mean of {}", sum.count)), txt(role), num(sum.value / sum.count),
-                      num(sum.reference / sum.count), num(sum.value / sum.reference)});
-    summary_note += fmt::format(" Worst {}: {} ({:.3g}).", role, sum.worst, sum.worst_ratio);
+    if (referenced.empty()) continue;
+    const ErrorSummary sum = summarize_errors(referenced);
+    r.rows.push_back({txt(fmt::format("mean of {}", sum.count)), txt(role), num(sum.mean), num(sum.mean_per_file),
+                      num(sum.ratio_of_means)});
+    summary_note += fmt::format(" Worst {}: {} ({:.3g}).", role, sum.worst_record, sum.worst_ratio);
   }
   r.note = "ratio = the model's value / the record's own fit; a mean row's ratio is the ratio of the means." +
            summary_note;
