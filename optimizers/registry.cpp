@@ -221,6 +221,8 @@ std::vector<std::string> optimizer_names() {
   return names;
 }
 
+bool has_local_stage(const std::string& name) { return name == "ga-sqp" || name == "ga-lm"; }
+
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec) {
   for (const Entry& e : kOptimizers)
     if (spec.name == e.name) return e.make(spec);

@@ -53,6 +53,9 @@ struct OptimizerSpec {
 /// ga-lm.
 std::vector<std::string> optimizer_names();
 
+/// Whether `name` ends each run with a local stage from the population's best (the hybrids ga-sqp and ga-lm).
+bool has_local_stage(const std::string& name);
+
 /// Validates the spec and returns a factory that makes one run's optimizer from its bounds and run key.
 /// InputError: unknown optimizer ("unknown optimizer 'sa' (known: pso, ga, aga, de, cmaes, ga-sqp, ga-lm)"),
 /// unknown setting ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known

@@ -14,6 +14,7 @@
 #include "engine/common/statistics.hpp"
 #include "engine/common/table.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/fit_defaults.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/record_start.hpp"
@@ -178,8 +179,10 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
           {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
 }
 
-/// What to do about a fit that did not converge, by what stopped it.
-std::string not_converged_advice(const FitOutcome& fit) {
+/// What to do about a fit that did not converge, by what stopped it. `optimizer` ran the fit; `default_optimizer` is
+/// fit's default for the model (fit_defaults.hpp).
+std::string not_converged_advice(const FitOutcome& fit, const std::string& optimizer,
+                                 const std::string& default_optimizer) {
   if (!fit.auto_budget) return ": do not trust this fit; raise --runs, --pop or --iters, or use --budget auto";
   if (fit.auto_budget->stop == "time cap") return ": do not trust this fit; raise --max-seconds";
   const AutoBudgetReport& b = *fit.auto_budget;
@@ -191,6 +194,14 @@ std::string not_converged_advice(const FitOutcome& fit) {
                        "--max-evals)",
                        b.second_opinion_label(), b.second_opinion_optimizer->name, settings);
   }
+  // A population method gains precision slowly near an optimum (GA's mutation keeps its spread); where the model's
+  // default ends its runs with a local stage, that is the way out, not a larger cap.
+  const bool still_improving = b.last_restart_rel < -kRestartRel;
+  if (still_improving && !has_local_stage(optimizer) && has_local_stage(default_optimizer))
+    return fmt::format(": do not trust this fit; its restarts were still improving the best at the cap, and {} has no "
+                       "local stage to make it precise (fit with --optimizer {}, fit's default for this model, or "
+                       "raise --max-evals)",
+                       optimizer, default_optimizer);
   return ": do not trust this fit; raise --max-evals";
 }
 
@@ -286,7 +297,9 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
                            100 * c.median_above_best_rel, 100 * c.worst_above_best_rel, 100 * c.late_gain_rel,
                            100 * rule.late_fraction,
                            c.best_at_local_optimum ? ", in its local stage, which ended at its optimum" : "",
-                           c.converged ? "" : not_converged_advice(fit));
+                           c.converged ? ""
+                                       : not_converged_advice(fit, p.plan.optimizer,
+                                                              fit_plan(*p.model.model, {}, {}, {}, {}).optimizer));
   if (fit.auto_budget) std::cout << "Budget: " << fit.auto_budget->summary() << "\n";
   const Identification& id = fit.identification;
   std::cout << fmt::format("{} evaluations × {} samples in {:.3f} s ({:.3g} candidate-samples/s)\n", t.evaluations,

@@ -115,6 +115,32 @@ TEST(Cli, FitDefaultsRecoverASyntheticSpencerRecord) {
             std::string::npos) << r.output;
 }
 
+// A fit whose restarts were still improving when the cap stopped it gets the reason beside the verdict: an optimizer
+// without a local stage (ga) on a model whose default ends with one (ga-lm) is pointed to that default; a fit stopped
+// for another reason (its last restart ended above the best) is told to raise the cap only. Rounds of 2 × 8 × 4 and
+// 2 × 8 × 8 evaluations fit in the cap of 200, the next round does not.
+TEST(Cli, ACappedFitStillImprovingIsPointedToALocalStage) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "spencer.csv";
+  auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,alpha=9000,"
+                         "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int improving = 0;
+  for (int seed = 1; seed <= 3; ++seed) {
+    r = run_dampbench_json("fit --model mrd.spencer --optimizer ga --budget auto --pop 8 --iters 4 --runs 2 "
+                           "--max-evals 200 --seed " + std::to_string(seed) + " --data " + csv.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
+    ASSERT_NE(r.output.find("192 of 200 evaluations: stopped at the cap"), std::string::npos) << r.output;
+    const bool still_improving = r.output.find("the last restart improved the best by") != std::string::npos;
+    improving += still_improving;
+    const bool pointed = r.output.find("ga has no local stage to make it precise (fit with --optimizer ga-lm, fit's "
+                                       "default for this model, or raise --max-evals)") != std::string::npos;
+    EXPECT_EQ(pointed, still_improving) << r.output;
+    if (!still_improving) EXPECT_NE(r.output.find("do not trust this fit; raise --max-evals"), std::string::npos);
+  }
+  EXPECT_GE(improving, 1);  // a 4-generation GA restarted with 8 improves its best (measured: seeds 1 and 2)
+}
+
 TEST(Cli, SimulateOnAnInputFileUsesItsSamples) {
   const auto dir = temp_dir();
   write(dir / "in.csv", "t[ms],x[mm]\n0,0\n10,1\n20,2\n30,3\n40,4\n50,5\n60,6\n70,7\n80,8\n");
