@@ -1,6 +1,7 @@
 #include "optimizers/random_draws.hpp"
 
 #include "engine/common/random.hpp"
+#include "engine/common/vector_math.hpp"
 #include "engine/kernels/isa.hpp"
 
 namespace dampbench {
@@ -17,6 +18,13 @@ struct UniformLoop {
   static void run(const std::uint64_t* x, double* out, std::size_t n) {
 #pragma omp simd
     for (std::size_t i = 0; i < n; ++i) out[i] = to_uniform(mix64(x[i]));
+  }
+};
+/// Box–Muller over pairs of uniforms; its log and cos are libmvec's vector functions of the level.
+struct NormalLoop {
+  static void run(const double* uniform_pairs, double* out, std::size_t n) {
+#pragma omp simd
+    for (std::size_t i = 0; i < n; ++i) out[i] = box_muller(uniform_pairs[2 * i], uniform_pairs[2 * i + 1]);
   }
 };
 
@@ -46,6 +54,13 @@ void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<
   for (std::size_t s = 0; s < keys.size(); ++s)
     for (std::size_t d = 0; d < d_count; ++d) scratch[s * d_count + d] = keys[s] ^ mixed_counter(d);
   IsaClones<UniformLoop>::call(static_cast<const std::uint64_t*>(scratch.data()), out.data(), scratch.size());
+}
+
+void first_normals(std::span<const std::uint64_t> keys, int count, std::vector<double>& out,
+                   std::vector<double>& uniforms, std::vector<std::uint64_t>& scratch) {
+  first_uniforms(keys, 2 * count, uniforms, scratch);  // normal() draws two uniforms per normal, in order
+  out.resize(keys.size() * static_cast<std::size_t>(count));
+  IsaClones<NormalLoop>::call(static_cast<const double*>(uniforms.data()), out.data(), out.size());
 }
 
 }  // namespace dampbench

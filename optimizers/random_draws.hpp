@@ -24,4 +24,10 @@ void member_keys(std::uint64_t base, std::span<std::uint64_t> keys);
 void first_uniforms(std::span<const std::uint64_t> keys, int draws, std::vector<double>& out,
                     std::vector<std::uint64_t>& scratch);
 
+/// The first `count` normals of each stream: out[s·count + i] is what the (i + 1)-th normal() of
+/// RandomStream(keys[s]) returns, up to the last bits of the vector log and cos (libmvec at the active level, as
+/// the kernels' vector math). `out` is resized to keys.size() × count; `uniforms` and `scratch` are working storage.
+void first_normals(std::span<const std::uint64_t> keys, int count, std::vector<double>& out,
+                   std::vector<double>& uniforms, std::vector<std::uint64_t>& scratch);
+
 }  // namespace dampbench

@@ -54,6 +54,12 @@ constexpr std::uint64_t hash_name(std::string_view s) {
   return h;
 }
 
+/// A standard normal from two uniforms u1, u2 in [0, 1) (Box–Muller): √(−2 ln(1 − u1))·cos(2π·u2), with 1 − u1 in
+/// (0, 1]. RandomStream::normal() and the vector loop of first_normals() (optimizers/random_draws.hpp) share it.
+inline double box_muller(double u1, double u2) {
+  return std::sqrt(-2.0 * std::log(1.0 - u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
 /// A stream of random numbers fixed by its key: draw k is mix64(key ^ mix64(k)).
 class RandomStream {
  public:
@@ -72,9 +78,8 @@ class RandomStream {
 
   /// Standard normal by the Box–Muller transform (one draw used, no cached pair: keeps draws keyed).
   double normal() {
-    const double u1 = 1.0 - uniform();  // (0, 1]
-    const double u2 = uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+    const double u1 = uniform();
+    return box_muller(u1, uniform());
   }
 
  private:

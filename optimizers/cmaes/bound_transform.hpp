@@ -10,12 +10,17 @@
 // So every genotype maps into the box, the interior is not distorted, and a bound is reached at the genotype
 // −a (or 1 + a) where T is flat: an optimum on a bound is approached like an interior one, without piling
 // samples on the bound (what clipping does) or biasing the step-size (what a penalty does).
+#include <span>
+
 namespace dampbench {
 
 inline constexpr double kBoundTransformMargin = 0.05;  ///< a, on the unit interval
 
 /// T(g) ∈ [0, 1]; a non-finite g (only after a step size overflow, which a stopping test ends) maps to 1/2.
 double to_phenotype(double g);
+
+/// y[i] = to_phenotype(g[i]) for every i (y.size() ≥ g.size()), several at a time.
+void to_phenotypes(std::span<const double> g, std::span<double> y);
 
 /// A genotype g with T(g) = y for y ∈ [0, 1] (the one in [−a, 1 + a]); y is clamped to [0, 1] first.
 double to_genotype(double y);

@@ -141,10 +141,10 @@ void Cmaes::ask(CandidateBatch& batch, int first) {
     const auto r = static_cast<std::uint64_t>(runs_.size() - 1);
     strategy_->sample(hash_key({run_key_, r, static_cast<std::uint64_t>(strategy_->generation() + 1)}), samples_);
   }
-  std::vector<double> unit(static_cast<std::size_t>(batch_) * n_);
-  for (int i = 0; i < batch_; ++i)
-    for (int j = 0; j < n_; ++j) unit[static_cast<std::size_t>(i) * n_ + j] = to_phenotype(samples_(j, told_ + i));
-  write_asked(unit, batch, first);
+  // Samples told_ … told_ + batch − 1 are consecutive columns: one contiguous run of batch × n genotypes.
+  asked_unit_.resize(static_cast<std::size_t>(batch_) * n_);
+  to_phenotypes({samples_.col(told_).data(), asked_unit_.size()}, asked_unit_);
+  write_asked(asked_unit_, batch, first);
 }
 
 void Cmaes::tell(std::span<const double> values) {

@@ -112,6 +112,7 @@ class Cmaes final : public Optimizer {
   std::vector<double> sample_unit_;  ///< that sample's points in the unit box, row-major (batch_ × n_)
   std::optional<CmaStrategy> strategy_;
   Eigen::MatrixXd samples_;    ///< the current generation's genotypes (columns)
+  std::vector<double> asked_unit_;  ///< ask()'s phenotypes in the unit box, kept to reuse its storage
   std::vector<double> values_, asked_;  ///< the generation's values; the last ask's candidates, row-major
   int told_ = 0;               ///< samples of the current generation told so far
   int large_runs_ = 0;

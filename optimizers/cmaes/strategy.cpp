@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
+#include <utility>
 
 #include "engine/common/random.hpp"
+#include "optimizers/random_draws.hpp"
 
 namespace dampbench {
 
@@ -54,20 +55,24 @@ void CmaStrategy::set_weights() {
   chi_n_ = std::sqrt(n) * (1 - 1 / (4 * n) + 1 / (21 * n * n));
 }
 
-void CmaStrategy::sample(std::uint64_t generation_key, Eigen::MatrixXd& samples) const {
-  samples.resize(n_, lambda_);
-  Eigen::VectorXd z(n_);
-  for (int k = 0; k < lambda_; ++k) {
-    RandomStream rng(extend_key(generation_key, static_cast<std::uint64_t>(k)));
-    for (int i = 0; i < n_; ++i) z[i] = rng.normal();
-    samples.col(k) = m_ + sigma_ * (B_ * D_.cwiseProduct(z));
-  }
+void CmaStrategy::sample(std::uint64_t generation_key, Eigen::MatrixXd& samples) {
+  // Sample k's n normals are the first n of stream extend_key(generation_key, k), drawn for all λ in one vector
+  // loop (random_draws.hpp): column k of Z.
+  sample_keys_.resize(static_cast<std::size_t>(lambda_));
+  member_keys(generation_key, sample_keys_);
+  first_normals(sample_keys_, n_, normals_, uniforms_, key_scratch_);
+  const Eigen::Map<const Eigen::MatrixXd> z(normals_.data(), n_, lambda_);
+  samples.noalias() = (sigma_ * (B_ * D_.asDiagonal())) * z;
+  samples.colwise() += m_;
 }
 
 std::vector<int> CmaStrategy::ranking(std::span<const double> values) const {
-  std::vector<int> order(static_cast<std::size_t>(lambda_));
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return ranked(values[a]) < ranked(values[b]); });
+  const auto n = static_cast<std::size_t>(lambda_);
+  std::vector<std::pair<double, int>> keyed(n);
+  for (std::size_t i = 0; i < n; ++i) keyed[i] = {ranked(values[i]), static_cast<int>(i)};
+  std::sort(keyed.begin(), keyed.end());  // ties in index order, as a stable sort of the values gives them
+  std::vector<int> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].second;
   return order;
 }
 

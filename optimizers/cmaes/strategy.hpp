@@ -58,7 +58,7 @@ class CmaStrategy {
   [[nodiscard]] const Eigen::VectorXd& mean() const { return m_; }
   /// Writes the generation's λ samples as the columns of `samples`; sample k from the random stream
   /// (generation_key, k), n normal draws.
-  void sample(std::uint64_t generation_key, Eigen::MatrixXd& samples) const;
+  void sample(std::uint64_t generation_key, Eigen::MatrixXd& samples);
   /// One generation's update from the samples and their values, in the order sampled.
   void update(const Eigen::MatrixXd& samples, std::span<const double> values);
   /// The stopping test that holds after the last update, or "" (names in the header comment).
@@ -87,6 +87,8 @@ class CmaStrategy {
   int generation_ = 0, decomposed_at_ = 0;
   std::vector<double> bests_, medians_;  ///< per generation (failures as +inf)
   std::vector<char> equal_best_;          ///< per generation: best == k-th best
+  std::vector<std::uint64_t> sample_keys_, key_scratch_;  ///< sample()'s working storage
+  std::vector<double> normals_, uniforms_;
   std::string_view stop_;
 };
 

@@ -16,6 +16,7 @@
 
 #include "engine/common/random.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/kernels/isa.hpp"
 #include "models/registry.hpp"
 #include "optimizer_test_support.hpp"
 #include "optimizers/cmaes/bound_transform.hpp"
@@ -75,6 +76,24 @@ TEST(CmaesBoundTransform, MapsEveryGenotypeIntoTheBoxContinuously) {
   EXPECT_EQ(to_phenotype(1 + 0.05 + 0.3), to_phenotype(1 + 0.05 - 0.3));  // mirrored about 1 + a
   EXPECT_NEAR(to_phenotype(0.3 + 2.2), 0.3, 1e-15);                       // period 2 (1 + 2a)
   EXPECT_EQ(to_phenotype(std::numeric_limits<double>::infinity()), 0.5);
+}
+
+// The vector loop gives to_phenotype's bits at every level, on every piece, fold and non-finite genotype.
+TEST(CmaesBoundTransform, ManyAtOnceAreEachOnesBits) {
+  std::vector<double> g;
+  for (double x = -7.3; x <= 7.3; x += 0.0137) g.push_back(x);
+  for (const double x : {-0.05, 0.05, 0.95, 1.05, 1.6, -0.6, 1e300, -1e300}) g.push_back(x);
+  g.push_back(std::numeric_limits<double>::infinity());
+  g.push_back(-std::numeric_limits<double>::infinity());
+  g.push_back(std::numeric_limits<double>::quiet_NaN());
+  const Isa saved = active_isa();
+  for (const Isa isa : supported_isas()) {
+    select_isa(isa);
+    std::vector<double> y(g.size());
+    to_phenotypes(g, y);
+    for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(y[i], to_phenotype(g[i])) << isa_name(isa) << " g " << g[i];
+  }
+  select_isa(saved);
 }
 
 // ---- known answers ------------------------------------------------------------------------------------
