@@ -42,7 +42,7 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
                 "until they converge and a second opinion finds nothing lower) or fixed");
   c->add_option("--max-evals", fit.max_evaluations,
                 "cap of the automatic budget, in evaluations over every run and restart (default 64 x the first "
-                "round's runs x pop x iters)");
+                "round's evaluations, plus the second opinion's)");
   c->add_option("--max-seconds", fit.max_seconds,
                 "wall-clock cap of the automatic budget (a fit it stops is not reproducible bit for bit)");
   c->add_option("--seed", fit.seed, "seed (default 1)");

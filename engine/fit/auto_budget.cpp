@@ -54,9 +54,7 @@ bool stopped_before_converging(std::string_view summary) {
   return summary.find(" evaluations: stopped ") != std::string_view::npos;
 }
 
-long long default_cap(int runs, int population, int iterations) {
-  return 64LL * runs * population * iterations;
-}
+long long default_cap(long long round0, long long second_opinion) { return 64 * round0 + second_opinion; }
 
 bool restart_confirms(double before, double restart) {
   if (!std::isfinite(before) || !std::isfinite(restart)) return false;
@@ -155,6 +153,32 @@ T tighter(T rule, T limit) {
   return rule > 0 ? std::min(rule, limit) : limit;
 }
 
+/// One identify(): its runs, the evaluations they spent, whether a wall-clock limit stopped one.
+struct Pass {
+  Identification id;
+  long long spent = 0;
+  bool timed_out = false;
+};
+Pass run_pass(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
+              const OptimizerSpec& spec, const IdentificationSettings& settings) {
+  Pass p{identify(model, data, bounds, make_optimizer_factory(spec), settings)};
+  for (const RunResult& r : p.id.runs) {
+    p.spent += r.evaluations;
+    p.timed_out = p.timed_out || r.stop_reason == "wall_time";
+  }
+  return p;
+}
+
+/// Puts the second opinion's pass by `optimizer` in the report (its evaluations count in the fit's); whether its
+/// wall-clock limit fired.
+bool record_second_opinion(const Pass& opinion, const OptimizerSpec& optimizer, AutoBudgetReport& report) {
+  report.second_opinion_evaluations = opinion.spent;
+  report.evaluations += opinion.spent;
+  report.second_opinion_optimizer = optimizer;
+  report.second_opinion_best = best_of(opinion.id);
+  return opinion.timed_out;
+}
+
 /// The progress line of round k: where the chains stand and what is spent.
 std::string round_line(int k, int iterations, double best, const Convergence& verdict, const AutoBudgetReport& report) {
   return fmt::format("automatic budget: round {} ({} iterations): best {:.6g}, median run {:.3g} % above it; "
@@ -191,26 +215,18 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       budget.optimizer.population > 0 ? budget.optimizer.population : cmaes_default_population(free);
   const long long nominal = static_cast<long long>(runs) * population * budget.optimizer.iterations;
   report = {};
-  report.cap = budget.max_evaluations > 0 ? budget.max_evaluations : default_cap(runs, population,
-                                                                                 budget.optimizer.iterations);
+  const bool given_cap = budget.max_evaluations > 0;
+  long long round0 = nominal;  // round 0's evaluations, once it ran (a local stage adds to R·P·I)
+  const auto update_default_cap = [&] {
+    if (!given_cap) report.cap = default_cap(round0, report.second_opinion_evaluations);
+  };
+  report.cap = given_cap ? budget.max_evaluations : default_cap(nominal, 0);
   report.last_restart_rel = std::numeric_limits<double>::infinity();
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-
-  // One identify() under the wall-clock cap's remainder: its runs, the evaluations they spent, whether it fired.
-  struct Pass {
-    Identification id;
-    long long spent = 0;
-    bool timed_out = false;
-  };
   const auto pass = [&](const OptimizerSpec& spec, IdentificationSettings s) {
     if (budget.max_seconds > 0) s.budget.max_wall_time_s = tighter(s.budget.max_wall_time_s, budget.max_seconds - elapsed());
-    Pass p{identify(model, data, bounds, make_optimizer_factory(spec), s)};
-    for (const RunResult& r : p.id.runs) {
-      p.spent += r.evaluations;
-      p.timed_out = p.timed_out || r.stop_reason == "wall_time";
-    }
-    return p;
+    return run_pass(model, data, bounds, spec, s);
   };
 
   Identification chains;
@@ -225,6 +241,8 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     bool timed_out = round.timed_out;
     report.evaluations += round.spent;
     report.iterations.push_back(spec.iterations);
+    if (k == 0) round0 = std::max(nominal, round.spent);
+    update_default_cap();
     const double before = best_of(chains), restart = best_of(round.id);
     append_round(chains, round.id);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
@@ -240,12 +258,8 @@ Identification identify_until_converged(const Model& model, const std::vector<co
       IdentificationSettings o = settings;
       o.task_key = hash_key({settings.task_key, kSecondOpinionKey});
       o.runs = second_opinion_runs(model, settings.runs);
-      const Pass opinion = pass(other, o);
-      timed_out = timed_out || opinion.timed_out;
-      report.second_opinion_evaluations = opinion.spent;
-      report.evaluations += opinion.spent;
-      report.second_opinion_optimizer = other;
-      report.second_opinion_best = best_of(opinion.id);
+      timed_out = record_second_opinion(pass(other, o), other, report) || timed_out;
+      update_default_cap();
       if (progress)
         progress(fmt::format("automatic budget: second opinion ({}, {} runs): best {:.6g}",
                              report.second_opinion_label(), o.runs, report.second_opinion_best));

@@ -49,7 +49,7 @@ inline constexpr double kRestartRel = 1e-3;
 
 struct AutoBudget {
   OptimizerSpec optimizer;        ///< round 0's optimizer; later rounds double its iterations
-  long long max_evaluations = 0;  ///< cap over every round and run (local phases included); 0 = default_cap
+  long long max_evaluations = 0;  ///< cap over every round and run (local phases included); 0 = default_cap()
   double max_seconds = 0;         ///< wall-clock cap; 0 = none
 };
 
@@ -81,8 +81,11 @@ struct AutoBudgetReport {
 /// Whether a summary() (a sweep group's stored message) says the budget stopped before converging.
 bool stopped_before_converging(std::string_view summary);
 
-/// 64 × round 0's budget R·P·I: room for five restarts (1 + 2 + 4 + 8 + 16 + 32 = 63).
-long long default_cap(int runs, int population, int iterations);
+/// The cap when none is given: 64 × round 0's evaluations, plus the second opinion's once it ran: room for five
+/// restarts (1 + 2 + 4 + 8 + 16 + 32 = 63 round 0s) whatever the second opinion costs (50 de runs beside a fit of 10
+/// are 5 of its round 0s) and whatever a hybrid's local stage adds to each round (round 0's evaluations include
+/// it, and it does not double with the iterations). `round0` is at least R·P·I.
+long long default_cap(long long round0, long long second_opinion);
 
 /// Whether a restart whose best is `restart` confirms the chains' best `before` it: |restart − before| within
 /// kRestartRel of the better of the two (plus ConvergenceRule::abs_tol); never when either is not finite.

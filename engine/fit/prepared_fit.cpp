@@ -83,7 +83,8 @@ PreparedFit prepare_fit(const FitSpec& spec) {
                               "fixed budget)",
                               p.plan.why.empty() ? "" : "; ",
                               p.auto_budget->max_evaluations > 0 ? fmt::format("{}", p.auto_budget->max_evaluations)
-                                                                 : std::string("64 × the first round's"));
+                                                                 : std::string("64 × the first round's (plus the "
+                                                                               "second opinion's)"));
   p.records = command_records(model, spec.paths, spec.records, spec.data, "fit");
   p.seed = spec.seed;
   p.stop = spec.stop;

@@ -113,9 +113,10 @@ SweepSpec parse_sweep_text(std::string_view text, const std::string& path, const
   }
   // The salt names the meaning of the keys: a file without a budget means the automatic budget since sweep-2, and
   // without a precision the float32 search lanes of precision = "mixed" since sweep-3, and the automatic budget
-  // lengthens its restarts and waits for one to confirm the best since sweep-4, so a store written under an
-  // earlier meaning is not resumed by a build that reads the same text differently.
-  std::uint64_t h = hash_name("dampbench-sweep-5");
+  // lengthens its restarts and waits for one to confirm the best since sweep-4, asks a second opinion since sweep-5,
+  // and its default cap makes room for the second opinion and local stages since sweep-6, so a store written under
+  // an earlier meaning is not resumed by a build that reads the same text differently.
+  std::uint64_t h = hash_name("dampbench-sweep-6");
   for (const auto& p : spec.parts) h = hash_key({h, hash_name(p.name), hash_name(p.canonical)});
   spec.hash = hex64(h);
   spec.notes = std::move(notes);

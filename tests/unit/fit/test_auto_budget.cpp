@@ -81,7 +81,8 @@ TEST(AutoBudget, RoundIterationsDouble) {
   EXPECT_EQ(round_iterations({"ga", 50, 100}, 0), 100);
   EXPECT_EQ(round_iterations({"ga", 50, 100}, 3), 800);
   EXPECT_EQ(round_iterations({"cmaes", 0, 30}, 2), 120);
-  EXPECT_EQ(default_cap(4, 50, 100), 64LL * 4 * 50 * 100);
+  EXPECT_EQ(default_cap(4LL * 50 * 100, 0), 64LL * 4 * 50 * 100);
+  EXPECT_EQ(default_cap(20'000 + 1'234, 250'000), 64LL * 21'234 + 250'000);
 }
 
 /// The noisy Kwok rotary-damper record of the optimizer tests: 6 parameters, 0.5 % noise.
@@ -127,7 +128,10 @@ TEST(AutoBudget, GenerousCapConvergesStarvedCapIsFlagged) {
   // One progress line per round, and one for the second opinion after the round that asked for it.
   ASSERT_EQ(told.size(), generous.iterations.size() + 1);
   EXPECT_EQ(told[0].rfind("automatic budget: round 0 (100 iterations): best ", 0), 0u) << told[0];
-  EXPECT_NE(told[1].find(fmt::format("of {} evaluations", generous.cap)), std::string::npos) << told[1];
+  // The default cap: 64 × round 0 (10 × 50 × 100, ga has no local stage) until the second opinion, then its
+  // evaluations on top.
+  EXPECT_NE(told[1].find(fmt::format("of {} evaluations", 64LL * 10 * 50 * 100)), std::string::npos) << told[1];
+  EXPECT_EQ(generous.cap, 64LL * 10 * 50 * 100 + generous.second_opinion_evaluations);
   int opinions = 0;
   for (const std::string& line : told)
     opinions += line.rfind("automatic budget: second opinion (de, 50 runs): best ", 0) == 0 ? 1 : 0;
@@ -195,6 +199,23 @@ TEST(AutoBudget, ASecondOpinionKeepsASharedHigherBasinFromPassingAsConverged) {
   EXPECT_GE(report.iterations.size(), 3u) << "the rounds stopped at the second opinion: " << report.summary();
   EXPECT_NE(report.summary().find("a second opinion (de) found"), std::string::npos) << report.summary();
   EXPECT_FALSE(assess_convergence(chains, {}, report.stop != "converged").converged);
+}
+
+// The default cap leaves room for five restarts whatever the second opinion costs: beside a fit of 10 cmaes runs it
+// takes 50 de runs (5 of the fit's round 0s), which under a cap of 64 round 0s alone would leave no room for the
+// sixth round (1 + 2 + 4 + 8 + 16 round 0s + 5 spent, 32 more needed). cmaes never converges on this record (its
+// runs share the plateau the second opinion sees below), so the fit runs every round the cap allows.
+TEST(AutoBudget, TheDefaultCapLeavesRoomForFiveRestartsBesideTheSecondOpinion) {
+  const KwokProblem p;
+  const OptimizerSpec cmaes{"cmaes", 50, 100};
+  AutoBudgetReport report;
+  (void)p.run({cmaes, 0, 0}, 10, report);
+  ASSERT_GT(report.second_opinion_evaluations, 4 * 10LL * 50 * 100) << "no second opinion: the case tests nothing; "
+                                                                    << report.summary();
+  EXPECT_EQ(report.stop, "cap") << report.summary();
+  EXPECT_EQ(report.iterations, (std::vector<int>{100, 200, 400, 800, 1600, 3200})) << report.summary();
+  EXPECT_EQ(report.cap, 64LL * 10 * 50 * 100 + report.second_opinion_evaluations);
+  EXPECT_LE(report.evaluations, report.cap);
 }
 
 // The second opinion is another optimizer at fit's defaults for the model: de on an algebraic model (ga-lm for de
