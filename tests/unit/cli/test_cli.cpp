@@ -39,6 +39,16 @@ void expect_error(const std::string& args, const std::string& message) {
   EXPECT_NE(r.output.find(message), std::string::npos) << "args: " << args << "\noutput: " << r.output;
 }
 
+/// A noise-free Spencer record (10 mm, 1 Hz, like the UTFSM tests) from parameters inside the default box.
+std::filesystem::path synthetic_spencer_record() {
+  const auto csv = temp_dir() / "spencer.csv";
+  const auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,"
+                               "alpha=9000,beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " +
+                               csv.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return csv;
+}
+
 }  // namespace
 
 TEST(Cli, ModelsJsonListsEveryFvdModel) {
@@ -84,11 +94,8 @@ TEST(Cli, SimulateThenFitRecoversParameters) {
 // default (pso 50 × 100) ends at nrmse 2e-3 to 1.5e-2 with disagreeing runs.
 // α, β, γ and A are known up to the scale of z (z → s·z: α/s, s·A, β/sⁿ, γ/sⁿ), so α·A and β/γ are checked.
 TEST(Cli, FitDefaultsRecoverASyntheticSpencerRecord) {
-  const auto dir = temp_dir();
-  const auto csv = dir / "spencer.csv";
-  auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,alpha=9000,"
-                         "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " + csv.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto csv = synthetic_spencer_record();
+  testing::CommandResult r;
   retry(3, [&](int attempt) {
     r = run_dampbench_json("fit --model mrd.spencer --metric nrmse --format json --seed " +
                            std::to_string(attempt + 1) + " --data " + csv.string());
@@ -120,11 +127,8 @@ TEST(Cli, FitDefaultsRecoverASyntheticSpencerRecord) {
 // for another reason (its last restart ended above the best) is told to raise the cap only. Rounds of 2 × 8 × 4 and
 // 2 × 8 × 8 evaluations fit in the cap of 200, the next round does not.
 TEST(Cli, ACappedFitStillImprovingIsPointedToALocalStage) {
-  const auto dir = temp_dir();
-  const auto csv = dir / "spencer.csv";
-  auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,alpha=9000,"
-                         "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " + csv.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto csv = synthetic_spencer_record();
+  testing::CommandResult r;
   int improving = 0;
   for (int seed = 1; seed <= 3; ++seed) {
     r = run_dampbench_json("fit --model mrd.spencer --optimizer ga --budget auto --pop 8 --iters 4 --runs 2 "
