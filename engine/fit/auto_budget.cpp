@@ -241,8 +241,10 @@ Identification identify_until_converged(const Model& model, const std::vector<co
     bool timed_out = round.timed_out;
     report.evaluations += round.spent;
     report.iterations.push_back(spec.iterations);
-    if (k == 0) round0 = std::max(nominal, round.spent);
-    update_default_cap();
+    if (k == 0) {
+      round0 = std::max(nominal, round.spent);
+      update_default_cap();
+    }
     const double before = best_of(chains), restart = best_of(round.id);
     append_round(chains, round.id);
     const bool confirmed = k > 0 && restart_confirms(before, restart);
