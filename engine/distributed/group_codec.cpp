@@ -187,6 +187,7 @@ std::string encode_group(const sweep::GroupRecord& g) {
   w.put(g.build_flags);
   w.put(g.spec_hash);
   w.put(g.dataset_hash);
+  w.put(g.laws);
   w.put(g.run_results);
   w.put(g.dataset_metrics);
   w.put(g.sensitivity);
@@ -217,6 +218,7 @@ sweep::GroupRecord decode_group(std::string_view bytes) {
   r.get(g.build_flags);
   r.get(g.spec_hash);
   r.get(g.dataset_hash);
+  r.get(g.laws);
   r.get(g.run_results);
   r.get(g.dataset_metrics);
   r.get(g.sensitivity);

@@ -121,6 +121,16 @@ std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::st
   return folds;
 }
 
+bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule) {
+  const auto near = [&](std::string_view v) {
+    const auto x = a.law_variables.find(std::string(v)), y = b.law_variables.find(std::string(v));
+    return x != a.law_variables.end() && y != b.law_variables.end() && same_value(x->second, y->second);
+  };
+  constexpr std::string_view kLeaveOne = "leave-one:";
+  if (rule.starts_with(kLeaveOne)) return near(rule.substr(kLeaveOne.size()));
+  return rule == "leave-setting" && near("amp") && near("freq");
+}
+
 double record_metric(const Model& model, std::span<const double> parameters, const Signals& record, Metric metric) {
   if (static_cast<int>(parameters.size()) != model.dim())
     throw InputError(fmt::format("{} has {} parameters, got {}", model.id(), model.dim(), parameters.size()));
@@ -233,14 +243,6 @@ class References {
   std::map<const Signals*, std::pair<double, std::string>> done_;
 };
 
-/// Two records of one amplitude–frequency setting, as make_folds groups them (same_value).
-bool same_setting(const Signals& a, const Signals& b) {
-  const auto near = [&](const char* v) {
-    const auto x = a.law_variables.find(v), y = b.law_variables.find(v);
-    return x != a.law_variables.end() && y != b.law_variables.end() && same_value(x->second, y->second);
-  };
-  return near("amp") && near("freq");
-}
 
 /// A fold of a `--laws auto` fit: its laws chosen and fitted on the fold's records alone.
 FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
@@ -293,7 +295,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
     for (int i : fold.predict) predicted.push_back(request.records[i]);
     if (plan.spec.folds == "leave-setting")  // the --predict records of the left-out setting too
       for (const Signals* r : plan.predict.pointers())
-        if (same_setting(*r, *request.records[fold.predict.front()])) predicted.push_back(r);
+        if (same_fold_value(*r, *request.records[fold.predict.front()], plan.spec.folds)) predicted.push_back(r);
     h.folds.push_back(fold_fit(fold, request.records, f, predicting, predicted));
     for (const Signals* r : predicted) {
       const double metric = record_metric(predicting, f.best().best_params, *r, h.metric);

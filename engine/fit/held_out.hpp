@@ -38,6 +38,10 @@ struct Fold {
 /// or a rule that gives fewer than two folds.
 std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where);
 
+/// Whether record `a` has the value by which `rule` groups record `b` (the same setting for leave-setting, the same
+/// VAR for leave-one:VAR; values within a relative 1e-9): a record that the fold leaving `b` out predicts too.
+bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule);
+
 /// The metric of a model with given parameters on one record (what predicting a held-out record means): the
 /// evaluation `evaluate` prints (BatchEvaluator::evaluate_all), so the two agree bit for bit.
 double record_metric(const Model& model, std::span<const double> parameters, const Signals& record, Metric metric);

@@ -235,12 +235,16 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
   return out;
 }
 
+std::string chosen_laws_text(const LawSelection& selection) {
+  return selection.laws.empty() ? selection.parameters.at(0) + "=free" : selection.laws;
+}
+
 FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection) {
   const ResolvedModel gauged = gauged_model(*search.base);
   selection = select_laws(search, gauged, fit_each_record(search, gauged));
   ModelChoice choice;
   choice.model = std::string(search.base->id());
-  choice.laws = selection.laws.empty() ? "c0=free" : selection.laws;  // a law model, so that the gauge applies
+  choice.laws = chosen_laws_text(selection);
   choice.option_prefix = "--";
   fitted_model = resolve_model(choice);
   if (fitted_model.model->dim() != static_cast<int>(selection.start.size()))

@@ -71,6 +71,10 @@ struct LawSelection {
   Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
 };
 
+/// The laws of the chosen law model: the chosen ones, or the first parameter `free` when every parameter is shared
+/// (a law model still, so that the state gauge applies).
+std::string chosen_laws_text(const LawSelection& selection);
+
 /// Step 2 on the per-record parameters of step 1 (same order as search.records).
 LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
                          const std::vector<std::vector<double>>& per_record);

@@ -48,19 +48,15 @@ std::optional<AutoBudget> auto_budget_of(const FitSpec& spec, const OptimizerSpe
 PreparedFit prepare_fit(const FitSpec& spec) {
   PreparedFit p;
   ModelChoice choice = spec.model;
-  p.auto_laws = choice.laws == "auto";
-  if (p.auto_laws) {
-    if (!choice.bounds.empty())
-      throw InputError("--bounds with --laws auto: the laws' coefficients are not known before they are chosen");
-    choice.laws.clear();
-  }
+  p.auto_laws = chooses_laws(choice);
   if (!spec.start.empty() && spec.start != "per-file")
     throw InputError(fmt::format("--start: expected per-file, got '{}'", spec.start));
   p.start_per_file = spec.start == "per-file";
   if (p.start_per_file && p.auto_laws)
     throw InputError("--start per-file with --laws auto: --laws auto always starts from the records' own fits");
+  p.model = resolve_model(choice);  // with --laws auto: the base model, before its laws are chosen
+  if (p.auto_laws) choice.laws.clear();
   p.choice = choice;
-  p.model = resolve_model(choice);
   const Model& model = *p.model.model;
   p.metric = parse_metric(spec.metric);
   p.search_precision = parse_search_precision(spec.precision, "--precision");

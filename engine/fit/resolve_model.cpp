@@ -11,6 +11,18 @@
 namespace dampbench {
 
 ResolvedModel resolve_model(const ModelChoice& choice) {
+  if (chooses_laws(choice)) {
+    const std::string& p = choice.option_prefix;
+    if (!choice.fixture.empty())
+      throw InputError(fmt::format("{}laws auto chooses laws on a registered model: give {}model, not the fixture '{}'", p,
+                                   p, choice.fixture));
+    if (!choice.bounds.empty())
+      throw InputError(fmt::format("{}bounds with {}laws auto: the laws' coefficients are not known before they are "
+                                   "chosen", p, p));
+    ModelChoice base = choice;
+    base.laws.clear();
+    return resolve_model(base);
+  }
   ResolvedModel r;
   if (!choice.fixture.empty()) {
     FixtureModel fx = make_fixture_model(find_fixture(choice.fixture));

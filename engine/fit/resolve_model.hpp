@@ -39,7 +39,13 @@ struct ResolvedModel {
   [[nodiscard]] Bounds bounds_for(std::span<const Signals* const> records) const;
 };
 
-/// Builds the model of a choice; InputError for unknown names, bad laws or bad bounds.
+/// `laws = "auto"` (`fit --laws auto`, a sweep's `laws = "auto"`): each fit chooses its own laws
+/// (engine/fit/law_selection.hpp).
+inline bool chooses_laws(const ModelChoice& choice) { return choice.laws == "auto"; }
+
+/// Builds the model of a choice; InputError for unknown names, bad laws or bad bounds. A choice that chooses its
+/// laws resolves to the registered model the laws will act on (no fixture, no bounds: the coefficients are not known
+/// before the laws are).
 ResolvedModel resolve_model(const ModelChoice& choice);
 
 }  // namespace dampbench

@@ -54,7 +54,7 @@ class StoreSources {
       f.condition = fs.label;
       f.model_name = h.models.at(static_cast<std::size_t>(h.model(g.part, g.model))).name;
       f.optimizer = h.optimizers.at(static_cast<std::size_t>(h.optimizer(g.part, g.optimizer))).label;
-      f.model = &results_.model(g.part, g.model);
+      f.model = &results_.model(g);
       f.metric = g.metric;
       for (int d : fs.fit) f.fit.push_back(h.dataset(g.part, d));
       for (int d : fs.predict) f.predict.push_back(h.dataset(g.part, d));

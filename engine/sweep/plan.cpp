@@ -8,6 +8,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
+#include "engine/fit/held_out.hpp"
 #include "engine/sweep/fingerprint.hpp"
 
 namespace dampbench::sweep {
@@ -121,6 +122,40 @@ std::vector<FitSet> fitsets_by_variables(const PartSpec& part, const SplitSpec& 
   return fitsets;
 }
 
+/// Fit sets of a split with `folds`: one per fold of the fit datasets (make_folds), fitted on the other folds'
+/// datasets and predicting its own with the `predict` datasets that have the value it leaves out; a dataset that
+/// failed to load forms a fit set of its own (it fails with its loading message).
+std::vector<FitSet> fitsets_by_folds(const PartSpec& part, const SplitSpec& split, const std::vector<LoadedDataset>& data,
+                                     const std::vector<int>& fit, const std::vector<int>& predict,
+                                     const std::string& where) {
+  std::vector<FitSet> fitsets;
+  std::vector<int> loaded;
+  std::vector<const Signals*> records;
+  for (int d : fit) {
+    if (data[d].ok()) {
+      loaded.push_back(d);
+      records.push_back(&data[d].signals);
+    } else {
+      fitsets.push_back({{d}, {}, part.datasets[d].name, part.datasets[d].name});
+    }
+  }
+  for (const Fold& fold : make_folds(records, split.folds, where + ": folds")) {
+    FitSet fs;
+    for (int i : fold.fit) fs.fit.push_back(loaded[i]);
+    for (int i : fold.predict) fs.predict.push_back(loaded[i]);
+    const Signals& left_out = *records[fold.predict.front()];
+    for (int p : predict)
+      if (data[p].ok() && same_fold_value(data[p].signals, left_out, split.folds) &&
+          std::find(fs.predict.begin(), fs.predict.end(), p) == fs.predict.end())
+        fs.predict.push_back(p);
+    fs.predict = without(fs.predict, fs.fit);
+    fs.label = fold.name;
+    fs.key_name = datasets_key(part, fs.fit);
+    fitsets.push_back(std::move(fs));
+  }
+  return fitsets;
+}
+
 SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::vector<LoadedDataset>& data) {
   SplitPlan sp;
   std::vector<int> candidates;
@@ -152,6 +187,10 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
       for (int d : fit) sp.fitsets.push_back({{d}, without(predict, {d}), name_of(d), name_of(d)});
       break;
     case SplitSpec::By::all:
+      if (!split.folds.empty()) {
+        sp.fitsets = fitsets_by_folds(part, split, data, fit, predict, where);
+        break;
+      }
       sp.fitsets.push_back({fit, without(predict, fit),
                             fit.size() == 1 ? name_of(fit[0]) : split.name.empty() ? "all" : split.name, key_of(fit)});
       break;

@@ -20,6 +20,7 @@
 #include "engine/common/error.hpp"
 #include "engine/evaluation/sensitivity.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/law_selection.hpp"
 #include "engine/fit/record_start.hpp"
 #include "engine/sweep/fingerprint.hpp"
 #include "engine/sweep/progress.hpp"
@@ -76,8 +77,16 @@ std::optional<SensitivityRecord> group_sensitivity(const PartPlan& part, const G
   return SensitivityRecord{fs.fit[0], s.S, s.SP};
 }
 
+/// A group's fit, and the law model its parameters belong to when the group chose its laws.
+struct GroupFit {
+  FitOutcome outcome;
+  ResolvedModel chosen;  ///< laws = "auto": the chosen law model (engine/fit/law_selection.hpp); else empty
+  std::string laws;      ///< its laws (GroupRecord::laws)
+  [[nodiscard]] const Model& model(const Model& part_model) const { return chosen.model ? *chosen.model : part_model; }
+};
+
 /// The fit of a group (engine/fit): its model, fit datasets, optimizer and budget, keyed by the group's task key.
-FitOutcome fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records) {
+GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records) {
   const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
   FitRequest request;
   request.model = &part.models[g.model];
@@ -91,10 +100,18 @@ FitOutcome fit_group(const PartPlan& part, const GroupRef& g, const std::vector<
   request.settings.search_precision = opt.search_precision;
   if (opt.auto_budget) request.auto_budget = AutoBudget{opt.spec, opt.max_total_evaluations, 0};
   const ModelSpec& entry = part.spec->models[g.model];
+  GroupFit out;
+  if (chooses_laws(entry)) {  // as `fit --laws auto`, at the entry's fixed budget (the spec refuses another)
+    LawSelection selection;
+    out.outcome = fit_with_auto_laws(law_search(request, *request.model->model, opt.spec.name), out.chosen, selection);
+    out.laws = chosen_laws_text(selection);
+    return out;
+  }
   if (entry.start == "per-file")  // as `fit --start per-file`: from the laws fitted to each record's own fit
     request.start = start_from_record_fits(law_search(request, *request.model->model, opt.spec.name), entry,
                                            *request.model->model);
-  return run_fit(request);
+  out.outcome = run_fit(request);
+  return out;
 }
 
 }  // namespace
@@ -110,8 +127,10 @@ GroupRecord run_group(const Plan& plan, long long index) {
   rec.spec_hash = plan.spec().hash;
   rec.dataset_hash = plan.group_dataset_hash(g);
   try {
-    const Model& model = *part.models[g.model].model;
-    const FitOutcome fit = fit_group(part, g, group_records(part, fs, model));
+    const GroupFit group_fit = fit_group(part, g, group_records(part, fs, *part.models[g.model].model));
+    const FitOutcome& fit = group_fit.outcome;
+    const Model& model = group_fit.model(*part.models[g.model].model);
+    rec.laws = group_fit.laws;
     const Identification& id = fit.identification;
     rec.wall_time_s = id.wall_time_s;
     rec.candidate_samples = id.candidate_samples;
@@ -128,6 +147,7 @@ GroupRecord run_group(const Plan& plan, long long index) {
     rec.failed = true;
     rec.message = e.what();
     rec.run_results.clear();
+    rec.laws.clear();
     rec.dataset_metrics.clear();
     rec.sensitivity.reset();
     rec.identifiability.reset();

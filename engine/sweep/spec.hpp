@@ -13,7 +13,8 @@
 //   seed = 1 [1]   runs = 10 [50]         runs per task group (an optimizer's `runs` overrides)
 //   metric = "nrmse" [of_abs]             or metrics = ["nrmse", "rmse"]: each optimized in its own tasks
 //   models = ["mrd.bingham", ...]         ids (or law fixtures), or [[models]] tables:
-//       name, model | fixture, laws = "c0=poly(I,1);n=2", bounds = "c0=0:1e4,...", optimizers = ["ga"]
+//       name, model | fixture, laws = "c0=poly(I,1);n=2" | "auto", bounds = "c0=0:1e4,...", optimizers = ["ga"],
+//       start = "per-file"; laws = "auto" chooses each group's laws as `fit --laws auto` does (engine/fit/law_selection.hpp)
 //   [bounds] "model name" = "p=lo:hi,..." (the fvd preset's form)
 //   [optimizer] or [[optimizers]]:         label [name], name [pso], population [50], iterations [100],
 //       runs, settings = { pc = 0.6 }, max_evaluations, target, stall_iterations
@@ -25,7 +26,8 @@
 //       A glob's records are named by file stem.
 //   [[splits]] (default: one split fitting every dataset alone): name, datasets (entry names), models,
 //       optimizers, fit = { I = [0, 0.5], amp = 0.01 } or an array of such tables (any of), predict = {...},
-//       by = "each" | "all" | ["I"], sensitivity = true | { points, range, objective, normalized, where }
+//       by = "each" | "all" | ["I"], folds = "leave-setting" | "leave-one:I" (held-out folds of the fit datasets),
+//       sensitivity = true | { points, range, objective, normalized, where }
 //   tables = "fvd" [fvd] | ["runs", ...] | [[tables]] with kind, name, title, paper, split (name or list), models,
 //       optimizers, metric, role (fit | predict), where, target_rel   (kinds: engine/sweep/tables.hpp)
 //   [[regressions]]: name, model, split, optimizer, laws = "c_r=poly(phi,3)", where, paper
@@ -116,6 +118,10 @@ struct SplitSpec {
   std::optional<Selection> predict;
   By by = By::each;
   std::vector<std::string> by_variables;
+  /// Held-out folds of the fit datasets (engine/fit/held_out.hpp make_folds): "leave-setting" or "leave-one:VAR";
+  /// one fit set per fold, fitted on the other folds' datasets and predicting its own with the `predict` datasets of
+  /// the value it leaves out. "" for none; implies by = "all".
+  std::string folds;
   SensitivitySpec sensitivity;
 };
 

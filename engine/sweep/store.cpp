@@ -165,12 +165,13 @@ void Store::write(const GroupRecord& g) {
       Stmt del(db_, fmt::format("DELETE FROM {} WHERE grp=?", table).c_str());
       del.bind(1, g.index).run();
     }
-    Stmt s(db_, "INSERT INTO groups VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    Stmt s(db_, "INSERT INTO groups VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     s.bind(1, g.index).bind(2, g.part).bind(3, g.split).bind(4, g.fitset).bind(5, g.model).bind(6, g.optimizer)
         .bind(7, std::string(metric_name(g.metric))).bind(8, g.runs).bind(9, fmt::format("{:016x}", g.task_key))
         .bind(10, std::string(g.failed ? "failed" : "done")).bind(11, g.message).bind(12, g.wall_time_s)
         .bind(13, g.candidate_samples).bind(14, g.evaluations).bind(15, g.dampbench_version).bind(16, g.build_flags)
-        .bind(17, g.spec_hash).bind(18, g.dataset_hash).bind(19, g.finished_at.empty() ? now_utc() : g.finished_at).run();
+        .bind(17, g.spec_hash).bind(18, g.dataset_hash).bind(19, g.finished_at.empty() ? now_utc() : g.finished_at)
+        .bind(20, g.laws).run();
     Stmt r(db_, "INSERT INTO runs VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const auto& x : g.run_results)
       r.bind(1, g.index).bind(2, x.run).bind(3, x.best_value).bind(4, x.metrics).bind(5, x.params)

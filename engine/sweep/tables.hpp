@@ -33,6 +33,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "engine/common/table.hpp"
@@ -64,10 +65,13 @@ class StoreResults {
   std::vector<PartSpec> parts;  ///< each part's spec re-read from the stored text (tables, regressions)
 
   [[nodiscard]] const Model& model(int part, int model) const;
+  /// The model of a group's parameters: its part's model, or the law model the group chose (GroupRecord::laws).
+  [[nodiscard]] const Model& model(const GroupRecord& g) const;
   [[nodiscard]] int part_count() const { return static_cast<int>(header.parts.size()); }
 
  private:
   std::vector<std::vector<ResolvedModel>> models_;
+  std::map<std::tuple<int, int, std::string>, ResolvedModel> chosen_;  ///< (part, model, laws) → law model
 };
 
 /// One law of a [[regressions]] entry fitted to the best run per condition (what the regression tables print

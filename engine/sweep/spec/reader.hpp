@@ -146,6 +146,9 @@ void read_metrics(const Reader& r, const toml::table& root, PartSpec& part);
 void read_models(const Reader& r, const toml::table& root, PartSpec& part);
 void read_optimizers(const Reader& r, const toml::table& root, PartSpec& part);
 void read_splits(const Reader& r, const toml::table& root, PartSpec& part);
+/// A model with laws = "auto" chooses its laws over the records of a group at a fixed budget, as `fit --laws auto`
+/// does: every split it is in groups several records, and every optimizer it is identified with has a fixed budget.
+void check_auto_laws(const Reader& r, const toml::table& root, const PartSpec& part);
 void read_tables(const Reader& r, const toml::table& root, PartSpec& part);
 void read_regressions(const Reader& r, const toml::table& root, PartSpec& part);
 /// Datasets, with their files checked and globs expanded when options.check_files; optional entries whose

@@ -27,6 +27,23 @@ SensitivitySpec read_sensitivity(const Reader& r, const toml::node& n, const std
   return s;
 }
 
+/// `folds`: "leave-setting" or "leave-one:VAR"; a split with folds fits each fold's datasets together (by = "all").
+void read_folds(const Reader& r, const toml::table& t, const std::string& key, SplitSpec& s) {
+  const auto folds = r.string(t, "folds", key);
+  if (!folds) return;
+  const std::string fkey = Reader::join(key, "folds");
+  constexpr std::string_view kLeaveOne = "leave-one:";
+  const bool leave_one = folds->starts_with(kLeaveOne);
+  if (*folds != "leave-setting" && !(leave_one && known_variable(folds->substr(kLeaveOne.size()))))
+    r.fail(t.get("folds"), fkey,
+           fmt::format("expected \"leave-setting\" or \"leave-one:VAR\" with VAR one of I, V, phi, amp, freq, w, got '{}'",
+                       *folds));
+  if (t.contains("by") && s.by != SplitSpec::By::all)
+    r.fail(t.get("by"), Reader::join(key, "by"), "a split with folds fits each fold's datasets together: by = \"all\" or none");
+  s.folds = *folds;
+  s.by = SplitSpec::By::all;
+}
+
 }  // namespace
 
 void read_splits(const Reader& r, const toml::table& root, PartSpec& part) {
@@ -41,7 +58,7 @@ void read_splits(const Reader& r, const toml::table& root, PartSpec& part) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     const std::string key = fmt::format("splits[{}]", i);
     const toml::table& t = *a.get(i)->as_table();
-    r.only_keys(t, key, {"name", "datasets", "models", "optimizers", "fit", "predict", "by", "sensitivity"});
+    r.only_keys(t, key, {"name", "datasets", "models", "optimizers", "fit", "predict", "by", "folds", "sensitivity"});
     SplitSpec s;
     s.name = r.string(t, "name", key).value_or(fmt::format("split{}", i + 1));
     if (part.split_index(s.name) >= 0) r.fail(t.get("name"), Reader::join(key, "name"), fmt::format("split name '{}' is used twice", s.name));
@@ -67,6 +84,7 @@ void read_splits(const Reader& r, const toml::table& root, PartSpec& part) {
         r.fail(b, bkey, "expected \"each\", \"all\" or an array of operating variables, e.g. [\"I\"]");
       }
     }
+    read_folds(r, t, key, s);
     if (const toml::node* n = t.get("sensitivity")) s.sensitivity = read_sensitivity(r, *n, Reader::join(key, "sensitivity"));
     part.splits.push_back(std::move(s));
   }

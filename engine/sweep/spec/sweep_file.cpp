@@ -49,6 +49,7 @@ PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOpt
     if (n && n->is_string()) part.collections.emplace_back(*n->value<std::string>());
   }
   read_splits(r, root, part);
+  check_auto_laws(r, root, part);
   read_tables(r, root, part);
   read_regressions(r, root, part);
   part.collections.clear();

@@ -39,6 +39,7 @@ GroupRecord read_group_row(const Stmt& s) {
   g.spec_hash = s.text(16);
   g.dataset_hash = s.text(17);
   g.finished_at = s.text(18);
+  g.laws = s.text(19);
   return g;
 }
 

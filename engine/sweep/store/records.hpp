@@ -15,7 +15,7 @@
 
 namespace dampbench::sweep {
 
-inline constexpr int kStoreFormat = 2;  ///< the schema's version (store.hpp): Store::open refuses another
+inline constexpr int kStoreFormat = 3;  ///< the schema's version (store.hpp): Store::open refuses another
 
 struct StorePart {
   std::string name, title, path, source;
@@ -111,6 +111,9 @@ struct GroupRecord : GroupRef {
   /// UTC time the group was first stored (ISO 8601); empty in a new record: write() stamps it. A merge copies it,
   /// so a merged store says when each shard finished its groups.
   std::string finished_at;
+  /// The laws a group of a `laws = "auto"` model chose (parse_laws text on the model's gauged base: the runs' params
+  /// are that law model's coefficients); empty for every other group.
+  std::string laws;
   std::vector<RunRecord> run_results;
   std::vector<DatasetMetricRecord> dataset_metrics;
   std::optional<SensitivityRecord> sensitivity;

@@ -27,7 +27,7 @@ CREATE TABLE fitsets(part INTEGER, split INTEGER, fitset INTEGER, label TEXT, fi
 CREATE TABLE groups(grp INTEGER PRIMARY KEY, part INTEGER, split INTEGER, fitset INTEGER, model INTEGER,
                     optimizer INTEGER, metric TEXT, runs INTEGER, task_key TEXT, status TEXT, message TEXT,
                     wall_time_s REAL, candidate_samples REAL, evaluations INTEGER, dampbench_version TEXT,
-                    build_flags TEXT, spec_hash TEXT, dataset_hash TEXT, finished_at TEXT);
+                    build_flags TEXT, spec_hash TEXT, dataset_hash TEXT, finished_at TEXT, laws TEXT);
 CREATE TABLE runs(grp INTEGER, run INTEGER, best_value REAL, metrics BLOB, params BLOB, evaluations INTEGER,
                   stop_reason TEXT, trace BLOB, local_optimum INTEGER, PRIMARY KEY(grp, run)) WITHOUT ROWID;
 CREATE TABLE dataset_metrics(grp INTEGER, run INTEGER, dataset INTEGER, role TEXT, metrics BLOB,
@@ -39,7 +39,7 @@ CREATE TABLE identifiability(grp INTEGER PRIMARY KEY, samples INTEGER, std_error
 
 const char* const kGroupColumns =
     "grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, wall_time_s, "
-    "candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at";
+    "candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at, laws";
 
 std::string metric_list() {
   std::string s;

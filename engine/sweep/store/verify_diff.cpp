@@ -118,6 +118,7 @@ std::vector<std::string> compare_records(const GroupRecord& stored, const GroupR
     diff.add(fmt::format("status: stored {} vs recomputed {}", a.failed ? "failed" : "done", b.failed ? "failed" : "done"));
   if (a.message != b.message) diff.add(fmt::format("message: stored '{}' vs recomputed '{}'", a.message, b.message));
   if (a.task_key != b.task_key) diff.add("task key differs");
+  if (a.laws != b.laws) diff.add(fmt::format("laws: stored '{}' vs recomputed '{}'", a.laws, b.laws));
   if (a.evaluations != b.evaluations)
     diff.add(fmt::format("evaluations: stored {} vs recomputed {}", a.evaluations, b.evaluations));
   diff.num("candidate_samples", a.candidate_samples, b.candidate_samples);

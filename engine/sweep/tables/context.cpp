@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/common/error.hpp"
 #include "engine/fit/auto_budget.hpp"
 
 namespace dampbench::sweep::tables {
@@ -99,11 +100,15 @@ Table Context::table(std::string id, std::string title_text, std::vector<std::st
 
 std::vector<std::vector<double>> Context::paper_params(const GroupRecord& g) const {
   std::vector<std::vector<double>> out;
-  for (const auto& r : g.run_results) out.push_back(model(g.model).to_paper_units(r.params));
+  for (const auto& r : g.run_results) out.push_back(model(g).to_paper_units(r.params));
   return out;
 }
 
 std::vector<std::vector<Summary>> Context::parameter_summaries(const Series& s) const {
+  if (chose_laws(s))  // each group's parameters are its own law model's coefficients
+    throw InputError(fmt::format("{}: its groups chose their own laws (laws = \"auto\"), so their parameters differ: "
+                                 "the params table shows each group's",
+                                 describe(s)));
   std::vector<std::vector<std::vector<double>>> values;  // group → run → parameter
   for (const GroupRecord* g : s.groups) values.push_back(paper_params(*g));
   std::vector<std::vector<Summary>> out(static_cast<std::size_t>(model(s.model).dim()));

@@ -2,6 +2,7 @@
 // What every table kind reads: the groups a table request selects from a store, cut into series (every group
 // of one split, model, optimizer and optimized metric, ordered by fit set), with the names, labels and file
 // stems that tell the series apart. Shared by the kinds (kinds.hpp); not part of the sweep's interface.
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <string>
@@ -56,6 +57,12 @@ struct Context {
   }
   [[nodiscard]] bool matches(const Selection& s, int d) const { return s.matches(dataset(d).name, dataset(d).variables); }
   [[nodiscard]] const Model& model(int m) const { return R.model(part, m); }
+  /// The model of a group's parameters (the law model it chose, for laws = "auto").
+  [[nodiscard]] const Model& model(const GroupRecord& g) const { return R.model(g); }
+  /// Whether a series' groups chose their own laws (laws = "auto"): their parameters differ from group to group.
+  [[nodiscard]] static bool chose_laws(const Series& s) {
+    return std::any_of(s.groups.begin(), s.groups.end(), [](const GroupRecord* g) { return !g->laws.empty(); });
+  }
   [[nodiscard]] std::string label(const GroupRecord& g) const { return fitset(g).label; }
   [[nodiscard]] std::string title(std::string fallback) const { return t.title.empty() ? fallback : t.title; }
 

@@ -21,6 +21,7 @@ void fvd_tables(const Context& c, std::vector<Table>& out) {
   }
   for (int i = 0; i < n; ++i) {
     const Series& s = all[static_cast<std::size_t>(i)];
+    if (Context::chose_laws(s)) continue;  // each group has its own parameters (the params table shows them)
     const int runs = s.groups.empty() ? 0 : s.groups[0]->runs;
     Table r = param_stats_table(c, s, fmt::format("table{:02}_params{}", 3 + n + i, c.suffix(s)),
                                  fmt::format("Table {}. Identified parameters over {} runs (paper units) — {}", 3 + n + i,
@@ -30,6 +31,7 @@ void fvd_tables(const Context& c, std::vector<Table>& out) {
   }
   for (int i = 0; i < n; ++i) {
     const Series& s = all[static_cast<std::size_t>(i)];
+    if (Context::chose_laws(s)) continue;
     Table r = variability_table(c, s, fmt::format("table{:02}_variability{}", 3 + 2 * n + i, c.suffix(s)),
                                  fmt::format("Table {}. Parameter variability across tests — {}", 3 + 2 * n + i, c.describe(s)));
     r.paper = paper(3 + 2 * n + i);

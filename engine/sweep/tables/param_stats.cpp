@@ -28,6 +28,7 @@ Table param_stats_table(const Context& c, const Series& s, std::string id, std::
 
 void param_stats_tables(const Context& c, std::vector<Table>& out) {
   for (const Series& s : c.series()) {
+    if (Context::chose_laws(s)) continue;  // the groups' parameters differ: the params table shows each group's
     const int runs = s.groups.empty() ? 0 : s.groups[0]->runs;
     out.push_back(param_stats_table(c, s, "param-stats" + c.suffix(s),
                                     fmt::format("Identified parameters over {} runs (paper units) — {}", runs, c.describe(s))));

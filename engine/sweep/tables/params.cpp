@@ -1,5 +1,7 @@
 // params: the identified parameters of the best run per condition in paper units with their identifiability marks,
 // then their relative standard errors.
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "engine/sweep/tables/kinds.hpp"
@@ -17,11 +19,22 @@ std::string identifiability_mark(const GroupRecord& g, int j) {
   if (!g.identifiability) return "";
   return std::string(g.identifiability->determined(j) ? "" : kUndeterminedMark) + (g.identifiability->at_bound(j) ? kAtBoundMark : "");
 }
+
+/// The rows of a series' params table: every parameter of its groups' models, in order of first appearance (one
+/// model for most series; each group's own law model when the groups chose their laws).
+std::vector<ParameterInfo> parameter_rows(const Context& c, const Series& s) {
+  std::vector<ParameterInfo> rows;
+  for (const GroupRecord* g : s.groups)
+    for (const ParameterInfo& p : c.model(*g).parameters())
+      if (std::none_of(rows.begin(), rows.end(), [&](const ParameterInfo& r) { return r.name == p.name; }))
+        rows.push_back(p);
+  return rows;
+}
+
 }  // namespace
 
 void params_tables(const Context& c, std::vector<Table>& out) {
   for (const Series& s : c.series()) {
-    const Model& model = c.model(s.model);
     std::vector<std::string> cols{"Parameter", "unit"};
     for (const GroupRecord* g : s.groups) cols.push_back(c.label(*g));
     Table r = c.table("params" + c.suffix(s), fmt::format("Identified parameters of the best run per condition — {}", c.describe(s)),
@@ -33,15 +46,25 @@ void params_tables(const Context& c, std::vector<Table>& out) {
                                       c.describe(s)),
                           rel_cols);
     rel.paper = "";
+    if (Context::chose_laws(s)) {
+      std::vector<Cell> row{txt("laws"), txt("")};
+      for (const GroupRecord* g : s.groups) row.push_back(txt(g->laws));
+      r.rows.push_back(std::move(row));
+    }
     std::vector<std::vector<double>> best;
     for (const GroupRecord* g : s.groups)
-      best.push_back(model.to_paper_units(g->run_results[static_cast<std::size_t>(g->best_run())].params));
-    const auto params = model.parameters();
+      best.push_back(c.model(*g).to_paper_units(g->run_results[static_cast<std::size_t>(g->best_run())].params));
     bool marked = false;
-    for (int j = 0; j < model.dim(); ++j) {
-      std::vector<Cell> row{txt(params[j].name), txt(params[j].paper_unit)}, rel_row{txt(params[j].name)};
+    for (const ParameterInfo& p : parameter_rows(c, s)) {
+      std::vector<Cell> row{txt(p.name), txt(p.paper_unit)}, rel_row{txt(p.name)};
       for (std::size_t k = 0; k < best.size(); ++k) {
         const GroupRecord& g = *s.groups[k];
+        const int j = c.model(g).parameter_index(p.name);
+        if (j < 0) {  // a coefficient of another group's laws
+          row.push_back(none());
+          rel_row.push_back(none());
+          continue;
+        }
         const double v = best[k][static_cast<std::size_t>(j)];
         const std::string mark = identifiability_mark(g, j);
         marked |= !mark.empty();

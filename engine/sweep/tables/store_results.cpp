@@ -21,6 +21,17 @@ StoreResults::StoreResults(const Store& store) : header(store.header()) {
     s.laws = m.laws;
     models_[static_cast<std::size_t>(m.part)].push_back(resolve_model(s));
   }
+  for (const GroupRecord& g : groups) {
+    if (g.laws.empty() || chosen_.contains({g.part, g.model, g.laws})) continue;
+    ModelChoice s;
+    s.model = header.models.at(static_cast<std::size_t>(header.model(g.part, g.model))).model_id;
+    s.laws = g.laws;
+    chosen_.emplace(std::tuple{g.part, g.model, g.laws}, resolve_model(s));
+  }
+}
+
+const Model& StoreResults::model(const GroupRecord& g) const {
+  return g.laws.empty() ? model(g.part, g.model) : *chosen_.at({g.part, g.model, g.laws}).model;
 }
 
 const Model& StoreResults::model(int part, int m) const {

@@ -24,8 +24,9 @@ Table variability_table(const Context& c, const Series& s, std::string id, std::
 
 void variability_tables(const Context& c, std::vector<Table>& out) {
   for (const Series& s : c.series())
-    out.push_back(variability_table(c, s, "variability" + c.suffix(s),
-                                    fmt::format("Parameter variability across conditions — {}", c.describe(s))));
+    if (!Context::chose_laws(s))  // a statistic per parameter needs the same parameters in every group
+      out.push_back(variability_table(c, s, "variability" + c.suffix(s),
+                                      fmt::format("Parameter variability across conditions — {}", c.describe(s))));
 }
 
 }  // namespace dampbench::sweep::tables

@@ -1,0 +1,253 @@
+// Held-out evaluation in sweeps (engine/sweep/spec.hpp). A model with laws = "auto" (engine/fit/law_selection.hpp):
+// on synthetic records generated from known laws, its group chooses the true families, recovers their coefficients,
+// predicts a setting it did not fit, stores its laws beside its parameters, and gives the same laws and bits as `fit
+// --laws auto` on the same records; a spec that would have it choose laws on one record or under the automatic budget
+// is refused before anything runs. A split with folds: one fit set per left-out setting or value, fitted on the others
+// and predicting it with the predict datasets of that value.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/common/error.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/record/csv_loader.hpp"
+#include "engine/record/excitation.hpp"
+#include "engine/sweep/plan.hpp"
+#include "engine/sweep/spec.hpp"
+#include "engine/sweep/store.hpp"
+#include "models/registry.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_dampbench;
+using testing::run_dampbench_json;
+
+/// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine, with f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
+/// (1000 + 2000·I) and f0 = 5 N shared, written with its operating variables.
+fs::path write_bingham_record(const fs::path& dir, double amp, double freq, double current) {
+  SineSpec spec;
+  spec.amplitude_m = amp, spec.freq_hz = freq, spec.cycles = 2, spec.fs_hz = 400 * freq;
+  Dataset d = make_sine(spec);
+  const double f_c = 60 + 500 * current * current / (0.36 + current * current), c0 = 1000 + 2000 * current;
+  d.operating["I"] = current;
+  d.F_N = find_model("mrd.bingham").simulate(std::vector<double>{f_c, c0, 5.0}, prepare_signals(d));
+  const fs::path p = dir / fmt::format("{}mm{}Hz{}A.csv", amp * 1e3, freq, current);
+  std::ofstream out(p);
+  out << fmt::format("# operating: I={},amp={},freq={}\nt[s],x[m],v[m/s],F[N]\n", current, amp, freq);
+  for (std::size_t k = 0; k < d.F_N.size(); ++k)
+    out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", d.t_s[k], d.x_m[k], d.v_m_s[k], d.F_N[k]);
+  return p;
+}
+
+constexpr const char* kSweep = R"toml(name = "laws_auto"
+seed = 1
+runs = 2
+metric = "nrmse"
+[[models]]
+name = "bingham(damper)"
+model = "mrd.bingham"
+laws = "auto"
+[optimizer]
+name = "ga-lm"
+population = 24
+iterations = 30
+[[datasets]]
+name = "d"
+glob = "{}/*.csv"
+[[splits]]
+name = "damper"
+by = "all"
+fit = {{ freq = [1, 2, 0.5] }}
+predict = {{ freq = 1.5 }}
+)toml";
+
+TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForBit) {
+  const fs::path dir = testing::test_temp_dir("sweep_laws_auto");
+  fs::create_directories(dir / "data");
+  std::string train;
+  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) train += " " + write_bingham_record(dir / "data", amp, freq, I).string();
+  write_bingham_record(dir / "data", 0.015, 1.5, 0.6);  // a setting and a current it never fits
+  std::ofstream(dir / "s.toml") << fmt::format(kSweep, (dir / "data").string());
+  const fs::path out = dir / "out";
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), out.string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  const Store store = Store::open((out / "store.sqlite").string());
+  const auto groups = store.groups();
+  ASSERT_EQ(groups.size(), 1u);
+  const GroupRecord& g = groups[0];
+  ASSERT_FALSE(g.failed) << g.message;
+  EXPECT_EQ(g.laws, "f_c=hill(I,2);c0=mono(I,0,1)");
+  const auto& best = g.run_results.at(static_cast<std::size_t>(g.best_run()));
+  ASSERT_EQ(best.params.size(), 6u);  // f_c: a, b, h; c0: two; f0
+  const double truth[] = {60, 500, 0.6, 1000, 2000, 5};
+  for (std::size_t j = 0; j < best.params.size(); ++j) EXPECT_NEAR(best.params[j], truth[j], 0.02 * truth[j]) << j;
+  bool predicted = false;
+  for (const auto& m : g.dataset_metrics)
+    if (m.predicted && m.run == g.best_run()) {
+      predicted = true;
+      EXPECT_LT(m.metrics[static_cast<std::size_t>(Metric::nrmse)], 0.01);  // the true laws predict the new setting
+    }
+  EXPECT_TRUE(predicted);
+
+  // `fit --laws auto` on the same records and budget: one piece of code, so the same laws and the same bits
+  const auto fit = run_dampbench_json(fmt::format(
+      "fit --model mrd.bingham --laws auto --data{} --optimizer ga-lm --pop 24 --iters 30 --runs 2 --metric nrmse "
+      "--seed 1 --format json",
+      train));
+  ASSERT_EQ(fit.exit_code, 0) << fit.output << fit.errors;
+  const auto j = nlohmann::json::parse(fit.output);
+  EXPECT_EQ(j.at("laws").get<std::string>(), g.laws);
+  const auto& each = j.at("run_results");
+  ASSERT_EQ(each.size(), g.run_results.size());
+  for (std::size_t r = 0; r < each.size(); ++r)
+    EXPECT_EQ(each[r].at("best_value").get<double>(), g.run_results[r].best_value) << r;
+
+  // the params table names the group's laws and its law model's coefficients
+  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", (out / "store.sqlite").string()));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("laws,,\"f_c=hill(I,2);c0=mono(I,0,1)\""), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("f0,"), std::string::npos) << table.output;
+}
+
+/// The spec of kSweep with its split and optimizer replaced.
+std::string sweep_with(const std::string& split, const std::string& optimizer) {
+  std::string s = fmt::format(kSweep, "/nonexistent");
+  s = s.substr(0, s.find("[optimizer]")) + optimizer + s.substr(s.find("[[datasets]]"));
+  return s.substr(0, s.find("[[splits]]")) + split;
+}
+
+std::string refusal(const std::string& text) {
+  SpecOptions o;
+  o.check_files = false;
+  try {
+    (void)parse_sweep(text, "s.toml", o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(SweepLawsAuto, ASpecThatWouldChooseLawsOnOneRecordOrUnderTheAutomaticBudgetIsRefused) {
+  const std::string fixed = "[optimizer]\nname = \"ga-lm\"\npopulation = 24\niterations = 30\n";
+  const std::string all = "[[splits]]\nname = \"damper\"\nby = \"all\"\n";
+  EXPECT_EQ(refusal(sweep_with(all, fixed)), "(accepted)");
+  EXPECT_NE(refusal(sweep_with("", fixed)).find("the default split (no [[splits]]) fits each dataset alone"), std::string::npos)
+      << refusal(sweep_with("", fixed));
+  EXPECT_NE(refusal(sweep_with("[[splits]]\nname = \"each\"\n", fixed)).find("split 'each' fits each dataset alone"),
+            std::string::npos);
+  const std::string automatic = refusal(sweep_with(all, "[optimizer]\nname = \"ga-lm\"\n"));
+  EXPECT_NE(automatic.find("optimizer 'ga-lm' has the automatic budget"), std::string::npos) << automatic;
+  std::string with_start = sweep_with(all, fixed);
+  with_start.insert(with_start.find("laws = \"auto\"") + 14, "start = \"per-file\"\n");
+  EXPECT_NE(refusal(with_start).find("always starts from the records' own fits"), std::string::npos) << refusal(with_start);
+  std::string with_bounds = sweep_with(all, fixed);
+  with_bounds.insert(with_bounds.find("laws = \"auto\"") + 14, "bounds = \"f0=0:10\"\n");
+  EXPECT_NE(refusal(with_bounds).find("bounds with laws auto"), std::string::npos) << refusal(with_bounds);
+}
+
+/// Bingham records of three settings at five currents; a split of them with `folds` and the true laws.
+fs::path folds_sweep(const std::string& name, const std::string& folds) {
+  const fs::path dir = testing::test_temp_dir(name);
+  fs::create_directories(dir / "data");
+  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) write_bingham_record(dir / "data", amp, freq, I);
+  std::ofstream(dir / "s.toml") << fmt::format(R"toml(name = "folds"
+runs = 2
+metric = "nrmse"
+[[models]]
+name = "bingham(damper)"
+model = "mrd.bingham"
+laws = "f_c=hill(I,2);c0=mono(I,0,1)"
+[optimizer]
+name = "ga-lm"
+population = 24
+iterations = 30
+[[datasets]]
+name = "d"
+glob = "{}/*.csv"
+[[splits]]
+name = "folds"
+folds = "{}"
+fit = {{ I = [0, 0.5, 1] }}
+predict = {{ I = [0.25, 0.75] }}
+)toml",
+                                              (dir / "data").string(), folds);
+  return dir;
+}
+
+Loader csv_loader() {
+  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
+}
+
+/// "name+name": the datasets of a fit set, sorted.
+std::string names(const PartPlan& part, std::vector<int> ds) {
+  std::vector<std::string> n;
+  for (int d : ds) n.push_back(part.spec->datasets[d].name);
+  std::sort(n.begin(), n.end());
+  return fmt::format("{}", fmt::join(n, "+"));
+}
+
+TEST(SweepFolds, LeavingASettingOutFitsTheOthersAndPredictsEveryCurrentOfIt) {
+  const fs::path dir = folds_sweep("sweep_folds_setting", "leave-setting");
+  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  const PartPlan& part = plan.parts().at(0);
+  const auto& fitsets = part.splits.at(0).fitsets;
+  ASSERT_EQ(fitsets.size(), 3u);
+  // folds sorted by the setting they leave out: amp 0.005, 0.01, 0.02
+  EXPECT_EQ(fitsets[0].label, "amp=0.005,freq=2");
+  EXPECT_EQ(names(part, fitsets[0].predict), "5mm2Hz0.25A+5mm2Hz0.5A+5mm2Hz0.75A+5mm2Hz0A+5mm2Hz1A");
+  EXPECT_EQ(names(part, fitsets[0].fit), "10mm1Hz0.5A+10mm1Hz0A+10mm1Hz1A+20mm0.5Hz0.5A+20mm0.5Hz0A+20mm0.5Hz1A");
+  EXPECT_EQ(fitsets[2].label, "amp=0.02,freq=0.5");
+
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(),
+                                             (dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Store store = Store::open((dir / "out" / "store.sqlite").string());
+  const auto groups = store.groups();
+  ASSERT_EQ(groups.size(), 3u);
+  for (const GroupRecord& g : groups) {
+    ASSERT_FALSE(g.failed) << g.message;
+    int predicted = 0;
+    for (const auto& m : g.dataset_metrics)
+      if (m.predicted && m.run == g.best_run()) {
+        ++predicted;  // the true laws, fitted on two settings, predict the third at every current
+        EXPECT_LT(m.metrics[static_cast<std::size_t>(Metric::nrmse)], 0.01) << g.fitset << " " << m.dataset;
+      }
+    EXPECT_EQ(predicted, 5) << g.fitset;
+  }
+}
+
+TEST(SweepFolds, LeavingACurrentOutPredictsOnlyThatCurrent) {
+  const fs::path dir = folds_sweep("sweep_folds_current", "leave-one:I");
+  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  const PartPlan& part = plan.parts().at(0);
+  const auto& fitsets = part.splits.at(0).fitsets;
+  ASSERT_EQ(fitsets.size(), 3u);  // the fit currents 0, 0.5, 1 A; 0.25 and 0.75 A are no fold's
+  EXPECT_EQ(fitsets[1].label, "I=0.5");
+  EXPECT_EQ(names(part, fitsets[1].predict), "10mm1Hz0.5A+20mm0.5Hz0.5A+5mm2Hz0.5A");
+  EXPECT_EQ(fitsets[1].fit.size(), 6u);
+}
+
+TEST(SweepFolds, AnUnknownRuleOrFoldsBesideByEachAreRefused) {
+  std::string text = fmt::format(kSweep, "/nonexistent");
+  const std::string fixed = text.substr(0, text.find("[[splits]]"));
+  EXPECT_NE(refusal(fixed + "[[splits]]\nfolds = \"leave-two\"\n").find("expected \"leave-setting\" or \"leave-one:VAR\""),
+            std::string::npos);
+  EXPECT_NE(refusal(fixed + "[[splits]]\nfolds = \"leave-one:Q\"\n").find("got 'leave-one:Q'"), std::string::npos);
+  EXPECT_NE(refusal(fixed + "[[splits]]\nby = \"each\"\nfolds = \"leave-setting\"\n").find("by = \"all\" or none"),
+            std::string::npos);
+  EXPECT_EQ(refusal(fixed + "[[splits]]\nfolds = \"leave-setting\"\n"), "(accepted)");
+}
+
+}  // namespace
+}  // namespace dampbench::sweep
