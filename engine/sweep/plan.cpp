@@ -139,6 +139,7 @@ std::vector<FitSet> fitsets_by_folds(const PartSpec& part, const SplitSpec& spli
       fitsets.push_back({{d}, {}, part.datasets[d].name, part.datasets[d].name});
     }
   }
+  if (records.empty()) return fitsets;  // every fit dataset failed to load: each fails with its message
   for (const Fold& fold : make_folds(records, split.folds, where + ": folds")) {
     FitSet fs;
     for (int i : fold.fit) fs.fit.push_back(loaded[i]);
