@@ -47,27 +47,23 @@ fs::path write_bingham_record(const fs::path& dir, double amp, double freq, doub
   return p;
 }
 
-constexpr const char* kSweep = R"toml(name = "laws_auto"
+/// A sweep of the records in `data`: one Bingham model with `laws`, `optimizer`, then `splits`.
+std::string sweep_text(const std::string& laws, const fs::path& data, const std::string& splits,
+                       const std::string& optimizer = "[optimizer]\nname = \"ga-lm\"\npopulation = 24\niterations = 30\n") {
+  return fmt::format(R"toml(name = "held_out"
 seed = 1
 runs = 2
 metric = "nrmse"
 [[models]]
 name = "bingham(damper)"
 model = "mrd.bingham"
-laws = "auto"
-[optimizer]
-name = "ga-lm"
-population = 24
-iterations = 30
-[[datasets]]
+laws = "{}"
+{}[[datasets]]
 name = "d"
 glob = "{}/*.csv"
-[[splits]]
-name = "damper"
-by = "all"
-fit = {{ freq = [1, 2, 0.5] }}
-predict = {{ freq = 1.5 }}
-)toml";
+{})toml",
+                     laws, optimizer, data.string(), splits);
+}
 
 TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForBit) {
   const fs::path dir = testing::test_temp_dir("sweep_laws_auto");
@@ -76,7 +72,9 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
   for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
     for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) train += " " + write_bingham_record(dir / "data", amp, freq, I).string();
   write_bingham_record(dir / "data", 0.015, 1.5, 0.6);  // a setting and a current it never fits
-  std::ofstream(dir / "s.toml") << fmt::format(kSweep, (dir / "data").string());
+  std::ofstream(dir / "s.toml") << sweep_text("auto", dir / "data",
+                                              "[[splits]]\nname = \"damper\"\nby = \"all\"\nfit = { freq = [1, 2, 0.5] }\n"
+                                              "predict = { freq = 1.5 }\n");
   const fs::path out = dir / "out";
   const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), out.string()));
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -119,11 +117,9 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
   EXPECT_NE(table.output.find("f0,"), std::string::npos) << table.output;
 }
 
-/// The spec of kSweep with its split and optimizer replaced.
+/// The spec of the laws = "auto" model with its split and optimizer replaced.
 std::string sweep_with(const std::string& split, const std::string& optimizer) {
-  std::string s = fmt::format(kSweep, "/nonexistent");
-  s = s.substr(0, s.find("[optimizer]")) + optimizer + s.substr(s.find("[[datasets]]"));
-  return s.substr(0, s.find("[[splits]]")) + split;
+  return sweep_text("auto", "/nonexistent", split, optimizer);
 }
 
 std::string refusal(const std::string& text) {
@@ -161,27 +157,10 @@ fs::path folds_sweep(const std::string& name, const std::string& folds) {
   fs::create_directories(dir / "data");
   for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
     for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) write_bingham_record(dir / "data", amp, freq, I);
-  std::ofstream(dir / "s.toml") << fmt::format(R"toml(name = "folds"
-runs = 2
-metric = "nrmse"
-[[models]]
-name = "bingham(damper)"
-model = "mrd.bingham"
-laws = "f_c=hill(I,2);c0=mono(I,0,1)"
-[optimizer]
-name = "ga-lm"
-population = 24
-iterations = 30
-[[datasets]]
-name = "d"
-glob = "{}/*.csv"
-[[splits]]
-name = "folds"
-folds = "{}"
-fit = {{ I = [0, 0.5, 1] }}
-predict = {{ I = [0.25, 0.75] }}
-)toml",
-                                              (dir / "data").string(), folds);
+  std::ofstream(dir / "s.toml") << sweep_text("f_c=hill(I,2);c0=mono(I,0,1)", dir / "data",
+                                              fmt::format("[[splits]]\nname = \"folds\"\nfolds = \"{}\"\n"
+                                                          "fit = {{ I = [0, 0.5, 1] }}\npredict = {{ I = [0.25, 0.75] }}\n",
+                                                          folds));
   return dir;
 }
 
@@ -239,14 +218,13 @@ TEST(SweepFolds, LeavingACurrentOutPredictsOnlyThatCurrent) {
 }
 
 TEST(SweepFolds, AnUnknownRuleOrFoldsBesideByEachAreRefused) {
-  std::string text = fmt::format(kSweep, "/nonexistent");
-  const std::string fixed = text.substr(0, text.find("[[splits]]"));
-  EXPECT_NE(refusal(fixed + "[[splits]]\nfolds = \"leave-two\"\n").find("expected \"leave-setting\" or \"leave-one:VAR\""),
+  const auto fixed = [](const std::string& split) { return sweep_text("f_c=hill(I,2)", "/nonexistent", split); };
+  EXPECT_NE(refusal(fixed("[[splits]]\nfolds = \"leave-two\"\n")).find("expected \"leave-setting\" or \"leave-one:VAR\""),
             std::string::npos);
-  EXPECT_NE(refusal(fixed + "[[splits]]\nfolds = \"leave-one:Q\"\n").find("got 'leave-one:Q'"), std::string::npos);
-  EXPECT_NE(refusal(fixed + "[[splits]]\nby = \"each\"\nfolds = \"leave-setting\"\n").find("by = \"all\" or none"),
+  EXPECT_NE(refusal(fixed("[[splits]]\nfolds = \"leave-one:Q\"\n")).find("got 'leave-one:Q'"), std::string::npos);
+  EXPECT_NE(refusal(fixed("[[splits]]\nby = \"each\"\nfolds = \"leave-setting\"\n")).find("by = \"all\" or none"),
             std::string::npos);
-  EXPECT_EQ(refusal(fixed + "[[splits]]\nfolds = \"leave-setting\"\n"), "(accepted)");
+  EXPECT_EQ(refusal(fixed("[[splits]]\nfolds = \"leave-setting\"\n")), "(accepted)");
 }
 
 }  // namespace
