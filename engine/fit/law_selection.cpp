@@ -193,7 +193,7 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
 LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
                          const std::vector<std::vector<double>>& per_record) {
   const Model& model = *gauged.model;
-  Scoring s{model, search.records, per_record, make_folds(search.records, "leave-setting", "--laws auto"), {},
+  Scoring s{model, search.records, per_record, make_folds(search.records, "leave-setting", search.label), {},
             search.settings.metric};
   for (const Signals* r : search.records) s.boxes.push_back(gauged.bounds_for(std::span<const Signals* const>(&r, 1)));
   LawSelection out;
@@ -209,7 +209,7 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
       out.score = scores[j] = choose_for_parameter(s, laws, j, out.scored, bics[j]);
       changed |= laws[j].text() != before.text();
       if (search.progress)
-        search.progress(fmt::format("--laws auto: pass {}, {} = {} (mean left-out {} {:.6g})", pass + 1,
+        search.progress(fmt::format("{}: pass {}, {} = {} (mean left-out {} {:.6g})", search.label, pass + 1,
                                     out.parameters[j], laws[j].text(), metric_name(s.metric), out.score));
     }
     if (!changed) break;
@@ -260,7 +260,7 @@ FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_mod
   request.settings.task_key = task_key(fitted_model.model->id(), names, search.optimizer_name);
   request.start = selection.start;
   if (search.progress)
-    search.progress(fmt::format("--laws auto: fitting {} on the {} records together", fitted_model.model->id(),
+    search.progress(fmt::format("{}: fitting {} on the {} records together", search.label, fitted_model.model->id(),
                                 search.records.size()));
   return run_fit(request);
 }

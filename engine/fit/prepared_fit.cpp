@@ -54,7 +54,7 @@ PreparedFit prepare_fit(const FitSpec& spec) {
   p.start_per_file = spec.start == "per-file";
   if (p.start_per_file && p.auto_laws)
     throw InputError("--start per-file with --laws auto: --laws auto always starts from the records' own fits");
-  p.model = resolve_model(choice);  // with --laws auto: the base model, before its laws are chosen
+  p.model = resolve_model_or_auto_base(choice);  // with --laws auto: the base model, before its laws are chosen
   if (p.auto_laws) choice.laws.clear();
   p.choice = choice;
   const Model& model = *p.model.model;

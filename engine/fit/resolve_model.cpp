@@ -10,7 +10,7 @@
 
 namespace dampbench {
 
-ResolvedModel resolve_model(const ModelChoice& choice) {
+ResolvedModel resolve_model_or_auto_base(const ModelChoice& choice) {
   if (chooses_laws(choice)) {
     const std::string& p = choice.option_prefix;
     if (!choice.fixture.empty())
@@ -23,6 +23,10 @@ ResolvedModel resolve_model(const ModelChoice& choice) {
     base.laws.clear();
     return resolve_model(base);
   }
+  return resolve_model(choice);
+}
+
+ResolvedModel resolve_model(const ModelChoice& choice) {
   ResolvedModel r;
   if (!choice.fixture.empty()) {
     FixtureModel fx = make_fixture_model(find_fixture(choice.fixture));

@@ -43,9 +43,11 @@ struct ResolvedModel {
 /// (engine/fit/law_selection.hpp).
 inline bool chooses_laws(const ModelChoice& choice) { return choice.laws == "auto"; }
 
-/// Builds the model of a choice; InputError for unknown names, bad laws or bad bounds. A choice that chooses its
-/// laws resolves to the registered model the laws will act on (no fixture, no bounds: the coefficients are not known
-/// before the laws are).
+/// Builds the model of a choice; InputError for unknown names, bad laws or bad bounds ("auto" is not a law here).
 ResolvedModel resolve_model(const ModelChoice& choice);
+
+/// The same, where a choice may choose its laws (`fit`, sweeps): such a choice resolves to the registered model the
+/// laws will act on (no fixture, no bounds: the coefficients are not known before the laws are).
+ResolvedModel resolve_model_or_auto_base(const ModelChoice& choice);
 
 }  // namespace dampbench

@@ -216,7 +216,7 @@ Plan::Plan(SweepSpec spec, const Loader& loader) : spec_(std::move(spec)) {
   for (const PartSpec& part : spec_.parts) {
     PartPlan pp;
     pp.spec = &part;
-    for (const auto& m : part.models) pp.models.push_back(resolve_model(m));
+    for (const auto& m : part.models) pp.models.push_back(resolve_model_or_auto_base(m));
     for (const auto& o : part.optimizers) pp.factories.push_back(make_optimizer_factory(o.spec));
     pp.datasets.resize(part.datasets.size());
     tbb::parallel_for(std::size_t{0}, part.datasets.size(),

@@ -102,8 +102,10 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
   const ModelSpec& entry = part.spec->models[g.model];
   GroupFit out;
   if (chooses_laws(entry)) {  // as `fit --laws auto`, at the entry's fixed budget (the spec refuses another)
+    LawSearch search = law_search(request, *request.model->model, opt.spec.name);
+    search.label = fmt::format("model '{}' (laws = \"auto\")", entry.name);
     LawSelection selection;
-    out.outcome = fit_with_auto_laws(law_search(request, *request.model->model, opt.spec.name), out.chosen, selection);
+    out.outcome = fit_with_auto_laws(search, out.chosen, selection);
     out.laws = chosen_laws_text(selection);
     return out;
   }

@@ -65,6 +65,14 @@ Store Store::open(const std::string& path) {
     version = -1;
   }
   if (version == -1 || (version == 0)) throw StoreError(fmt::format("'{}' is not a dampbench store", path));
+  if (version == 2) {  // format 3 added groups.laws: a format-2 store's groups chose no laws
+    store.exec("BEGIN IMMEDIATE");
+    store.exec("ALTER TABLE groups ADD COLUMN laws TEXT NOT NULL DEFAULT ''");
+    store.exec(fmt::format("UPDATE meta SET value='{}' WHERE key='format'", kStoreFormat).c_str());
+    store.exec(fmt::format("PRAGMA user_version={}", kStoreFormat).c_str());
+    store.exec("COMMIT");
+    version = kStoreFormat;
+  }
   if (version != kStoreFormat)
     throw StoreError(fmt::format("store '{}' has format {}, this dampbench ({}) reads format {}", path, version,
                                  dampbench_version(), kStoreFormat));

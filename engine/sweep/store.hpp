@@ -14,7 +14,7 @@
 //   parts, models, optimizers, splits, datasets, fitsets   the plan, for tables and verify
 //   groups(grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, wall_time_s,
 //          candidate_samples, evaluations, dampbench_version, build_flags, spec_hash, dataset_hash, finished_at,
-//          laws)                           laws: the laws a group of a laws = "auto" model chose, else 
+//          laws)                           laws: what a group of a laws = "auto" model chose (else empty)
 //   runs(grp, run, best_value, metrics, params, evaluations, stop_reason, trace, local_optimum)
 //   dataset_metrics(grp, run, dataset, role, metrics)   per-dataset metrics of joint fits and predictions
 //   sensitivity(grp, dataset, S, SP)

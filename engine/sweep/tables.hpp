@@ -56,6 +56,10 @@ std::vector<std::string> table_kinds();
 /// Everything tables need, read once from a store: its header, groups (with runs and their best-so-far
 /// traces, which the convergence marks and the runtime tables read), the
 /// sweep file's table requests per part, and the models rebuilt for paper units.
+/// The law model a group of a `laws = "auto"` model chose (GroupRecord::laws) on its registered base model: what its
+/// runs' parameters are the coefficients of (the runner builds the same model from the same text).
+ResolvedModel chosen_law_model(const std::string& base_model_id, const std::string& laws);
+
 class StoreResults {
  public:
   explicit StoreResults(const Store& store);

@@ -47,8 +47,8 @@ class Store:
 
         Columns: part, group (the task group's number), split, fitset (the condition's label), datasets (the fit
         datasets' names joined by " + "), predict (the predicted datasets' names, "" when none), model (its name
-        in the sweep file), model_id, optimizer (its label), metric (the optimized metric), run (index in its
-        group), best_value, evaluations, stop_reason, local_optimum (the run's local stage ended at its own
+        in the sweep file), model_id, laws (those a laws = "auto" group chose, else empty), optimizer (its label),
+        metric (the optimized metric), run (index in its group), best_value, evaluations, stop_reason, local_optimum (the run's local stage ended at its own
         optimum); then one column per metric, named as the metric (of_abs, of_sq, rmse, nrmse, ...), each the
         metric at the run's best parameters; then one column per parameter name, in the order the models first
         name them, with the value in SI units (the stored double; the tables print paper units) and NaN for a
@@ -67,7 +67,7 @@ class Store:
     def groups(self):
         """Every stored task group, one row each (failed ones included), in group order.
 
-        Columns: part, group, split, fitset, datasets, predict, model, model_id, optimizer, metric (as runs()),
+        Columns: part, group, split, fitset, datasets, predict, model, model_id, laws, optimizer, metric (as runs()),
         runs (the runs asked for), status ("done" or "failed"), message (why it failed), evaluations (all runs),
         wall_time_s, candidate_samples (model samples computed), finished_at (UTC, ISO 8601), best_run and
         best_value (the lowest best value; None/NaN without runs), converged and verdict (the convergence

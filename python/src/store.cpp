@@ -87,8 +87,20 @@ void add_labels(Columns& c, const GroupRecord& g, const GroupLabels& l) {
   c["predict"].append(l.predict);
   c["model"].append(l.model);
   c["model_id"].append(l.model_id);
+  c["laws"].append(g.laws);
   c["optimizer"].append(l.optimizer);
   c["metric"].append(std::string(metric_name(g.metric)));
+}
+
+/// The parameter names of a group's runs: its model's, or those of the law model it chose (laws = "auto"), built once
+/// per (model, laws) in `chosen`.
+const std::vector<std::string>* run_parameter_names(const GroupLabels& l, const GroupRecord& g,
+                                                    std::map<std::string, std::vector<std::string>>& chosen) {
+  if (g.laws.empty()) return l.params;
+  auto [it, added] = chosen.try_emplace(l.model_id + "[" + g.laws + "]");
+  if (added)
+    for (const auto& p : sweep::chosen_law_model(l.model_id, g.laws).model->parameters()) it->second.push_back(p.name);
+  return &it->second;
 }
 
 /// A column per parameter name (in the order the models first name them), NaN where a run's model has none.
@@ -129,8 +141,10 @@ class StoreReader {
     const auto [header, groups] = read_groups(query);
     Columns c;
     std::vector<std::pair<const std::vector<std::string>*, const std::vector<double>*>> params;
+    std::map<std::string, std::vector<std::string>> chosen;
     for (const auto& g : groups) {
       const GroupLabels l = labels(header, g);
+      const std::vector<std::string>* names = run_parameter_names(l, g, chosen);
       for (const auto& r : g.run_results) {
         add_labels(c, g, l);
         c["run"].append(r.run);
@@ -139,7 +153,7 @@ class StoreReader {
         c["stop_reason"].append(r.stop_reason);
         c["local_optimum"].append(r.at_local_optimum);
         for (std::size_t m = 0; m < kAllMetrics.size(); ++m) c[std::string(metric_name(kAllMetrics[m]))].append(r.metrics[m]);
-        params.emplace_back(l.params, &r.params);
+        params.emplace_back(names, &r.params);
       }
     }
     py::dict columns = c.dict();
@@ -186,7 +200,7 @@ class StoreReader {
       c["verdict"].append(ran ? py::cast(conv.verdict()) : py::none());
       const auto& id = g.identifiability;
       c["identifiable"].append(id ? py::cast(id->all_identifiable()) : py::none());
-      c["identifiability"].append(id ? py::cast(id->summary(R.model(g.part, g.model))) : py::none());
+      c["identifiability"].append(id ? py::cast(id->summary(R.model(g))) : py::none());
     }
     return c.dict();
   }

@@ -35,7 +35,8 @@ GROUPS = 32
 
 # Every stored number of every task group; wall times and timestamps may differ between runs.
 RESULTS = {
-    "groups": "SELECT grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, evaluations "
+    "groups": "SELECT grp, part, split, fitset, model, optimizer, metric, runs, task_key, status, message, evaluations, "
+              "laws "
               "FROM groups ORDER BY grp",
     "runs": "SELECT * FROM runs ORDER BY grp, run",
     "dataset_metrics": "SELECT * FROM dataset_metrics ORDER BY grp, run, dataset",

@@ -93,7 +93,7 @@ void read_models(const Reader& r, const toml::table& root, PartSpec& part) {
       n = b->as_table()->get(m.name);
       key = m.name;
     }
-    r.check(n, key, [&] { return resolve_model(m); });
+    r.check(n, key, [&] { return resolve_model_or_auto_base(m); });
   }
 }
 

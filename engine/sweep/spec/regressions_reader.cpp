@@ -29,7 +29,7 @@ void read_regressions(const Reader& r, const toml::table& root, PartSpec& part) 
     g.laws = r.required_string(t, "laws", key);
     g.paper = r.string(t, "paper", key).value_or("");
     r.check(t.get("laws"), Reader::join(key, "laws"), [&] {
-      const ResolvedModel model = resolve_model(part.models[m]);
+      const ResolvedModel model = resolve_model_or_auto_base(part.models[m]);
       for (const auto& [name, law] : parse_laws(g.laws, "laws")) {
         (void)model.model->parameter_index(name);
         if (law.kind == ParameterLaw::Kind::fixed)

@@ -20,15 +20,13 @@ std::string identifiability_mark(const GroupRecord& g, int j) {
   return std::string(g.identifiability->determined(j) ? "" : kUndeterminedMark) + (g.identifiability->at_bound(j) ? kAtBoundMark : "");
 }
 
-/// The rows of a series' params table: every parameter of its groups' models, in order of first appearance (one
-/// model for most series; each group's own law model when the groups chose their laws).
-std::vector<ParameterInfo> parameter_rows(const Context& c, const Series& s) {
-  std::vector<ParameterInfo> rows;
+/// The laws of a series' groups, each once, in order of first appearance: one block of rows per laws ("" for a series
+/// of one model; several when its groups chose different laws, whose coefficients mean different things).
+std::vector<std::string> law_blocks(const Series& s) {
+  std::vector<std::string> blocks;
   for (const GroupRecord* g : s.groups)
-    for (const ParameterInfo& p : c.model(*g).parameters())
-      if (std::none_of(rows.begin(), rows.end(), [&](const ParameterInfo& r) { return r.name == p.name; }))
-        rows.push_back(p);
-  return rows;
+    if (std::find(blocks.begin(), blocks.end(), g->laws) == blocks.end()) blocks.push_back(g->laws);
+  return blocks;
 }
 
 }  // namespace
@@ -46,40 +44,43 @@ void params_tables(const Context& c, std::vector<Table>& out) {
                                       c.describe(s)),
                           rel_cols);
     rel.paper = "";
-    if (Context::chose_laws(s)) {
-      std::vector<Cell> row{txt("laws"), txt("")};
-      for (const GroupRecord* g : s.groups) row.push_back(txt(g->laws));
-      r.rows.push_back(std::move(row));
-    }
     std::vector<std::vector<double>> best;
     for (const GroupRecord* g : s.groups)
       best.push_back(c.model(*g).to_paper_units(g->run_results[static_cast<std::size_t>(g->best_run())].params));
     bool marked = false;
-    for (const ParameterInfo& p : parameter_rows(c, s)) {
-      std::vector<Cell> row{txt(p.name), txt(p.paper_unit)}, rel_row{txt(p.name)};
-      for (std::size_t k = 0; k < best.size(); ++k) {
-        const GroupRecord& g = *s.groups[k];
-        const int j = c.model(g).parameter_index(p.name);
-        if (j < 0) {  // a coefficient of another group's laws
-          row.push_back(none());
-          rel_row.push_back(none());
-          continue;
-        }
-        const double v = best[k][static_cast<std::size_t>(j)];
-        const std::string mark = identifiability_mark(g, j);
-        marked |= !mark.empty();
-        row.push_back({format_number(v) + mark, v});
-        if (!g.identifiability) {
-          rel_row.push_back(none());
-          continue;
-        }
-        const double e = 100 * g.identifiability->relative_error[static_cast<std::size_t>(j)];
-        std::string flags;
-        for (const auto& f : g.identifiability->flags[static_cast<std::size_t>(j)]) flags += (flags.empty() ? " (" : "; ") + f;
-        rel_row.push_back({format_number(e) + flags + (flags.empty() ? "" : ")"), e});
+    for (const std::string& laws : law_blocks(s)) {
+      const GroupRecord* first = *std::find_if(s.groups.begin(), s.groups.end(), [&](auto* g) { return g->laws == laws; });
+      if (!laws.empty()) {
+        std::vector<Cell> row{txt("laws"), txt("")};
+        for (const GroupRecord* g : s.groups) row.push_back(g->laws == laws ? txt(laws) : none());
+        r.rows.push_back(std::move(row));
       }
-      r.rows.push_back(std::move(row));
-      rel.rows.push_back(std::move(rel_row));
+      const auto params = c.model(*first).parameters();
+      for (std::size_t j = 0; j < params.size(); ++j) {
+        std::vector<Cell> row{txt(params[j].name), txt(params[j].paper_unit)}, rel_row{txt(params[j].name)};
+        for (std::size_t k = 0; k < best.size(); ++k) {
+          const GroupRecord& g = *s.groups[k];
+          if (g.laws != laws) {  // another block's group
+            row.push_back(none());
+            rel_row.push_back(none());
+            continue;
+          }
+          const double v = best[k][j];
+          const std::string mark = identifiability_mark(g, static_cast<int>(j));
+          marked |= !mark.empty();
+          row.push_back({format_number(v) + mark, v});
+          if (!g.identifiability) {
+            rel_row.push_back(none());
+            continue;
+          }
+          const double e = 100 * g.identifiability->relative_error[j];
+          std::string flags;
+          for (const auto& f : g.identifiability->flags[j]) flags += (flags.empty() ? " (" : "; ") + f;
+          rel_row.push_back({format_number(e) + flags + (flags.empty() ? "" : ")"), e});
+        }
+        r.rows.push_back(std::move(row));
+        rel.rows.push_back(std::move(rel_row));
+      }
     }
     std::vector<Cell> row{txt(std::string(metric_name(s.metric))), txt("")};
     for (const GroupRecord* g : s.groups) row.push_back(num(g->run_results[static_cast<std::size_t>(g->best_run())].best_value));

@@ -19,15 +19,20 @@ StoreResults::StoreResults(const Store& store) : header(store.header()) {
     s.model = m.model_id;
     s.fixture = m.fixture;
     s.laws = m.laws;
-    models_[static_cast<std::size_t>(m.part)].push_back(resolve_model(s));
+    models_[static_cast<std::size_t>(m.part)].push_back(resolve_model_or_auto_base(s));
   }
   for (const GroupRecord& g : groups) {
     if (g.laws.empty() || chosen_.contains({g.part, g.model, g.laws})) continue;
-    ModelChoice s;
-    s.model = header.models.at(static_cast<std::size_t>(header.model(g.part, g.model))).model_id;
-    s.laws = g.laws;
-    chosen_.emplace(std::tuple{g.part, g.model, g.laws}, resolve_model(s));
+    const std::string& base = header.models.at(static_cast<std::size_t>(header.model(g.part, g.model))).model_id;
+    chosen_.emplace(std::tuple{g.part, g.model, g.laws}, chosen_law_model(base, g.laws));
   }
+}
+
+ResolvedModel chosen_law_model(const std::string& base_model_id, const std::string& laws) {
+  ModelChoice choice;
+  choice.model = base_model_id;
+  choice.laws = laws;
+  return resolve_model(choice);
 }
 
 const Model& StoreResults::model(const GroupRecord& g) const {

@@ -227,5 +227,31 @@ TEST(SweepFolds, AnUnknownRuleOrFoldsBesideByEachAreRefused) {
   EXPECT_EQ(refusal(fixed("[[splits]]\nfolds = \"leave-setting\"\n")), "(accepted)");
 }
 
+// Folds of a laws = "auto" model may choose different laws: the params table keeps each set of laws in a block of
+// its own (their coefficients mean different things), a "-" in the groups of the other block. The store's groups are
+// given two different sets of laws of six coefficients each, as two folds would choose them.
+TEST(SweepLawsAuto, TheParamsTableKeepsGroupsWithDifferentLawsApart) {
+  const fs::path dir = folds_sweep("sweep_laws_blocks", "leave-setting");
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(),
+                                             (dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string store_path = (dir / "out" / "store.sqlite").string();
+  {
+    Store store = Store::open(store_path);
+    const char* laws[] = {"f_c=hill(I,2);c0=mono(I,0,1)", "f_c=sat(I);c0=mono(I,0,1)", "f_c=sat(I);c0=mono(I,0,1)"};
+    for (long long i = 0; i < 3; ++i) {
+      GroupRecord g = *store.group(i);
+      g.laws = laws[i];
+      store.write(g);
+    }
+  }
+  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", store_path));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  EXPECT_NE(table.output.find("laws,,\"f_c=hill(I,2);c0=mono(I,0,1)\",-,-"), std::string::npos) << table.output;
+  EXPECT_NE(table.output.find("laws,,-,\"f_c=sat(I);c0=mono(I,0,1)\",\"f_c=sat(I);c0=mono(I,0,1)\""), std::string::npos)
+      << table.output;
+  EXPECT_NE(table.output.find("f_c_Ih,A,"), std::string::npos) << table.output;  // hill's half-saturation current
+}
+
 }  // namespace
 }  // namespace dampbench::sweep

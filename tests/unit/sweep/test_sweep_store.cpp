@@ -54,6 +54,7 @@ GroupRecord record(long long index) {
   g.build_flags = "Release,test";
   g.spec_hash = "00000000000000aa";
   g.dataset_hash = "cccc";
+  g.laws = "f_c=hill(I,2);c0=mono(I,0,1)";
   const double inf = std::numeric_limits<double>::infinity();
   for (int r = 0; r < 2; ++r) {
     RunRecord x;
@@ -107,6 +108,7 @@ TEST(Store, RoundTripIsBitExact) {
   EXPECT_EQ(g->task_key, want.task_key);
   EXPECT_EQ(g->metric, Metric::nrmse);
   EXPECT_EQ(g->dataset_hash, "cccc");
+  EXPECT_EQ(g->laws, want.laws);
   ASSERT_EQ(g->run_results.size(), 2u);
   for (std::size_t r = 0; r < 2; ++r) {
     EXPECT_TRUE(same_bits(g->run_results[r].best_value, want.run_results[r].best_value));
@@ -212,6 +214,27 @@ TEST(Store, RefusesOtherFormatsAndFiles) {
             std::string::npos);
   EXPECT_EQ(testing::error_of([&] { (void)Store::open((dir / "none.sqlite").string()); }),
             "no store at '" + (dir / "none.sqlite").string() + "'");
+}
+
+// Format 3 added the groups' chosen laws; a format-2 store opens as one whose groups chose none, and stays readable.
+TEST(Store, AFormatTwoStoreOpensWithoutChosenLaws) {
+  const auto dir = temp_dir();
+  const auto path = dir / "s.sqlite";
+  {
+    Store store = Store::create_or_resume(path.string(), header());
+    store.write(record(2));
+  }
+  sql(path, "ALTER TABLE groups DROP COLUMN laws");
+  sql(path, "UPDATE meta SET value = '2' WHERE key = 'format'");
+  sql(path, "PRAGMA user_version = 2");
+  const Store store = Store::open(path.string());
+  EXPECT_EQ(store.meta("format"), std::to_string(kStoreFormat));
+  const auto g = store.group(2);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->laws, "");
+  GroupRecord want = record(2);
+  want.laws.clear();
+  EXPECT_TRUE(compare_records(want, *g).empty());
 }
 
 TEST(Store, AStoreKilledBeforeItsFirstCommitStartsAgain) {
