@@ -6,11 +6,14 @@
 // and predicting it with the predict datasets of that value.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "engine/common/error.hpp"
@@ -68,9 +71,11 @@ glob = "{}/*.csv"
 TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForBit) {
   const fs::path dir = testing::test_temp_dir("sweep_laws_auto");
   fs::create_directories(dir / "data");
-  std::string train;
+  std::vector<std::string> train;
   for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
-    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) train += " " + write_bingham_record(dir / "data", amp, freq, I).string();
+    for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) train.push_back(write_bingham_record(dir / "data", amp, freq, I).string());
+  // in the sweep's order (a glob's files sorted by name): a joint fit sums its records' errors in their order
+  std::sort(train.begin(), train.end());
   write_bingham_record(dir / "data", 0.015, 1.5, 0.6);  // a setting and a current it never fits
   std::ofstream(dir / "s.toml") << sweep_text("auto", dir / "data",
                                               "[[splits]]\nname = \"damper\"\nby = \"all\"\nfit = { freq = [1, 2, 0.5] }\n"
@@ -99,9 +104,9 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
 
   // `fit --laws auto` on the same records and budget: one piece of code, so the same laws and the same bits
   const auto fit = run_dampbench_json(fmt::format(
-      "fit --model mrd.bingham --laws auto --data{} --optimizer ga-lm --pop 24 --iters 30 --runs 2 --metric nrmse "
+      "fit --model mrd.bingham --laws auto --data {} --optimizer ga-lm --pop 24 --iters 30 --runs 2 --metric nrmse "
       "--seed 1 --format json",
-      train));
+      fmt::join(train, " ")));
   ASSERT_EQ(fit.exit_code, 0) << fit.output << fit.errors;
   const auto j = nlohmann::json::parse(fit.output);
   EXPECT_EQ(j.at("laws").get<std::string>(), g.laws);
