@@ -102,10 +102,9 @@ int metric_index(Metric metric) {
 
 std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule,
                              std::string_view where) {
-  constexpr std::string_view kLeaveOne = "leave-one:";
   std::vector<Fold> folds;
-  if (rule.starts_with(kLeaveOne) && rule.size() > kLeaveOne.size()) {
-    folds = leave_one_out(records, std::string(rule.substr(kLeaveOne.size())), rule, where);
+  if (const std::string_view variable = leave_one_variable(rule); !variable.empty()) {
+    folds = leave_one_out(records, std::string(variable), rule, where);
   } else if (rule == "leave-setting") {
     folds = leave_setting_out(records, rule, where);
   } else {
@@ -121,13 +120,17 @@ std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::st
   return folds;
 }
 
+std::string_view leave_one_variable(std::string_view rule) {
+  constexpr std::string_view kLeaveOne = "leave-one:";
+  return rule.starts_with(kLeaveOne) ? rule.substr(kLeaveOne.size()) : std::string_view{};
+}
+
 bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule) {
   const auto near = [&](std::string_view v) {
     const auto x = a.law_variables.find(std::string(v)), y = b.law_variables.find(std::string(v));
     return x != a.law_variables.end() && y != b.law_variables.end() && same_value(x->second, y->second);
   };
-  constexpr std::string_view kLeaveOne = "leave-one:";
-  if (rule.starts_with(kLeaveOne)) return near(rule.substr(kLeaveOne.size()));
+  if (const std::string_view variable = leave_one_variable(rule); !variable.empty()) return near(variable);
   return rule == "leave-setting" && near("amp") && near("freq");
 }
 

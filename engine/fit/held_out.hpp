@@ -38,6 +38,9 @@ struct Fold {
 /// or a rule that gives fewer than two folds.
 std::vector<Fold> make_folds(const std::vector<const Signals*>& records, std::string_view rule, std::string_view where);
 
+/// VAR of a "leave-one:VAR" rule; empty for any other rule.
+std::string_view leave_one_variable(std::string_view rule);
+
 /// Whether record `a` has the value by which `rule` groups record `b` (the same setting for leave-setting, the same
 /// VAR for leave-one:VAR; values within a relative 1e-9): a record that the fold leaving `b` out predicts too.
 bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule);

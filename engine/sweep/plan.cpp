@@ -58,25 +58,6 @@ std::string datasets_key(const PartSpec& part, const std::vector<int>& ds) {
   return k;
 }
 
-/// The (model, optimizer) pairs a split identifies: those its lists and the model's optimizers allow.
-std::vector<std::pair<int, int>> split_pairs(const PartSpec& part, const SplitSpec& split) {
-  std::vector<std::pair<int, int>> pairs;
-  for (int m = 0; m < static_cast<int>(part.models.size()); ++m) {
-    const ModelSpec& model = part.models[m];
-    if (!split.models.empty() && std::find(split.models.begin(), split.models.end(), model.name) == split.models.end())
-      continue;
-    for (int o = 0; o < static_cast<int>(part.optimizers.size()); ++o) {
-      const std::string& label = part.optimizers[o].label;
-      if (!split.optimizers.empty() && std::find(split.optimizers.begin(), split.optimizers.end(), label) == split.optimizers.end())
-        continue;
-      if (!model.optimizers.empty() && std::find(model.optimizers.begin(), model.optimizers.end(), label) == model.optimizers.end())
-        continue;
-      pairs.emplace_back(m, o);
-    }
-  }
-  return pairs;
-}
-
 /// Fit sets grouping the fit datasets by their values of the split's `by` variables, each predicting the
 /// datasets with the same values; a dataset that failed to load forms a fit set of its own (it fails with its
 /// loading message).
@@ -200,7 +181,7 @@ SplitPlan plan_split(const PartSpec& part, const SplitSpec& split, const std::ve
       break;
   }
 
-  sp.pairs = split_pairs(part, split);
+  sp.pairs = part.pairs(split);
   if (sp.pairs.empty()) throw DataError(fmt::format("{}: no (model, optimizer) pair to identify", where));
   const long long metrics = static_cast<long long>(part.metrics.size());
   sp.groups = static_cast<long long>(sp.fitsets.size()) * static_cast<long long>(sp.pairs.size()) * metrics;

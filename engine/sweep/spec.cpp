@@ -60,6 +60,20 @@ int PartSpec::optimizer_index(std::string_view n) const {
     if (optimizers[i].label == n) return static_cast<int>(i);
   return -1;
 }
+std::vector<std::pair<int, int>> PartSpec::pairs(const SplitSpec& split) const {
+  const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
+    return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  };
+  std::vector<std::pair<int, int>> out;
+  for (int m = 0; m < static_cast<int>(models.size()); ++m) {
+    if (!listed(split.models, models[m].name)) continue;
+    for (int o = 0; o < static_cast<int>(optimizers.size()); ++o)
+      if (listed(split.optimizers, optimizers[o].label) && listed(models[m].optimizers, optimizers[o].label))
+        out.emplace_back(m, o);
+  }
+  return out;
+}
+
 int PartSpec::split_index(std::string_view n) const {
   for (std::size_t i = 0; i < splits.size(); ++i)
     if (splits[i].name == n) return static_cast<int>(i);

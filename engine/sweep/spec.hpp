@@ -170,6 +170,8 @@ struct PartSpec {
   [[nodiscard]] int model_index(std::string_view name) const;      ///< -1 if absent
   [[nodiscard]] int optimizer_index(std::string_view label) const; ///< -1 if absent
   [[nodiscard]] int split_index(std::string_view name) const;      ///< -1 if absent
+  /// The (model, optimizer) index pairs a split identifies: those its lists and the model's optimizers allow.
+  [[nodiscard]] std::vector<std::pair<int, int>> pairs(const SplitSpec& split) const;
 };
 
 struct SweepSpec {

@@ -1,7 +1,5 @@
 // Models: ids, law fixtures or [[models]] tables, with the [bounds] table; every model is built once here so
 // that a bad law, bound or name is reported before anything runs.
-#include <algorithm>
-
 #include "engine/sweep/spec/reader.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
@@ -53,10 +51,6 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
   return m;
 }
 
-bool listed(const std::vector<std::string>& names, const std::string& name) {
-  return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
-}
-
 
 }  // namespace
 
@@ -103,22 +97,22 @@ void check_auto_laws(const Reader& r, const toml::table& root, const PartSpec& p
     if (!chooses_laws(model)) continue;
     const toml::node* n = root.get("models")->as_array()->get(m);
     const std::string key = fmt::format("models[{}]", m);
-    for (const SplitSpec& split : part.splits) {
-      if (!listed(split.models, model.name)) continue;
-      if (split.by == SplitSpec::By::each)
-        r.fail(n, key,
-               fmt::format("laws = \"auto\" chooses laws across the records of a group, and {} fits each dataset alone "
-                           "(by = \"each\"): give it by = \"all\" or a list of variables, or leave this model out of its "
-                           "models",
-                           split.name.empty() ? "the default split (no [[splits]])" : fmt::format("split '{}'", split.name)));
-      for (const OptimizerEntry& o : part.optimizers)
-        if (listed(split.optimizers, o.label) && listed(model.optimizers, o.label) && o.auto_budget)
+    for (const SplitSpec& split : part.splits)
+      for (const auto& [pm, po] : part.pairs(split)) {
+        if (pm != static_cast<int>(m)) continue;
+        if (split.by == SplitSpec::By::each)
+          r.fail(n, key,
+                 fmt::format("laws = \"auto\" chooses laws across the records of a group, and {} fits each dataset "
+                             "alone (by = \"each\"): give it by = \"all\" or a list of variables, or leave this model "
+                             "out of its models",
+                             split.name.empty() ? "the default split (no [[splits]])" : fmt::format("split '{}'", split.name)));
+        if (part.optimizers[po].auto_budget)
           r.fail(n, key,
                  fmt::format("laws = \"auto\" fits at a fixed budget, as fit --laws auto does, and optimizer '{}' has "
                              "the automatic budget: give it population and iterations (or budget = \"fixed\"), or "
                              "name this model's optimizers",
-                             o.label));
-    }
+                             part.optimizers[po].label));
+      }
   }
 }
 

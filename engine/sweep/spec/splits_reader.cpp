@@ -1,6 +1,6 @@
 // [[splits]]: which datasets each split fits and predicts, how it groups them, and its sensitivity analysis.
 
-
+#include "engine/fit/held_out.hpp"
 #include "engine/sweep/spec/reader.hpp"
 
 namespace dampbench::sweep::spec_file {
@@ -32,9 +32,8 @@ void read_folds(const Reader& r, const toml::table& t, const std::string& key, S
   const auto folds = r.string(t, "folds", key);
   if (!folds) return;
   const std::string fkey = Reader::join(key, "folds");
-  constexpr std::string_view kLeaveOne = "leave-one:";
-  const bool leave_one = folds->starts_with(kLeaveOne);
-  if (*folds != "leave-setting" && !(leave_one && known_variable(folds->substr(kLeaveOne.size()))))
+  const std::string_view variable = leave_one_variable(*folds);
+  if (*folds != "leave-setting" && !(!variable.empty() && known_variable(variable)))
     r.fail(t.get("folds"), fkey,
            fmt::format("expected \"leave-setting\" or \"leave-one:VAR\" with VAR one of I, V, phi, amp, freq, w, got '{}'",
                        *folds));
