@@ -52,7 +52,8 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
                 "models that have them, local stages and every reported value in double; or double throughout");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--start", fit.start,
-                "per-file: start the search from the laws fitted to each record's own fit (member 0 of each run)");
+                "per-file: start the search from the laws fitted to each record's own fit; or a model file (--save-model) of "
+                "the same model and laws: start from its coefficients (member 0 of each run, clamped into the box)");
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");
   c->add_option("--save-model", o.save_model, "also write the fitted model as JSON (for evaluate/simulate --model-file)");

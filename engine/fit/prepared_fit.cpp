@@ -1,9 +1,12 @@
 #include "engine/fit/prepared_fit.hpp"
 
+#include <filesystem>
+
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
+#include "engine/fit/model_file.hpp"
 
 namespace dampbench {
 
@@ -18,12 +21,28 @@ FitRequest PreparedFit::request() const {
   r.settings.metric = metric;
   r.settings.search_precision = search_precision;
   r.settings.task_key = task_key(model.model->id(), records.names, plan.optimizer);
+  r.start = start;
   r.assess_failed_fit = true;
   r.auto_budget = auto_budget;
   return r;
 }
 
 namespace {
+
+/// The coefficients of a model file (fit --save-model) as the start of a fit of `model`; InputError naming the file
+/// when it is not a model file or its model is another (its id, laws included, must be `model`'s).
+std::vector<double> start_from_model_file(const std::string& path, const Model& model) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(fmt::format("--start: expected per-file or a model file (fit --save-model), got '{}', which is "
+                                 "not a file",
+                                 path));
+  const LoadedModel loaded = load_model_file(path);
+  if (loaded.model.model->id() != model.id())
+    throw InputError(fmt::format("--start {}: the file's model is {} and this fit's {}: a start needs the same model "
+                                 "and laws",
+                                 path, loaded.model.model->id(), model.id()));
+  return loaded.params;
+}
 
 /// The automatic budget the spec asks for (FitSpec::budget), or none; InputError for a cap it cannot have.
 std::optional<AutoBudget> auto_budget_of(const FitSpec& spec, const OptimizerSpec& optimizer) {
@@ -49,12 +68,12 @@ PreparedFit prepare_fit(const FitSpec& spec) {
   PreparedFit p;
   ModelChoice choice = spec.model;
   p.auto_laws = chooses_laws(choice);
-  if (!spec.start.empty() && spec.start != "per-file")
-    throw InputError(fmt::format("--start: expected per-file, got '{}'", spec.start));
   p.start_per_file = spec.start == "per-file";
-  if (p.start_per_file && p.auto_laws)
-    throw InputError("--start per-file with --laws auto: --laws auto always starts from the records' own fits");
+  if (!spec.start.empty() && p.auto_laws)
+    throw InputError(fmt::format("--start {} with --laws auto: --laws auto always starts from the records' own fits",
+                                 spec.start));
   p.model = resolve_model_or_auto_base(choice);  // with --laws auto: the base model, before its laws are chosen
+  if (!spec.start.empty() && !p.start_per_file) p.start = start_from_model_file(spec.start, *p.model.model);
   if (p.auto_laws) choice.laws.clear();
   p.choice = choice;
   const Model& model = *p.model.model;

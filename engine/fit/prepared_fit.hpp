@@ -32,7 +32,9 @@ struct FitSpec {
   std::optional<long long> max_evaluations;  ///< the automatic budget's cap (auto_budget.hpp)
   std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
-  std::string start;  ///< "" or "per-file" (engine/fit/record_start.hpp)
+  /// "", "per-file" (engine/fit/record_start.hpp), or a model file (fit --save-model) of the same model whose
+  /// coefficients start the search
+  std::string start;
   /// "mixed" (default): the population phase in single-precision lanes (IdentificationSettings::search_precision), or "double"
   std::string precision = "mixed";
   /// Once set, the fit stops at the next generation with Interrupted (the Python module's Ctrl-C); may be null.
@@ -45,6 +47,7 @@ struct PreparedFit {
   ResolvedModel model;      ///< with --laws auto: the base model until the laws are chosen
   bool auto_laws = false;   ///< --laws auto (engine/fit/law_selection.hpp)
   bool start_per_file = false;  ///< --start per-file (engine/fit/record_start.hpp)
+  std::vector<double> start;    ///< --start FILE: the file's coefficients, member 0 of each run; empty: none
   Metric metric = Metric::of_abs;
   FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults
   OptimizerSpec optimizer;  ///< the plan's with the settings given

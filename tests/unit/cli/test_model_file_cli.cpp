@@ -1,6 +1,6 @@
 // A fitted model as a file, end to end: fit --save-model, then evaluate and simulate --model-file reproduce the
 // fit's metric and force bit for bit (same binary, same vector level); where each operating variable came from
-// is printed; a time-varying current column is refused for a law.
+// is printed; a time-varying current column is refused for a law; fit --start FILE starts from a file's coefficients.
 #include <bit>
 #include <cmath>
 #include <filesystem>
@@ -165,6 +165,58 @@ TEST(ModelFileCli, OptionsThatCannotGoTogetherAreRefused) {
        "simulate: --model-file gives the model"},
       {"evaluate --model-file " + (dir / "none.json").string() + " --data " + csv.string(),
        "--model-file: cannot open '" + (dir / "none.json").string() + "'"}};
+  for (const auto& [args, message] : cases) {
+    r = run_dampbench(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
+/// fit --start FILE: a model file whose coefficients are the true parameters of a noise-free record starts every run
+/// there, so that one generation of a small population ends at zero error; from the box it does not.
+TEST(ModelFileCli, AFitStartsFromAModelFilesCoefficients) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "fvd.csv";
+  auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 "
+                         "--sine amp=0.02,freq=1,cycles=2,fs=200 -o " + csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto fitted = dir / "fitted.json";
+  const std::string tiny = "fit --model fvd.generalized_viscous --data " + csv.string() +
+                           " --optimizer de --pop 5 --iters 1 --runs 2 --precision double --metric nrmse --format json";
+  r = run_dampbench(tiny + " --save-model " + fitted.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double from_box = nlohmann::json::parse(r.output).at("metrics").at("nrmse").get<double>();
+  auto truth = nlohmann::json::parse(read(fitted));
+  truth["coefficients"] = {{"m", 0.0}, {"C", 2e5}, {"alpha", 0.4}};
+  const auto start = dir / "truth.json";
+  std::ofstream(start) << truth.dump();
+  r = run_dampbench(tiny + " --start " + start.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto fit = nlohmann::json::parse(r.output);
+  EXPECT_GT(from_box, 1e-3);
+  EXPECT_LT(fit.at("metrics").at("nrmse").get<double>(), 1e-12);
+  EXPECT_NEAR(fit.at("best_params").at("C").get<double>(), 2e5, 1e-6);
+  for (const auto& run : fit.at("run_results")) EXPECT_LT(run.at("best_value").get<double>(), 1e-12);
+}
+
+TEST(ModelFileCli, AStartFileOfAnotherModelIsRefused) {
+  const auto dir = temp_dir();
+  const auto csv = dir / "r.csv";
+  auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 --sine amp=0.01,freq=1,fs=100 -o " +
+                         csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto model = dir / "m.json";
+  r = run_dampbench("fit --model fvd.linear_viscous --runs 1 --iters 1 --data " + csv.string() + " --save-model " +
+                    model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::pair<std::string, std::string> cases[] = {
+      {"fit --model fvd.generalized_viscous --runs 1 --iters 1 --data " + csv.string() + " --start " + model.string(),
+       "--start " + model.string() + ": the file's model is fvd.linear_viscous and this fit's fvd.generalized_viscous"},
+      {"fit --model fvd.linear_viscous --runs 1 --iters 1 --data " + csv.string() + " --start " +
+           (dir / "none.json").string(),
+       "--start: expected per-file or a model file (fit --save-model), got '" + (dir / "none.json").string() + "'"},
+      {"fit --model mrd.bingham --laws auto --data " + csv.string() + " --start " + model.string(),
+       "--start " + model.string() + " with --laws auto"}};
   for (const auto& [args, message] : cases) {
     r = run_dampbench(args);
     EXPECT_NE(r.exit_code, 0) << args;
