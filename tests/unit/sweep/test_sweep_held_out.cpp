@@ -21,6 +21,7 @@
 #include "engine/record/csv_loader.hpp"
 #include "engine/record/excitation.hpp"
 #include "engine/sweep/plan.hpp"
+#include "engine/sweep/schedule.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
 #include "models/registry.hpp"
@@ -220,6 +221,23 @@ TEST(SweepFolds, LeavingACurrentOutPredictsOnlyThatCurrent) {
   EXPECT_EQ(fitsets[1].label, "I=0.5");
   EXPECT_EQ(names(part, fitsets[1].predict), "10mm1Hz0.5A+20mm0.5Hz0.5A+5mm2Hz0.5A");
   EXPECT_EQ(fitsets[1].fit.size(), 6u);
+}
+
+/// The schedule hands out the largest groups first: a laws = "auto" group (each record's own fit, the choice and a
+/// joint fit) outweighs a group fitting given laws of twice the base model's coefficients on the same records, and
+/// so does a group that starts from its records' own fits.
+TEST(SweepFolds, AGroupThatChoosesLawsOrFitsItsRecordsFirstIsEstimatedAsTheLargerJob) {
+  const fs::path dir = folds_sweep("sweep_folds_cost", "leave-setting");
+  const auto cost_of = [&](const std::string& laws, const std::string& extra) {
+    std::string text = sweep_text(laws, dir / "data", "[[splits]]\nname = \"folds\"\nfolds = \"leave-setting\"\n");
+    text.insert(text.find('\n', text.find("laws = ")) + 1, extra);
+    std::ofstream(dir / "c.toml") << text;
+    const Plan plan(load_sweep((dir / "c.toml").string()), csv_loader());
+    return estimated_cost(plan, plan.group(0));
+  };
+  const double given = cost_of("f_c=hill(I,2);c0=mono(I,0,1)", "");  // 6 coefficients, the base model's 3
+  EXPECT_GT(cost_of("auto", ""), given);
+  EXPECT_GT(cost_of("f_c=hill(I,2);c0=mono(I,0,1)", "start = \"per-file\"\n"), given);
 }
 
 TEST(SweepFolds, AnUnknownRuleOrFoldsBesideByEachAreRefused) {
