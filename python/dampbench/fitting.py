@@ -65,8 +65,8 @@ def fit(model, records, *, laws=None, bounds=None, metric="of_abs", optimizer=No
     text, or "auto"; bounds: {"c0": (lo, hi)} in SI or "c0=lo:hi"; optimizer, optimizer_settings ({"pc": 0.6}),
     pop, iters, runs, budget ("auto" or "fixed"), max_evals, max_seconds, seed, start ("per-file", or a model file
     of the same model and laws), precision ("mixed", the default: the population search in float32 lanes; or
-    "double"), predict (files), folds, reference, report (HTML file), save_model (model file) as the command line's options. threads: worker
-    threads (default every core); isa: "sse2", "avx2" or "avx512" for this call.
+    "double"), predict (files), folds, reference, report (HTML file), save_model (model file) as the command
+    line's options. threads: worker threads (default every core); isa: "sse2", "avx2" or "avx512" for this call.
 
     The interpreter is released while the engine works; Ctrl-C stops it within a generation and raises
     KeyboardInterrupt. Errors raise UsageError, DataError, StoreError or InternalError with the command line's
