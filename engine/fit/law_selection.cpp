@@ -202,7 +202,7 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
   LawSet laws = shared;
   out.shared_score = out.score = s.score(shared);
   std::vector<double> bics(laws.size()), scores(laws.size(), out.score);
-  for (int pass = 0; pass < 3; ++pass) {
+  for (int pass = 0; pass < kLawChoicePasses; ++pass) {
     bool changed = false;
     for (int j = 0; j < model.dim(); ++j) {
       const ValueLaw before = laws[j];

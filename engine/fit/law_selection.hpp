@@ -31,6 +31,15 @@
 
 namespace dampbench {
 
+/// The most passes the choice makes over the parameters.
+inline constexpr int kLawChoicePasses = 3;
+
+/// The most simulations of the training records the choice makes for a model of `parameters` parameters: every
+/// family for every parameter in every pass (what the sweep's schedule counts for a laws = "auto" group).
+inline double law_choice_simulations(int parameters) {
+  return static_cast<double>(value_law_candidates().size()) * parameters * kLawChoicePasses;
+}
+
 /// How the per-record fits and the final fit are made.
 struct LawSearch {
   const Model* base = nullptr;          ///< the registered model the laws act on

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/fit/law_selection.hpp"
 #include "engine/fit/resolve_model.hpp"
 
 namespace dampbench::sweep {
@@ -34,15 +35,13 @@ double estimated_cost(const Plan& plan, const GroupRef& g) {
   if (opt.budget.max_evaluations > 0) evaluations = std::min(evaluations, static_cast<double>(opt.budget.max_evaluations));
   double samples = 0;
   for (int d : part.splits[g.split].fitsets[g.fitset].fit) samples += static_cast<double>(part.datasets[d].signals.size());
+  samples = std::max(samples, 1.0);
   const ModelSpec& entry = part.spec->models[g.model];
-  const double dim = part.models[g.model].model->dim();
-  const double one_fit = g.runs * evaluations * std::max(samples, 1.0) * dim;
-  if (chooses_laws(entry)) {
-    // Each record's own fit, the choice's simulations (about 24 families × dim parameters × 3 passes, each one
-    // simulation of the records) and the joint fit of a law model of about twice the base model's coefficients.
-    const double choice = 72 * dim * std::max(samples, 1.0) * dim;
-    return one_fit + choice + 2 * one_fit;
-  }
+  const int dim = part.models[g.model].model->dim();
+  const double one_fit = g.runs * evaluations * samples * dim;
+  // laws = "auto": each record's own fit, the choice's simulations, and the joint fit of a law model of about twice
+  // the base model's coefficients.
+  if (chooses_laws(entry)) return 3 * one_fit + law_choice_simulations(dim) * samples * dim;
   if (entry.start == "per-file") return 2 * one_fit;  // each record's own fit, then the joint fit
   return one_fit;
 }
