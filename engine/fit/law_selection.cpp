@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <tuple>
 
@@ -18,12 +19,38 @@ namespace {
 /// A set of laws, one per parameter of the gauged model.
 using LawSet = std::vector<ValueLaw>;
 
+/// The choice's folds: one per amplitude–frequency setting, then, when the records hold four or more currents, one
+/// per current between the lowest and the highest (the shape in I between trained currents; leaving an end current
+/// out would judge extrapolation instead).
+struct ChoiceFolds {
+  std::vector<Fold> folds;
+  std::size_t setting_folds = 0;  ///< folds[0, setting_folds) leave a setting out, the rest a current
+};
+
+ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::string& where) {
+  ChoiceFolds out;
+  out.folds = make_folds(records, "leave-setting", where);
+  out.setting_folds = out.folds.size();
+  const bool every_record_has_a_current = std::all_of(records.begin(), records.end(), [](const Signals* r) {
+    return r->law_variables.count("I") > 0;
+  });
+  const bool currents_differ = std::any_of(records.begin(), records.end(), [&](const Signals* r) {
+    return !same_fold_value(*records.front(), *r, "leave-one:I");
+  });
+  if (!every_record_has_a_current || !currents_differ) return out;
+  auto by_current = make_folds(records, "leave-one:I", where);  // ascending in I
+  if (by_current.size() >= kCurrentsForShapeFolds)
+    out.folds.insert(out.folds.end(), std::make_move_iterator(by_current.begin() + 1),
+                     std::make_move_iterator(by_current.end() - 1));
+  return out;
+}
+
 /// What scoring needs, fixed for one selection.
 struct Scoring {
   const Model& model;  ///< the gauged model, its parameters those of the per-record fits
   const std::vector<const Signals*>& records;
   const std::vector<std::vector<double>>& per_record;
-  std::vector<Fold> folds;
+  ChoiceFolds folds;
   std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
   Metric metric;
   /// Law fits by (fold, parameter, law): a coordinate step changes one parameter's law, the others' fits stay.
@@ -35,7 +62,7 @@ struct Scoring {
     if (it == fits_made.end()) {
       std::vector<std::map<std::string, double>> vars;
       std::vector<double> y;
-      values(j, folds[fold].fit, vars, y);
+      values(j, folds.folds[fold].fit, vars, y);
       it = fits_made.emplace(key, fit_value_law(law, vars, y)).first;
     }
     return it->second;
@@ -51,30 +78,40 @@ struct Scoring {
     }
   }
 
-  /// The metric of every record when left out (the folds cover each record once), in record order.
-  std::vector<double> left_out_metrics(const LawSet& laws) const {
-    std::vector<double> out(records.size(), std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t f = 0; f < folds.size(); ++f) {
-      const Fold& fold = folds[f];
+  /// Per fold, the metric of each record it leaves out (in its predict order).
+  std::vector<std::vector<double>> left_out_metrics(const LawSet& laws) const {
+    std::vector<std::vector<double>> out;
+    for (std::size_t f = 0; f < folds.folds.size(); ++f) {
+      const Fold& fold = folds.folds[f];
       std::vector<const ValueFit*> fits;
       for (int j = 0; j < model.dim(); ++j) fits.push_back(&law_fit(f, j, laws[j]));
+      std::vector<double> m(fold.predict.size());
       tbb::parallel_for(std::size_t{0}, fold.predict.size(), [&](std::size_t i) {
         const int r = fold.predict[i];
         std::vector<double> p(model.dim());
         for (int j = 0; j < model.dim(); ++j)
           p[j] = std::clamp(fits[j]->predict(laws[j], records[r]->law_variables), boxes[r].lower[j], boxes[r].upper[j]);
-        const double m = record_metric(model, p, *records[r], metric);
-        out[r] = std::isfinite(m) ? m : std::numeric_limits<double>::infinity();
+        const double v = record_metric(model, p, *records[r], metric);
+        m[i] = std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
       });
+      out.push_back(std::move(m));
     }
     return out;
   }
 
+  /// The mean left-out metric of the setting folds (each record once); with current folds, the mean of it and
+  /// theirs, so that predicting a new setting and a new current weigh the same.
   double score(const LawSet& laws) const {
     const auto m = left_out_metrics(laws);
-    double sum = 0;
-    for (double v : m) sum += v;
-    return sum / static_cast<double>(m.size());
+    const auto mean_over = [&](std::size_t begin, std::size_t end) {
+      double sum = 0, n = 0;
+      for (std::size_t f = begin; f < end; ++f)
+        for (double v : m[f]) sum += v, ++n;
+      return sum / n;
+    };
+    const double settings = mean_over(0, folds.setting_folds);
+    if (folds.setting_folds == m.size()) return settings;
+    return 0.5 * (settings + mean_over(folds.setting_folds, m.size()));
   }
 
   /// BIC of one family on parameter j's values over every record.
@@ -125,15 +162,19 @@ Table fold_table(const Scoring& s, const LawSet& shared, const LawSet& chosen) {
   const auto a = s.left_out_metrics(shared), b = s.left_out_metrics(chosen);
   Table t;
   t.id = "law_folds";
-  t.title = "Leave-one-setting-out folds of the training records (laws fitted to the per-record values)";
-  t.columns = {"left-out setting", "records", fmt::format("{} shared", metric_name(s.metric)),
+  t.title = "Folds of the training records (laws fitted to the per-record values): each setting left out, then each "
+            "current between the lowest and the highest when there are four or more";
+  t.columns = {"left out", "records", fmt::format("{} shared", metric_name(s.metric)),
                fmt::format("{} chosen laws", metric_name(s.metric))};
-  for (const Fold& f : s.folds) {
+  for (std::size_t f = 0; f < s.folds.folds.size(); ++f) {
+    const Fold& fold = s.folds.folds[f];
     double sa = 0, sb = 0;
-    for (int r : f.predict) sa += a[r], sb += b[r];
-    const double n = static_cast<double>(f.predict.size());
-    t.rows.push_back({describe_setting(*s.records[f.predict.front()]), fmt::format("{}", f.predict.size()),
-                      number_cell(sa / n), number_cell(sb / n)});
+    for (std::size_t i = 0; i < fold.predict.size(); ++i) sa += a[f][i], sb += b[f][i];
+    const double n = static_cast<double>(fold.predict.size());
+    const Signals& first = *s.records[fold.predict.front()];
+    t.rows.push_back({f < s.folds.setting_folds ? describe_setting(first)
+                                                : fmt::format("I {:g} A", first.law_variables.at("I")),
+                      fmt::format("{}", fold.predict.size()), number_cell(sa / n), number_cell(sb / n)});
   }
   return t;
 }
@@ -193,8 +234,7 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
 LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
                          const std::vector<std::vector<double>>& per_record) {
   const Model& model = *gauged.model;
-  Scoring s{model, search.records, per_record, make_folds(search.records, "leave-setting", search.label), {},
-            search.settings.metric};
+  Scoring s{model, search.records, per_record, choice_folds(search.records, search.label), {}, search.settings.metric};
   for (const Signals* r : search.records) s.boxes.push_back(gauged.bounds_for(std::span<const Signals* const>(&r, 1)));
   LawSelection out;
   for (const auto& p : model.parameters()) out.parameters.push_back(p.name);

@@ -5,19 +5,24 @@
 //  1. What the records identify: the model, under its state gauge (engine/model/model.hpp StateGauge), fitted to
 //     each training record alone (the fit's optimizer, budget and runs).
 //  2. Choice: for each parameter, shared, or one of the law families of engine/fit/value_laws.hpp. A set of laws
-//     is scored by leave-one-setting-out folds over the training records: the laws are fitted to the fold's
-//     per-record values, predict the left-out setting's parameters, and the model simulates its records; the
-//     score is the mean metric over all left-out records. Coordinate search from "every parameter shared":
-//     each parameter in turn takes the family with the lowest score; families within 1 % of it are a tie, broken
-//     by the Bayesian information criterion of the family on the parameter's values (n·ln(RSS/n) + k·ln n). At
-//     most three passes, fewer when a pass changes nothing.
-//     Laws in current have up to three coefficients. With three training currents, leaving one current out
-//     leaves two, which cannot determine them: the folds leave settings out, so that every fold keeps every
-//     current, and a family's shape between the trained currents is judged only through the BIC tie-break.
+//     is scored by folds over the training records: the laws are fitted to the fold's per-record values, predict
+//     the left-out records' parameters, and the model simulates them. Leave-one-setting-out folds judge how the
+//     laws follow amplitude and frequency; every fold keeps every current. When the records hold four or more
+//     currents, folds that leave out each current between the lowest and the highest judge the shape in I
+//     between trained currents, and the score is the mean of the two kinds' mean left-out metrics (one kind
+//     alone otherwise). Coordinate search from "every parameter shared": each parameter in turn takes the family
+//     with the lowest score; families within 1 % of it are a tie, broken by the Bayesian information criterion
+//     of the family on the parameter's values (n·ln(RSS/n) + k·ln n). At most three passes, fewer when a pass
+//     changes nothing.
+//     Laws in current have up to three coefficients. With three training currents, leaving one out leaves two,
+//     which cannot determine them: no current folds are made, and a family's shape between the trained currents
+//     is judged only through the BIC tie-break (it decides predictions at untrained currents; the fold table
+//     says which kinds of fold were made).
 //  3. The chosen law model is fitted to all training records jointly, its search starting from the laws fitted
 //     to the per-record values (Bounds::start).
 // Cost: one fit per training record, then simulations only (candidates × folds' records per pass), then one
 // joint fit.
+#include <cstddef>
 #include <functional>
 #include <map>
 #include <string>
@@ -34,10 +39,15 @@ namespace dampbench {
 /// The most passes the choice makes over the parameters.
 inline constexpr int kLawChoicePasses = 3;
 
+/// The fewest distinct currents among the training records for which the choice also leaves currents out: with
+/// four, leaving an inner one out keeps three, which determine a three-coefficient law in I.
+inline constexpr std::size_t kCurrentsForShapeFolds = 4;
+
 /// The most simulations of the training records the choice makes for a model of `parameters` parameters: every
-/// family for every parameter in every pass (what the sweep's schedule counts for a laws = "auto" group).
+/// family for every parameter in every pass, each record left out at most twice (by its setting's fold and its
+/// current's); what the sweep's schedule counts for a laws = "auto" group.
 inline double law_choice_simulations(int parameters) {
-  return static_cast<double>(value_law_candidates().size()) * parameters * kLawChoicePasses;
+  return 2.0 * static_cast<double>(value_law_candidates().size()) * parameters * kLawChoicePasses;
 }
 
 /// How the per-record fits and the final fit are made.
@@ -76,7 +86,7 @@ struct LawSelection {
   double score = 0;                     ///< mean left-out metric of the chosen laws
   double shared_score = 0;              ///< ... and of every parameter shared
   int scored = 0;                       ///< sets of laws scored
-  Table folds;                          ///< per fold: left-out setting, its records, both scores
+  Table folds;                          ///< per fold: the setting or current left out, its records, both scores
   Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
 };
 

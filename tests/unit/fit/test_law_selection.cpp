@@ -172,6 +172,49 @@ TEST(LawSelection, PicksTheTrueFamiliesAndRecoversTheirCoefficients) {
   EXPECT_EQ(outcome1.best().best_params, c);
 }
 
+/// The choice on the records' true parameters (no per-record fits): its fold table and score.
+LawSelection select_on_true_parameters(const std::vector<double>& currents) {
+  std::vector<Signals> records;
+  for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.02, 0.5}})
+    for (double I : currents) records.push_back(bingham_record(amp, freq, I));
+  std::vector<std::vector<double>> truth;
+  for (const auto& r : records) {
+    const double I = r.law_variables.at("I");
+    truth.push_back({60 + 500 * I * I / (0.36 + I * I), 1000 + 2000 * I, 5.0});
+  }
+  const LawSearch search = bingham_search(records);
+  return select_laws(search, gauged_model(*search.base), truth);
+}
+
+/// The fold table's left-out mean of the chosen laws over the rows [begin, end), weighted by their records.
+double mean_of_rows(const Table& folds, std::size_t begin, std::size_t end) {
+  double sum = 0, n = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double records = std::stod(folds.rows[i][1].text);
+    sum += records * folds.rows[i][3].value.value(), n += records;
+  }
+  return sum / n;
+}
+
+TEST(LawSelection, LeavesTheInnerCurrentsOutWhenTheRecordsHoldFourOrMore) {
+  // Four currents: two settings, then 0.25 and 0.5 A (not 0 or 1 A, which would be extrapolated); the score is the
+  // mean of the two kinds' means.
+  const LawSelection four = select_on_true_parameters({0.0, 0.25, 0.5, 1.0});
+  ASSERT_EQ(four.folds.rows.size(), 4u);
+  EXPECT_EQ(four.folds.rows[0][1].text, "4");
+  EXPECT_EQ(four.folds.rows[2][0].text, "I 0.25 A");
+  EXPECT_EQ(four.folds.rows[3][0].text, "I 0.5 A");
+  EXPECT_EQ(four.folds.rows[3][1].text, "2");
+  const double expected = 0.5 * (mean_of_rows(four.folds, 0, 2) + mean_of_rows(four.folds, 2, 4));
+  EXPECT_NEAR(four.score, expected, 1e-12 * expected);
+  EXPECT_EQ(four.laws, "f_c=hill(I,2);c0=mono(I,0,1)");
+
+  // Three currents leave two when one is out, which cannot judge a three-coefficient shape: settings only.
+  const LawSelection three = select_on_true_parameters({0.0, 0.5, 1.0});
+  ASSERT_EQ(three.folds.rows.size(), 2u);
+  EXPECT_NEAR(three.score, mean_of_rows(three.folds, 0, 2), 1e-12 * three.score);
+}
+
 TEST(RecordStart, FitsEachLawToValuesItWasGeneratedFrom) {
   const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
   // 2 + 3·I + 4·I² at 0, 0.5, 1 A: 2, 4.5, 9; three currents determine a quadratic
