@@ -178,7 +178,9 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
     folds.push_back({{"left_out", row[0].text}, {"records", std::stoi(row[1].text)},
                      {"shared", json_number(*row[2].value)}, {"chosen", json_number(*row[3].value)}});
   return {{"laws", s.laws}, {"per_parameter", choices}, {"score", json_number(s.score)},
-          {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds}};
+          {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds},
+          {"wall_time_s", s.effort.wall_time_s}, {"evaluations", s.effort.evaluations},
+          {"candidate_samples", s.effort.candidate_samples}};
 }
 
 /// What to do about a fit that did not converge, by what stopped it. `optimizer` ran the fit; `default_optimizer` is
@@ -357,7 +359,11 @@ int fit_command(const FitOptions& o) {
     if (prepared.auto_laws)
       std::cout << fmt::format("Laws chosen: {}\n\n", run.selection.laws.empty() ? "none (every parameter shared)"
                                                                                  : run.selection.laws)
-                << run.selection.choices.to_markdown() << "\n" << run.selection.folds.to_markdown() << "\n";
+                << run.selection.choices.to_markdown() << "\n" << run.selection.folds.to_markdown() << "\n"
+                << fmt::format("The records' own fits and the choice: {} evaluations, then {} law sets scored, in "
+                               "{:.3f} s; the joint fit below\n\n",
+                               run.selection.effort.evaluations, run.selection.scored,
+                               run.selection.effort.wall_time_s);
     print_markdown(prepared, run.outcome, fit_tables(prepared, run.outcome, o.fit.metric));
     if (run.held_out)
       for (const Table& t : held_out_tables(*run.held_out, o.held_out.folds, per_file_model(*prepared.model.model).id()))

@@ -1,6 +1,7 @@
 #include "engine/fit/law_selection.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -53,6 +54,7 @@ struct Scoring {
   ChoiceFolds folds;
   std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
   Metric metric;
+  mutable double simulated_samples = 0;  ///< Σ samples of the left-out records simulated
   /// Law fits by (fold, parameter, law): a coordinate step changes one parameter's law, the others' fits stay.
   mutable std::map<std::tuple<std::size_t, int, std::string>, ValueFit> fits_made = {};
 
@@ -86,6 +88,7 @@ struct Scoring {
       std::vector<const ValueFit*> fits;
       for (int j = 0; j < model.dim(); ++j) fits.push_back(&law_fit(f, j, laws[j]));
       std::vector<double> m(fold.predict.size());
+      for (int r : fold.predict) simulated_samples += static_cast<double>(records[r]->size());
       tbb::parallel_for(std::size_t{0}, fold.predict.size(), [&](std::size_t i) {
         const int r = fold.predict[i];
         std::vector<double> p(model.dim());
@@ -205,7 +208,8 @@ ResolvedModel gauged_model(const Model& base) {
   return r;
 }
 
-std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged) {
+std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged,
+                                                 ChoiceEffort* effort) {
   std::vector<std::vector<double>> out;
   for (const Signals* record : search.records) {
     if (search.record_fits && search.record_fits->count(record)) {
@@ -223,6 +227,10 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
       throw DataError(fmt::format("{}: the fit of {} alone failed (every run ended without a finite {})",
                                   search.label, record->name, metric_name(search.settings.metric)));
     out.push_back(outcome.best().best_params);
+    if (effort) {
+      for (const auto& run : outcome.identification.runs) effort->evaluations += run.evaluations;
+      effort->candidate_samples += outcome.identification.candidate_samples;
+    }
     if (search.record_fits) (*search.record_fits)[record] = out.back();
     if (search.progress)
       search.progress(fmt::format("{}: {} fitted alone ({}/{}): {} {:.6g}", search.label, record->name, out.size(),
@@ -256,6 +264,7 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
   }
   out.chosen = laws;
   out.folds = fold_table(s, shared, laws);
+  out.effort.candidate_samples = s.simulated_samples;
   out.choices.id = "law_choices";
   out.choices.title = "Chosen laws (BIC of each on the per-record values; score: mean left-out metric when chosen)";
   out.choices.columns = {"parameter", "law", "coefficients", "BIC", "score"};
@@ -280,8 +289,13 @@ std::string chosen_laws_text(const LawSelection& selection) {
 }
 
 FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection) {
+  const auto start = std::chrono::steady_clock::now();
   const ResolvedModel gauged = gauged_model(*search.base);
-  selection = select_laws(search, gauged, fit_each_record(search, gauged));
+  ChoiceEffort fits;
+  selection = select_laws(search, gauged, fit_each_record(search, gauged, &fits));
+  selection.effort.evaluations = fits.evaluations;
+  selection.effort.candidate_samples += fits.candidate_samples;
+  selection.effort.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ModelChoice choice;
   choice.model = std::string(search.base->id());
   choice.laws = chosen_laws_text(selection);

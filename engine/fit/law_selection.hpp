@@ -75,8 +75,19 @@ LawSearch law_search(const FitRequest& request, const Model& model, std::string 
 /// The base model with its gauge and no laws: the model of the per-record fits.
 ResolvedModel gauged_model(const Model& base);
 
-/// Step 1: each training record fitted alone; the best parameters of each (the gauged model's order).
-std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged);
+/// What a choice costs before its joint fit: the training records' own fits (those not already made) and the
+/// choice's simulations. A sweep group and `fit`'s output add it to the joint fit's, so that a group's time and
+/// throughput are the whole group's.
+struct ChoiceEffort {
+  double wall_time_s = 0;        ///< steps 1 and 2
+  long long evaluations = 0;     ///< the records' own fits' evaluations
+  double candidate_samples = 0;  ///< Σ evaluations × samples of those fits and of the choice's simulations
+};
+
+/// Step 1: each training record fitted alone; the best parameters of each (the gauged model's order). The fits
+/// made here (not those found in search.record_fits) are added to `effort` when given.
+std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged,
+                                                 ChoiceEffort* effort = nullptr);
 
 struct LawSelection {
   std::vector<std::string> parameters;  ///< the gauged model's parameters
@@ -88,6 +99,7 @@ struct LawSelection {
   int scored = 0;                       ///< sets of laws scored
   Table folds;                          ///< per fold: the setting or current left out, its records, both scores
   Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
+  ChoiceEffort effort;                  ///< steps 1 and 2 (select_laws: the simulations' samples only)
 };
 
 /// The laws of the chosen law model: the chosen ones, or the first parameter `free` when every parameter is shared

@@ -82,6 +82,7 @@ struct GroupFit {
   FitOutcome outcome;
   ResolvedModel chosen;  ///< laws = "auto": the chosen law model (engine/fit/law_selection.hpp); else empty
   std::string laws;      ///< its laws (GroupRecord::laws)
+  ChoiceEffort choice;   ///< laws = "auto": what the records' own fits and the choice cost besides the joint fit
   [[nodiscard]] const Model& model(const Model& part_model) const { return chosen.model ? *chosen.model : part_model; }
 };
 
@@ -107,6 +108,7 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
     LawSelection selection;
     out.outcome = fit_with_auto_laws(search, out.chosen, selection);
     out.laws = chosen_laws_text(selection);
+    out.choice = selection.effort;
     return out;
   }
   if (entry.start == "per-file")  // as `fit --start per-file`: from the laws fitted to each record's own fit
@@ -134,8 +136,9 @@ GroupRecord run_group(const Plan& plan, long long index) {
     const Model& model = group_fit.model(*part.models[g.model].model);
     rec.laws = group_fit.laws;
     const Identification& id = fit.identification;
-    rec.wall_time_s = id.wall_time_s;
-    rec.candidate_samples = id.candidate_samples;
+    rec.wall_time_s = id.wall_time_s + group_fit.choice.wall_time_s;
+    rec.candidate_samples = id.candidate_samples + group_fit.choice.candidate_samples;
+    rec.evaluations = group_fit.choice.evaluations;
     if (fit.auto_budget) rec.message = fit.auto_budget->summary();
     for (int r = 0; r < g.runs; ++r) {
       rec.evaluations += id.runs[r].evaluations;
