@@ -180,7 +180,7 @@ nlohmann::ordered_json selection_json(const LawSelection& s) {
   return {{"laws", s.laws}, {"per_parameter", choices}, {"score", json_number(s.score)},
           {"shared_score", json_number(s.shared_score)}, {"sets_scored", s.scored}, {"folds", folds},
           {"wall_time_s", s.effort.wall_time_s}, {"evaluations", s.effort.evaluations},
-          {"candidate_samples", s.effort.candidate_samples}};
+          {"candidate_samples", s.effort.candidate_samples}, {"folds_note", s.folds.note}};
 }
 
 /// What to do about a fit that did not converge, by what stopped it. `optimizer` ran the fit; `default_optimizer` is

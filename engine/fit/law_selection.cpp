@@ -26,6 +26,7 @@ using LawSet = std::vector<ValueLaw>;
 struct ChoiceFolds {
   std::vector<Fold> folds;
   std::size_t setting_folds = 0;  ///< folds[0, setting_folds) leave a setting out, the rest a current
+  std::size_t currents = 0;       ///< distinct currents among the records (0 when a record has none)
 };
 
 ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::string& where) {
@@ -40,6 +41,7 @@ ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::
   });
   if (!every_record_has_a_current || !currents_differ) return out;
   auto by_current = make_folds(records, "leave-one:I", where);  // ascending in I
+  out.currents = by_current.size();
   if (by_current.size() >= kCurrentsForShapeFolds)
     out.folds.insert(out.folds.end(), std::make_move_iterator(by_current.begin() + 1),
                      std::make_move_iterator(by_current.end() - 1));
@@ -179,6 +181,11 @@ Table fold_table(const Scoring& s, const LawSet& shared, const LawSet& chosen) {
                                                 : fmt::format("I {:g} A", first.law_variables.at("I")),
                       fmt::format("{}", fold.predict.size()), number_cell(sa / n), number_cell(sb / n)});
   }
+  if (s.folds.currents > 1 && s.folds.currents < kCurrentsForShapeFolds)
+    t.note = fmt::format("No current is left out: with {} training currents, leaving one out leaves too few to "
+                         "determine a law in I, so nothing here judges the laws' shape between the trained currents, "
+                         "which decides predictions there. Train on {} or more currents to have it judged.",
+                         s.folds.currents, kCurrentsForShapeFolds);
   return t;
 }
 

@@ -212,6 +212,8 @@ TEST(LawSelection, LeavesTheInnerCurrentsOutWhenTheRecordsHoldFourOrMore) {
   // Three currents leave two when one is out, which cannot judge a three-coefficient shape: settings only.
   const LawSelection three = select_on_true_parameters({0.0, 0.5, 1.0});
   ASSERT_EQ(three.folds.rows.size(), 2u);
+  EXPECT_NE(three.folds.note.find("with 3 training currents"), std::string::npos) << three.folds.note;
+  EXPECT_EQ(four.folds.note, "");
   EXPECT_NEAR(three.score, mean_of_rows(three.folds, 0, 2), 1e-12 * three.score);
 }
 
