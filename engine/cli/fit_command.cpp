@@ -161,7 +161,7 @@ void print_operating(const FitRecords& records) {
 /// describe the chosen model, so that the tables, the report and the model file show it.
 FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, HeldOutPlan& held_out, LawSelection& selection) {
   LawSearch search = law_search(prepared, prepared.request());
-  search.record_fits = &held_out.record_fits;  // the folds reuse each record's own fit
+  search.record_fits = held_out.record_fits.get();  // the folds reuse each record's own fit
   search.progress = tell_stderr;
   ResolvedModel fitted;
   FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
@@ -330,7 +330,7 @@ FitRun run_fit_options(const FitOptions& o) {
   held_out_plan.progress = tell_stderr;
   FitRequest seeded = prepared.request();
   seeded.progress = held_out_plan.progress;
-  seed_from_record_fits(prepared, seeded, &held_out_plan.record_fits, held_out_plan.progress);
+  seed_from_record_fits(prepared, seeded, held_out_plan.record_fits.get(), held_out_plan.progress);
   run.outcome = prepared.auto_laws ? fit_with_chosen_laws(prepared, run.spec, held_out_plan, run.selection)
                                    : run_fit(seeded);
   const FitOutcome& fit = run.outcome;

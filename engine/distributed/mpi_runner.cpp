@@ -302,6 +302,7 @@ void work(const MpiJob&, const sweep::Plan& plan) {
   std::mutex mpi;  // MPI_THREAD_SERIALIZED: one MPI call at a time from this rank's threads
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Bytes = std::shared_ptr<std::string>;
+  RecordFitCache record_fits;  // this rank's groups that fit the same records alone share those fits
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
@@ -320,7 +321,9 @@ void work(const MpiJob&, const sweep::Plan& plan) {
                                         }) &
           tbb::make_filter<long long, Bytes>(
               tbb::filter_mode::parallel,
-              [&](long long i) { return std::make_shared<std::string>(encode_group(sweep::run_group(plan, i))); }) &
+              [&](long long i) {
+                return std::make_shared<std::string>(encode_group(sweep::run_group(plan, i, &record_fits)));
+              }) &
           tbb::make_filter<Bytes, void>(tbb::filter_mode::serial_out_of_order, [&](const Bytes& bytes) {
             const std::lock_guard lock(mpi);
             send_bytes(*bytes, 0, kResult);

@@ -249,10 +249,10 @@ class References {
 
 /// A fold of a `--laws auto` fit: its laws chosen and fitted on the fold's records alone.
 FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
-                                   ResolvedModel& fold_model, std::map<const Signals*, std::vector<double>>& record_fits,
+                                   ResolvedModel& fold_model, RecordFitCache* record_fits,
                                    const std::function<void(const std::string&)>& progress) {
   LawSearch search = law_search(fit, fold_request(request, fold));
-  search.record_fits = &record_fits;
+  search.record_fits = record_fits;
   if (progress) search.progress = [&](const std::string& line) { progress(fmt::format("fold {}: {}", fold.name, line)); };
   LawSelection selection;
   return fit_with_auto_laws(search, fold_model, selection);
@@ -286,11 +286,11 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   const Model& model = *fit.model.model;
   const FitRequest request = fit.request();
   References references(fit, h.reference);
-  std::map<const Signals*, std::vector<double>> record_fits = plan.record_fits;  // --laws auto: each record's own fit, once
+  RecordFitCache* record_fits = plan.record_fits.get();  // --laws auto, --start per-file: each record's own fit, once
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
     FitRequest seeded = fold_request(request, fold);
-    seed_from_record_fits(fit, seeded, &record_fits, plan.progress);
+    seed_from_record_fits(fit, seeded, record_fits, plan.progress);
     const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits, plan.progress)
                                        : run_fit(seeded);
     const Model& predicting = fit.auto_laws ? *fold_model.model : model;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -18,6 +19,7 @@
 
 #include "engine/fit/fit.hpp"
 #include "engine/fit/prepared_fit.hpp"
+#include "engine/fit/record_fit_cache.hpp"
 #include "engine/model/metrics.hpp"
 #include "engine/model/model.hpp"
 #include "engine/record/record_options.hpp"
@@ -113,7 +115,7 @@ struct HeldOutPlan {
   std::vector<Fold> folds;  ///< of the fit's records
   /// `--laws auto` and `--start per-file`: each --data record's own fit (LawSearch::record_fits), made by the fit on
   /// all of them and reused by the folds.
-  std::map<const Signals*, std::vector<double>> record_fits;
+  std::shared_ptr<RecordFitCache> record_fits = std::make_shared<RecordFitCache>();
   /// Told one line per step of a `--laws auto` or `--start per-file` fold (LawSearch::progress); may be empty.
   std::function<void(const std::string&)> progress;
 };

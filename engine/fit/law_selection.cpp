@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -215,33 +216,50 @@ ResolvedModel gauged_model(const Model& base) {
   return r;
 }
 
+namespace {
+
+/// One record fitted alone with the search's optimizer and settings, and what that cost.
+RecordFit fit_record_alone(const LawSearch& search, const ResolvedModel& gauged, const Signals& record,
+                           double& best_value) {
+  const auto start = std::chrono::steady_clock::now();
+  FitRequest request;
+  request.model = &gauged;
+  request.records = {&record};
+  request.optimizer = search.optimizer;
+  request.settings = search.settings;
+  request.settings.task_key = task_key(gauged.model->id(), record.name, search.optimizer_name);
+  const FitOutcome outcome = run_fit(request);
+  best_value = outcome.best().best_value;
+  if (!std::isfinite(best_value))
+    throw DataError(fmt::format("{}: the fit of {} alone failed (every run ended without a finite {})", search.label,
+                                record.name, metric_name(search.settings.metric)));
+  RecordFit fit;
+  fit.best_params = outcome.best().best_params;
+  for (const auto& run : outcome.identification.runs) fit.effort.evaluations += run.evaluations;
+  fit.effort.candidate_samples = outcome.identification.candidate_samples;
+  fit.effort.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return fit;
+}
+
+}  // namespace
+
 std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged,
-                                                 ChoiceEffort* effort) {
+                                                 PreFitEffort* effort) {
   std::vector<std::vector<double>> out;
   for (const Signals* record : search.records) {
-    if (search.record_fits && search.record_fits->count(record)) {
-      out.push_back(search.record_fits->at(record));
-      continue;
+    const std::string key = RecordFitCache::key(*record, gauged.model->id(), search.optimizer, search.settings);
+    std::optional<RecordFit> fit = search.record_fits ? search.record_fits->find(key) : std::nullopt;
+    if (!fit) {
+      double best_value = 0;
+      fit = fit_record_alone(search, gauged, *record, best_value);
+      if (search.record_fits) search.record_fits->store(key, *fit);
+      if (search.progress)
+        search.progress(fmt::format("{}: {} fitted alone ({}/{}): {} {:.6g}", search.label, record->name,
+                                    out.size() + 1, search.records.size(), metric_name(search.settings.metric),
+                                    best_value));
     }
-    FitRequest request;
-    request.model = &gauged;
-    request.records = {record};
-    request.optimizer = search.optimizer;
-    request.settings = search.settings;
-    request.settings.task_key = task_key(gauged.model->id(), record->name, search.optimizer_name);
-    const FitOutcome outcome = run_fit(request);
-    if (!std::isfinite(outcome.best().best_value))
-      throw DataError(fmt::format("{}: the fit of {} alone failed (every run ended without a finite {})",
-                                  search.label, record->name, metric_name(search.settings.metric)));
-    out.push_back(outcome.best().best_params);
-    if (effort) {
-      for (const auto& run : outcome.identification.runs) effort->evaluations += run.evaluations;
-      effort->candidate_samples += outcome.identification.candidate_samples;
-    }
-    if (search.record_fits) (*search.record_fits)[record] = out.back();
-    if (search.progress)
-      search.progress(fmt::format("{}: {} fitted alone ({}/{}): {} {:.6g}", search.label, record->name, out.size(),
-                                  search.records.size(), metric_name(search.settings.metric), outcome.best().best_value));
+    if (effort) *effort += fit->effort;
+    out.push_back(std::move(fit->best_params));
   }
   return out;
 }
@@ -296,13 +314,13 @@ std::string chosen_laws_text(const LawSelection& selection) {
 }
 
 FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection) {
-  const auto start = std::chrono::steady_clock::now();
   const ResolvedModel gauged = gauged_model(*search.base);
-  ChoiceEffort fits;
-  selection = select_laws(search, gauged, fit_each_record(search, gauged, &fits));
-  selection.effort.evaluations = fits.evaluations;
-  selection.effort.candidate_samples += fits.candidate_samples;
+  PreFitEffort fits;
+  const auto per_record = fit_each_record(search, gauged, &fits);
+  const auto start = std::chrono::steady_clock::now();
+  selection = select_laws(search, gauged, per_record);
   selection.effort.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  selection.effort += fits;
   ModelChoice choice;
   choice.model = std::string(search.base->id());
   choice.laws = chosen_laws_text(selection);

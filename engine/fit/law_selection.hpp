@@ -31,6 +31,7 @@
 #include "engine/common/table.hpp"
 #include "engine/fit/fit.hpp"
 #include "engine/fit/prepared_fit.hpp"
+#include "engine/fit/record_fit_cache.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/fit/value_laws.hpp"
 
@@ -57,9 +58,9 @@ struct LawSearch {
   const OptimizerFactory* optimizer = nullptr;
   std::string optimizer_name;           ///< names the fits' task keys
   IdentificationSettings settings;      ///< runs, seed, metric, budget (the task key is set per fit)
-  /// Per-record fits already made (a record's fit depends only on the record and the settings, so folds over
-  /// the same records share them); filled as records are fitted. Null: none kept.
-  std::map<const Signals*, std::vector<double>>* record_fits = nullptr;
+  /// Records' own fits already made, shared by the searches of one fit's folds or one sweep process; filled as
+  /// records are fitted. Null: none kept.
+  RecordFitCache* record_fits = nullptr;
   std::string label = "--laws auto";  ///< what the progress lines and messages say they come from
   /// Told one line per step (each record's fit, each parameter's choice, the joint fit); may be empty.
   std::function<void(const std::string&)> progress;
@@ -75,19 +76,10 @@ LawSearch law_search(const FitRequest& request, const Model& model, std::string 
 /// The base model with its gauge and no laws: the model of the per-record fits.
 ResolvedModel gauged_model(const Model& base);
 
-/// What a choice costs before its joint fit: the training records' own fits (those not already made) and the
-/// choice's simulations. A sweep group and `fit`'s output add it to the joint fit's, so that a group's time and
-/// throughput are the whole group's.
-struct ChoiceEffort {
-  double wall_time_s = 0;        ///< steps 1 and 2
-  long long evaluations = 0;     ///< the records' own fits' evaluations
-  double candidate_samples = 0;  ///< Σ evaluations × samples of those fits and of the choice's simulations
-};
-
-/// Step 1: each training record fitted alone; the best parameters of each (the gauged model's order). The fits
-/// made here (not those found in search.record_fits) are added to `effort` when given.
+/// Step 1: each training record fitted alone; the best parameters of each (the gauged model's order). Their cost
+/// (made here or found in search.record_fits) is added to `effort` when given.
 std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const ResolvedModel& gauged,
-                                                 ChoiceEffort* effort = nullptr);
+                                                 PreFitEffort* effort = nullptr);
 
 struct LawSelection {
   std::vector<std::string> parameters;  ///< the gauged model's parameters
@@ -99,7 +91,9 @@ struct LawSelection {
   int scored = 0;                       ///< sets of laws scored
   Table folds;                          ///< per fold: the setting or current left out, its records, both scores
   Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
-  ChoiceEffort effort;                  ///< steps 1 and 2 (select_laws: the simulations' samples only)
+  /// Steps 1 and 2: the records' own fits and the choice (select_laws alone: the choice's simulated samples and
+  /// wall time). A sweep group and `fit`'s output add it to the joint fit's.
+  PreFitEffort effort;
 };
 
 /// The laws of the chosen law model: the chosen ones, or the first parameter `free` when every parameter is shared

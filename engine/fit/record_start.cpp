@@ -83,13 +83,13 @@ ResolvedModel per_record_model(const ModelChoice& choice) {
 }
 
 std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
-                                           const Model& law_model) {
+                                           const Model& law_model, PreFitEffort* effort) {
   const auto laws = choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
                                         : parse_laws(choice.laws, choice.option_prefix + "laws");
   for (const auto& [name, law] : laws)  // refused before the records' fits, which take minutes
     if (fitted_as_value_law(law)) value_law_of(law, name);
   const ResolvedModel per_record = per_record_model(choice);
-  const auto fits = fit_each_record(search, per_record);
+  const auto fits = fit_each_record(search, per_record, effort);
   std::vector<std::map<std::string, double>> variables;
   for (const Signals* r : search.records) variables.push_back(r->law_variables);
   const auto fitted = per_record.model->parameters();
@@ -114,7 +114,7 @@ std::vector<double> start_from_record_fits(const LawSearch& search, const ModelC
 }
 
 void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,
-                           std::map<const Signals*, std::vector<double>>* record_fits,
+                           RecordFitCache* record_fits,
                            const std::function<void(const std::string&)>& progress) {
   if (!fit.start_per_file) return;
   LawSearch search = law_search(fit, request);

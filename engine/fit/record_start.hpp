@@ -26,15 +26,15 @@ namespace dampbench {
 ResolvedModel per_record_model(const ModelChoice& choice);
 
 /// The law model's start on `search.records` (in `law_model`'s coefficient order); the per-record fits go through
-/// search.record_fits. InputError, before any record is fitted, for a law with no value fit (neither free, poly nor
+/// search.record_fits, and their cost is added to `effort` when given. InputError, before any record is fitted, for a law with no value fit (neither free, poly nor
 /// one of value_laws.hpp's families: gauss2, tanh, other knots of mono, ...), naming the parameter and the laws that have one.
 std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
-                                           const Model& law_model);
+                                           const Model& law_model, PreFitEffort* effort = nullptr);
 
 /// `request` (of `fit`, on some of its records) with its start from its records' own fits when the fit asks for
 /// one (`--start per-file`); the fits go through `record_fits` (may be null) and `progress` (may be empty).
 void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,
-                           std::map<const Signals*, std::vector<double>>* record_fits,
+                           RecordFitCache* record_fits,
                            const std::function<void(const std::string&)>& progress);
 
 /// One law's coefficients fitted to values of its parameter at the records' variables (as above).

@@ -82,12 +82,14 @@ struct GroupFit {
   FitOutcome outcome;
   ResolvedModel chosen;  ///< laws = "auto": the chosen law model (engine/fit/law_selection.hpp); else empty
   std::string laws;      ///< its laws (GroupRecord::laws)
-  ChoiceEffort choice;   ///< laws = "auto": what the records' own fits and the choice cost besides the joint fit
+  /// laws = "auto" or start = "per-file": what the records' own fits (and the choice) cost before the joint fit
+  PreFitEffort pre_fit;
   [[nodiscard]] const Model& model(const Model& part_model) const { return chosen.model ? *chosen.model : part_model; }
 };
 
 /// The fit of a group (engine/fit): its model, fit datasets, optimizer and budget, keyed by the group's task key.
-GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records) {
+GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records,
+                   RecordFitCache* record_fits) {
   const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
   FitRequest request;
   request.model = &part.models[g.model];
@@ -105,22 +107,25 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
   if (chooses_laws(entry)) {  // as `fit --laws auto`, at the entry's fixed budget (the spec refuses another)
     LawSearch search = law_search(request, *request.model->model, opt.spec.name);
     search.label = fmt::format("model '{}' (laws = \"auto\")", entry.name);
+    search.record_fits = record_fits;
     LawSelection selection;
     out.outcome = fit_with_auto_laws(search, out.chosen, selection);
     out.laws = chosen_laws_text(selection);
-    out.choice = selection.effort;
+    out.pre_fit = selection.effort;
     return out;
   }
-  if (entry.start == "per-file")  // as `fit --start per-file`: from the laws fitted to each record's own fit
-    request.start = start_from_record_fits(law_search(request, *request.model->model, opt.spec.name), entry,
-                                           *request.model->model);
+  if (entry.start == "per-file") {  // as `fit --start per-file`: from the laws fitted to each record's own fit
+    LawSearch search = law_search(request, *request.model->model, opt.spec.name);
+    search.record_fits = record_fits;
+    request.start = start_from_record_fits(search, entry, *request.model->model, &out.pre_fit);
+  }
   out.outcome = run_fit(request);
   return out;
 }
 
 }  // namespace
 
-GroupRecord run_group(const Plan& plan, long long index) {
+GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits) {
   const GroupRef g = plan.group(index);
   const PartPlan& part = plan.parts()[g.part];
   const FitSet& fs = part.splits[g.split].fitsets[g.fitset];
@@ -131,14 +136,14 @@ GroupRecord run_group(const Plan& plan, long long index) {
   rec.spec_hash = plan.spec().hash;
   rec.dataset_hash = plan.group_dataset_hash(g);
   try {
-    const GroupFit group_fit = fit_group(part, g, group_records(part, fs, *part.models[g.model].model));
+    const GroupFit group_fit = fit_group(part, g, group_records(part, fs, *part.models[g.model].model), record_fits);
     const FitOutcome& fit = group_fit.outcome;
     const Model& model = group_fit.model(*part.models[g.model].model);
     rec.laws = group_fit.laws;
     const Identification& id = fit.identification;
-    rec.wall_time_s = id.wall_time_s + group_fit.choice.wall_time_s;
-    rec.candidate_samples = id.candidate_samples + group_fit.choice.candidate_samples;
-    rec.evaluations = group_fit.choice.evaluations;
+    rec.wall_time_s = id.wall_time_s + group_fit.pre_fit.wall_time_s;
+    rec.candidate_samples = id.candidate_samples + group_fit.pre_fit.candidate_samples;
+    rec.evaluations = group_fit.pre_fit.evaluations;
     if (fit.auto_budget) rec.message = fit.auto_budget->summary();
     for (int r = 0; r < g.runs; ++r) {
       rec.evaluations += id.runs[r].evaluations;
@@ -256,6 +261,7 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
   std::atomic<bool> write_failed{false};
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Record = std::shared_ptr<GroupRecord>;
+  RecordFitCache record_fits;  // groups that fit the same records alone share those fits
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
@@ -268,7 +274,7 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
                                           return todo[next++];
                                         }) &
           tbb::make_filter<long long, Record>(tbb::filter_mode::parallel,
-                                              [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i)); }) &
+                                              [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i, &record_fits)); }) &
           tbb::make_filter<Record, void>(tbb::filter_mode::serial_out_of_order, [&](const Record& r) {
             if (write_error) return;
             try {

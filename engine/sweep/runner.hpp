@@ -14,6 +14,7 @@
 #include <functional>
 #include <string>
 
+#include "engine/fit/record_fit_cache.hpp"
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/schedule.hpp"
@@ -23,8 +24,10 @@ namespace dampbench::sweep {
 
 /// Identifies one group: the fit of engine/fit (run_fit, keyed by the group's task key), then what a sweep adds
 /// to it (per-dataset metrics of joint fits and predictions, sensitivity). Never throws for bad data or a model
-/// error: the record is marked failed with the message.
-GroupRecord run_group(const Plan& plan, long long index);
+/// error: the record is marked failed with the message. Groups that fit records alone first (laws = "auto",
+/// start = "per-file") share those fits through `record_fits` when given (engine/fit/record_fit_cache.hpp: the
+/// same bits either way).
+GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits = nullptr);
 
 /// The store header (plan, datasets, fingerprint) of a plan.
 StoreHeader make_store_header(const Plan& plan, const std::string& spec_path);

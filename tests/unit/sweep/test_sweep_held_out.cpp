@@ -23,7 +23,9 @@
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/schedule.hpp"
 #include "engine/sweep/spec.hpp"
+#include "engine/sweep/runner.hpp"
 #include "engine/sweep/store.hpp"
+#include "engine/sweep/store/verify_diff.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 
@@ -164,12 +166,13 @@ TEST(SweepLawsAuto, ASpecThatWouldChooseLawsOnOneRecordOrUnderTheAutomaticBudget
 }
 
 /// Bingham records of three settings at five currents; a split of them with `folds` and the true laws.
-fs::path folds_sweep(const std::string& name, const std::string& folds) {
+fs::path folds_sweep(const std::string& name, const std::string& folds,
+                     const std::string& laws = "f_c=hill(I,2);c0=mono(I,0,1)") {
   const fs::path dir = testing::test_temp_dir(name);
   fs::create_directories(dir / "data");
   for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.005, 2.0}, {0.02, 0.5}})
     for (double I : {0.0, 0.25, 0.5, 0.75, 1.0}) write_bingham_record(dir / "data", amp, freq, I);
-  std::ofstream(dir / "s.toml") << sweep_text("f_c=hill(I,2);c0=mono(I,0,1)", dir / "data",
+  std::ofstream(dir / "s.toml") << sweep_text(laws, dir / "data",
                                               fmt::format("[[splits]]\nname = \"folds\"\nfolds = \"{}\"\n"
                                                           "fit = {{ I = [0, 0.5, 1] }}\npredict = {{ I = [0.25, 0.75] }}\n",
                                                           folds));
@@ -216,6 +219,22 @@ TEST(SweepFolds, LeavingASettingOutFitsTheOthersAndPredictsEveryCurrentOfIt) {
       }
     EXPECT_EQ(predicted, 5) << g.fitset;
   }
+}
+
+TEST(SweepFolds, GroupsThatChooseLawsShareTheRecordsOwnFitsWithTheSameBits) {
+  const fs::path dir = folds_sweep("sweep_folds_shared_fits", "leave-setting", "auto");
+  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  ASSERT_EQ(plan.groups(), 3);  // each fits the 0, 0.5 and 1 A records of two settings
+  RecordFitCache shared;
+  for (long long i = 0; i < plan.groups(); ++i) {
+    const GroupRecord alone = run_group(plan, i);
+    const GroupRecord sharing = run_group(plan, i, &shared);
+    ASSERT_FALSE(alone.failed) << alone.message;
+    const auto diff = compare_records(alone, sharing, {});
+    EXPECT_TRUE(diff.empty()) << i << ": " << fmt::format("{}", fmt::join(diff, "; "));
+    EXPECT_EQ(alone.evaluations, sharing.evaluations) << i;  // the fits it rests on count, whoever made them
+  }
+  EXPECT_EQ(shared.size(), 9u);  // each record fitted alone once, not once per group that fits it (18)
 }
 
 TEST(SweepFolds, LeavingACurrentOutPredictsOnlyThatCurrent) {
