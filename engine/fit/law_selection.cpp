@@ -266,6 +266,7 @@ std::vector<std::vector<double>> fit_each_record(const LawSearch& search, const 
 
 LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
                          const std::vector<std::vector<double>>& per_record) {
+  const auto start = std::chrono::steady_clock::now();
   const Model& model = *gauged.model;
   Scoring s{model, search.records, per_record, choice_folds(search.records, search.label), {}, search.settings.metric};
   for (const Signals* r : search.records) s.boxes.push_back(gauged.bounds_for(std::span<const Signals* const>(&r, 1)));
@@ -290,6 +291,7 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
   out.chosen = laws;
   out.folds = fold_table(s, shared, laws);
   out.effort.candidate_samples = s.simulated_samples;
+  out.effort.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.choices.id = "law_choices";
   out.choices.title = "Chosen laws (BIC of each on the per-record values; score: mean left-out metric when chosen)";
   out.choices.columns = {"parameter", "law", "coefficients", "BIC", "score"};
@@ -316,10 +318,7 @@ std::string chosen_laws_text(const LawSelection& selection) {
 FitOutcome fit_with_auto_laws(const LawSearch& search, ResolvedModel& fitted_model, LawSelection& selection) {
   const ResolvedModel gauged = gauged_model(*search.base);
   PreFitEffort fits;
-  const auto per_record = fit_each_record(search, gauged, &fits);
-  const auto start = std::chrono::steady_clock::now();
-  selection = select_laws(search, gauged, per_record);
-  selection.effort.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  selection = select_laws(search, gauged, fit_each_record(search, gauged, &fits));
   selection.effort += fits;
   ModelChoice choice;
   choice.model = std::string(search.base->id());

@@ -92,7 +92,7 @@ struct LawSelection {
   Table folds;                          ///< per fold: the setting or current left out, its records, both scores
   Table choices;                        ///< per parameter: the law, its coefficients, BIC, score when chosen
   /// Steps 1 and 2: the records' own fits and the choice (select_laws alone: the choice's simulated samples and
-  /// wall time). A sweep group and `fit`'s output add it to the joint fit's.
+  /// wall time; fit_with_auto_laws adds the fits). A sweep group and `fit`'s output add it to the joint fit's.
   PreFitEffort effort;
 };
 

@@ -26,8 +26,9 @@ namespace dampbench {
 ResolvedModel per_record_model(const ModelChoice& choice);
 
 /// The law model's start on `search.records` (in `law_model`'s coefficient order); the per-record fits go through
-/// search.record_fits, and their cost is added to `effort` when given. InputError, before any record is fitted, for a law with no value fit (neither free, poly nor
-/// one of value_laws.hpp's families: gauss2, tanh, other knots of mono, ...), naming the parameter and the laws that have one.
+/// search.record_fits, and their cost is added to `effort` when given. InputError, before any record is fitted,
+/// for a law with no value fit (neither free, poly nor one of value_laws.hpp's families: gauss2, tanh, other knots
+/// of mono, ...), naming the parameter and the laws that have one.
 std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
                                            const Model& law_model, PreFitEffort* effort = nullptr);
 

@@ -121,15 +121,19 @@ TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) 
   EXPECT_EQ(value_law_candidates().size(), 24u);
 }
 
-/// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine, with f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
+/// The true Bingham parameters (f_c, c0, f0) at a current: f_c = hill(I,2) (60, 500, 0.6 A), c0 linear in I
 /// (1000 + 2000·I) and f0 = 5 N shared.
+std::vector<double> bingham_truth(double current) {
+  return {60 + 500 * current * current / (0.36 + current * current), 1000 + 2000 * current, 5.0};
+}
+
+/// A Bingham record (F = f_c·sgn(v) + c0·v + f0) on a sine with the true parameters at `current`.
 Signals bingham_record(double amp, double freq, double current) {
   SineSpec spec;
   spec.amplitude_m = amp, spec.freq_hz = freq, spec.cycles = 2, spec.fs_hz = 400 * freq;
   Dataset d = make_sine(spec);
   d.operating["I"] = current;
-  const double f_c = 60 + 500 * current * current / (0.36 + current * current), c0 = 1000 + 2000 * current;
-  const std::vector<double> p{f_c, c0, 5.0};
+  const std::vector<double> p = bingham_truth(current);
   d.F_N = find_model("mrd.bingham").simulate(p, prepare_signals(d));
   d.name = fmt::format("{}mm{}Hz{}A", amp * 1e3, freq, current);
   return prepare_signals(d);
@@ -178,10 +182,7 @@ LawSelection select_on_true_parameters(const std::vector<double>& currents) {
   for (auto [amp, freq] : {std::pair{0.01, 1.0}, {0.02, 0.5}})
     for (double I : currents) records.push_back(bingham_record(amp, freq, I));
   std::vector<std::vector<double>> truth;
-  for (const auto& r : records) {
-    const double I = r.law_variables.at("I");
-    truth.push_back({60 + 500 * I * I / (0.36 + I * I), 1000 + 2000 * I, 5.0});
-  }
+  for (const auto& r : records) truth.push_back(bingham_truth(r.law_variables.at("I")));
   const LawSearch search = bingham_search(records);
   return select_laws(search, gauged_model(*search.base), truth);
 }
