@@ -21,9 +21,9 @@ void add_held_out_options(CLI::App* c, HeldOutSpec& spec) {
 
 namespace {
 
-std::string joined(const std::vector<std::string>& names) {
+std::string joined(const std::vector<std::string>& names, std::string_view separator = ", ") {
   std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  for (const auto& n : names) s += (s.empty() ? "" : std::string(separator)) + n;
   return s;
 }
 
@@ -48,8 +48,10 @@ Table records_table(const HeldOut& h, std::string_view metric, std::string_view 
     t.columns.emplace_back("ratio");
   }
   std::vector<std::string> unconverged;  // each per-file fit once, though its record may be fitted and held out
+  std::vector<std::string> failed;
   for (const auto* rows : {&h.fitted, &h.held_out})
     for (const RecordError& e : *rows) {
+      if (!e.failure.empty()) failed.push_back(fmt::format("{} (fold {}) {}", e.record, e.fold, e.failure));
       std::vector<Cell> row{e.role, e.fold, e.record, number_cell(e.metric)};
       if (h.reference) {
         row.push_back(number_cell(*e.per_file));
@@ -62,6 +64,9 @@ Table records_table(const HeldOut& h, std::string_view metric, std::string_view 
     }
   if (!unconverged.empty())
     t.note = "Per-file fits NOT CONVERGED (their ratios are not to be trusted): " + joined(unconverged);
+  if (!failed.empty())
+    t.note += fmt::format("{}NO FINITE {} (left out of the means): {}", t.note.empty() ? "" : " ", metric,
+                          joined(failed, "; "));
   return t;
 }
 
@@ -69,9 +74,15 @@ Table summary_table(const HeldOut& h, std::string_view metric) {
   Table t{"held_out_summary", "Means by role", {"role", "records", fmt::format("mean {}", metric)}, {}};
   if (h.reference)
     for (const char* c : {"mean per-file", "ratio of means", "worst ratio", "worst record"}) t.columns.emplace_back(c);
+  const bool any_failed = h.fitted_summary.failed > 0 || h.held_out_summary.failed > 0;
+  if (any_failed) {
+    t.columns.insert(t.columns.begin() + 2, fmt::format("no finite {}", metric));
+    t.note = "The means leave out the records without a finite metric (see the records' note).";
+  }
   auto add = [&](const std::string& role, const ErrorSummary& s) {
     if (s.count == 0) return;
     std::vector<Cell> row{role, number_cell(s.count), number_cell(s.mean)};
+    if (any_failed) row.insert(row.begin() + 2, number_cell(s.failed));
     if (h.reference) {
       row.push_back(number_cell(s.mean_per_file));
       row.push_back(number_cell(s.ratio_of_means));
@@ -93,6 +104,7 @@ nlohmann::ordered_json optional_number(const std::optional<double>& v) {
 
 nlohmann::ordered_json summary_json(const ErrorSummary& s) {
   return {{"count", s.count},
+          {"failed", s.failed},
           {"mean", json_number(s.mean)},
           {"mean_per_file", json_number(s.mean_per_file)},
           {"ratio_of_means", json_number(s.ratio_of_means)},
@@ -134,7 +146,8 @@ nlohmann::ordered_json held_out_json(const HeldOut& h, const Model& model) {
                          {"per_file", optional_number(e.per_file)},
                          {"per_file_verdict", e.per_file_verdict ? nlohmann::ordered_json(*e.per_file_verdict)
                                                                  : nlohmann::ordered_json(nullptr)},
-                         {"ratio", e.per_file ? json_number(e.ratio()) : nlohmann::ordered_json(nullptr)}});
+                         {"ratio", e.per_file ? json_number(e.ratio()) : nlohmann::ordered_json(nullptr)},
+                         {"failure", e.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.failure)}});
   j["records"] = records;
   j["summary"] = {{"fitted", summary_json(h.fitted_summary)}, {"held_out", summary_json(h.held_out_summary)}};
   if (h.folds_summary.count > 0) {

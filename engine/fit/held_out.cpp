@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -13,6 +14,7 @@
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/fit/record_start.hpp"
 #include "engine/fit/law_selection.hpp"
+#include "engine/model/bounds.hpp"
 #include "engine/model/law_model.hpp"
 #include "optimizers/registry.hpp"
 
@@ -183,27 +185,62 @@ double RecordError::ratio() const { return per_file ? metric / *per_file : kNaN;
 ErrorSummary summarize_errors(std::span<const RecordError> errors) {
   ErrorSummary s;
   s.count = static_cast<int>(errors.size());
+  std::vector<const RecordError*> scored;  // the records with a finite metric
+  for (const RecordError& e : errors)
+    if (std::isfinite(e.metric)) scored.push_back(&e);
+  s.failed = s.count - static_cast<int>(scored.size());
   double sum = 0, sum_per_file = 0;
-  bool reference = !errors.empty();
-  for (const RecordError& e : errors) {
-    sum += e.metric;
-    if (e.per_file) sum_per_file += *e.per_file;
+  bool reference = !scored.empty();
+  for (const RecordError* e : scored) {
+    sum += e->metric;
+    if (e->per_file) sum_per_file += *e->per_file;
     else reference = false;
   }
-  s.mean = errors.empty() ? kNaN : sum / s.count;
+  const auto n = static_cast<double>(scored.size());
+  s.mean = scored.empty() ? kNaN : sum / n;
   s.mean_per_file = s.ratio_of_means = s.worst_ratio = kNaN;
   if (!reference) return s;
-  s.mean_per_file = sum_per_file / s.count;
+  s.mean_per_file = sum_per_file / n;
   s.ratio_of_means = s.mean / s.mean_per_file;
-  for (const RecordError& e : errors) {
-    // A NaN ratio (a prediction or a reference that failed) counts as the worst: it must not hide.
-    if (s.worst_record.empty() || !(e.ratio() <= s.worst_ratio)) {
-      s.worst_ratio = e.ratio();
-      s.worst_record = e.record;
+  for (const RecordError* e : scored) {
+    // A NaN ratio (a reference that failed) counts as the worst: it must not hide.
+    if (s.worst_record.empty() || !(e->ratio() <= s.worst_ratio)) {
+      s.worst_ratio = e->ratio();
+      s.worst_record = e->record;
       if (std::isnan(s.worst_ratio)) break;
     }
   }
   return s;
+}
+
+std::string prediction_failure(const Model& model, std::span<const double> parameters, const Signals& record) {
+  std::string at;
+  for (const auto& [name, value] : record.law_variables) at += fmt::format("{}{}={:g}", at.empty() ? "" : ", ", name, value);
+  at = at.empty() ? "on this record" : "at " + at;
+  const auto* law = dynamic_cast<const LawModel*>(&model);
+  if (!law) return fmt::format("{}: the fit's parameters give no finite force", at);
+  const std::vector<double> base = law->base_parameters(parameters, record);
+  // The box a fit of this record alone searches, in the units the laws' values have (the gauge's when applied).
+  const Signals* const one[] = {&record};
+  const ResolvedModel gauged = law->applied_gauge() ? gauged_model(law->base()) : ResolvedModel{};
+  const Model& boxed = law->applied_gauge() ? *gauged.model : law->base();
+  const Bounds box = law->applied_gauge() ? gauged.bounds_for(one) : default_bounds(law->base(), one);
+  std::string outside;
+  int count = 0;
+  for (int j = 0; j < box.dim(); ++j) {
+    const std::string& name = boxed.parameters()[j].name;
+    const double v = base[static_cast<std::size_t>(law->base().parameter_index(name))];
+    if (v >= box.lower[j] && v <= box.upper[j]) continue;  // a NaN value is outside too
+    outside += fmt::format("{}{} = {:.3g} ({:.4g} to {:.4g})", outside.empty() ? "" : ", ", name, v, box.lower[j],
+                           box.upper[j]);
+    ++count;
+  }
+  if (count == 0)
+    return fmt::format("{}: the laws give every parameter inside a per-record fit's box, and the model gives no finite "
+                       "force",
+                       at);
+  return fmt::format("{}: the laws give {} outside a per-record fit's box: {}", at,
+                     count == 1 ? "a parameter" : fmt::format("{} parameters", count), outside);
 }
 
 HeldOutPlan plan_held_out(const PreparedFit& fit, const RecordOptions& data, const HeldOutSpec& spec) {
@@ -221,9 +258,24 @@ namespace {
 /// The per-file reference fits of a held-out evaluation, each record's fitted once however often it is asked for.
 class References {
  public:
-  References(const PreparedFit& fit, bool enabled)
-      : model_(per_file_model(*fit.model.model)), metric_(fit.metric), seed_(fit.seed), enabled_(enabled) {}
+  References(const PreparedFit& fit, bool enabled, std::function<void(const std::string&)> progress)
+      : model_(per_file_model(*fit.model.model)), metric_(fit.metric), seed_(fit.seed), enabled_(enabled),
+        progress_(std::move(progress)) {}
 
+  /// `model`'s metric with `params` on `record` beside the record's per-file fit; when the metric is not finite,
+  /// why (told to the progress too, as it happens).
+  RecordError judge(std::string role, std::string fold, const Model& model, std::span<const double> params,
+                    const Signals& record) {
+    RecordError e = error(std::move(role), std::move(fold), record, record_metric(model, params, record, metric_));
+    if (std::isfinite(e.metric)) return e;
+    e.failure = prediction_failure(model, params, record);
+    if (progress_)
+      progress_(fmt::format("{} {} (fold {}): no finite {}; {}", e.role, e.record, e.fold, metric_name(metric_),
+                            e.failure));
+    return e;
+  }
+
+ private:
   /// `record`'s metric beside its per-file fit (when references are enabled).
   RecordError error(std::string role, std::string fold, const Signals& record, double metric) {
     RecordError e{std::move(role), std::move(fold), record.name, metric, std::nullopt, std::nullopt};
@@ -238,11 +290,11 @@ class References {
     return e;
   }
 
- private:
   const Model& model_;
   Metric metric_;
   std::uint64_t seed_;
   bool enabled_;
+  std::function<void(const std::string&)> progress_;
   std::map<const Signals*, std::pair<double, std::string>> done_;
 };
 
@@ -285,7 +337,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   h.reference = !plan.spec.reference.empty();
   const Model& model = *fit.model.model;
   const FitRequest request = fit.request();
-  References references(fit, h.reference);
+  References references(fit, h.reference, plan.progress);
   RecordFitCache* record_fits = plan.record_fits.get();  // --laws auto, --start per-file: each record's own fit, once
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
@@ -300,10 +352,8 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       for (const Signals* r : plan.predict.pointers())
         if (same_fold_value(*r, *request.records[fold.predict.front()], plan.spec.folds)) predicted.push_back(r);
     h.folds.push_back(fold_fit(fold, request.records, f, predicting, predicted));
-    for (const Signals* r : predicted) {
-      const double metric = record_metric(predicting, f.best().best_params, *r, h.metric);
-      h.held_out.push_back(references.error("held out", fold.name, *r, metric));
-    }
+    for (const Signals* r : predicted)
+      h.held_out.push_back(references.judge("held out", fold.name, predicting, f.best().best_params, *r));
   }
   const std::vector<double>& best = outcome.best().best_params;
   if (!plan.predict.signals.empty()) {
@@ -316,11 +366,11 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       (i < static_cast<int>(request.records.size()) ? fold.fit : fold.predict).push_back(i);
     h.folds.push_back(fold_fit(fold, all, outcome, model, predicted));
     for (const Signals* r : predicted)
-      h.held_out.push_back(references.error("held out", "all", *r, record_metric(model, best, *r, h.metric)));
+      h.held_out.push_back(references.judge("held out", "all", model, best, *r));
   }
   if (h.reference)
     for (const Signals* r : request.records)
-      h.fitted.push_back(references.error("fitted", "all", *r, record_metric(model, best, *r, h.metric)));
+      h.fitted.push_back(references.judge("fitted", "all", model, best, *r));
   h.fitted_summary = summarize_errors(h.fitted);
   h.held_out_summary = summarize_errors(h.held_out);
   if (!plan.folds.empty() && !plan.predict.signals.empty()) {

@@ -51,6 +51,13 @@ bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule);
 /// evaluation `evaluate` prints (BatchEvaluator::evaluate_all), so the two agree bit for bit.
 double record_metric(const Model& model, std::span<const double> parameters, const Signals& record, Metric metric);
 
+/// Why `model` with `parameters` gives no finite metric on `record`, for a message: for a law model, its base
+/// parameters at the record's operating variables that lie outside the box a fit of that record alone searches
+/// (the gauged model's box when the law model applies the gauge), e.g. "at amp=0.002, freq=5, I=0: the laws give
+/// n = 7.5 outside a per-record fit's box (1 to 3)"; otherwise, or when every one lies inside, that the simulation
+/// itself gives no finite force.
+std::string prediction_failure(const Model& model, std::span<const double> parameters, const Signals& record);
+
 /// The request of one fold: `request` (model, optimizer, settings) on the fold's fit records, which index
 /// `request.records`, with its task key extended by the fold's name.
 FitRequest fold_request(const FitRequest& request, const Fold& fold);
@@ -79,12 +86,16 @@ struct RecordError {
   double metric = 0;
   std::optional<double> per_file;            ///< the per-file reference fit's best value (--reference per-file)
   std::optional<std::string> per_file_verdict;  ///< its convergence verdict
+  std::string failure = {};  ///< why `metric` is not finite (prediction_failure); "" when it is
   [[nodiscard]] double ratio() const;        ///< metric / per_file; NaN without a reference
 };
 
-/// Means over records and the worst ratio to the per-file fits.
+/// Means over records and the worst ratio to the per-file fits. A record whose metric is not finite (a model that
+/// gives no finite force there) is counted in `failed` and left out of the means and the worst ratio, so that one
+/// such record does not hide what the others show; the tables say how many the means leave out.
 struct ErrorSummary {
-  int count = 0;
+  int count = 0;   ///< every record
+  int failed = 0;  ///< records without a finite metric, not in the means
   double mean = 0;
   double mean_per_file = 0, ratio_of_means = 0, worst_ratio = 0;  ///< NaN without a reference
   std::string worst_record;  ///< the record of the worst ratio ("" without a reference)

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/fit/fit_records.hpp"
+#include "engine/fit/law_selection.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/model/parameter_law.hpp"
 #include "engine/record/excitation.hpp"
@@ -143,6 +144,68 @@ TEST(HeldOut, SummaryGivesMeansTheirRatioAndTheWorstRecord) {
   EXPECT_TRUE(std::isnan(n.mean_per_file) && std::isnan(n.ratio_of_means) && std::isnan(n.worst_ratio));
   EXPECT_EQ(n.worst_record, "");
   EXPECT_TRUE(std::isnan(e[1].ratio()));
+}
+
+TEST(HeldOut, SummaryLeavesRecordsWithoutAFiniteMetricOutOfTheMeansAndCountsThem) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<RecordError> e{{"held out", "I=0", "a", 0.2, 0.1, "converged"},
+                             {"held out", "I=1", "b", inf, 0.2, "converged"},
+                             {"held out", "I=1", "c", nan, 0.02, "converged"},
+                             {"held out", "I=1", "d", 0.4, 0.1, "converged"}};
+  const ErrorSummary s = summarize_errors(e);
+  EXPECT_EQ(s.count, 4);
+  EXPECT_EQ(s.failed, 2);
+  EXPECT_DOUBLE_EQ(s.mean, 0.3);
+  EXPECT_DOUBLE_EQ(s.mean_per_file, 0.1);
+  EXPECT_DOUBLE_EQ(s.ratio_of_means, 3.0);
+  EXPECT_DOUBLE_EQ(s.worst_ratio, 4.0);
+  EXPECT_EQ(s.worst_record, "d");
+  const ErrorSummary none = summarize_errors(std::span(e).subspan(1, 2));
+  EXPECT_EQ(none.failed, 2);
+  EXPECT_TRUE(std::isnan(none.mean) && std::isnan(none.ratio_of_means));
+}
+
+/// A sine record at `amp_m` and 5 Hz whose force is 1000·v + 100 N (what record-scaled boxes are scaled by).
+Signals forced_record(double amp_m) {
+  Dataset d = make_sine(SineSpec{amp_m, 5, 0, 2, 400});
+  d.operating = {{"I", 0.0}, {"amp", amp_m}, {"freq", 5.0}};
+  d.F_N.resize(d.v_m_s.size());
+  for (std::size_t k = 0; k < d.v_m_s.size(); ++k) d.F_N[k] = 1000 * d.v_m_s[k] + 100;
+  Signals s = prepare_signals(d);
+  s.name = fmt::format("sine_{}m", amp_m);
+  return s;
+}
+
+TEST(HeldOut, AFailedPredictionNamesTheLawValuesOutsideAPerRecordBox) {
+  // Spencer under its gauge with n = 0.011/amp + 2: 7.5 at 2 mm, 2.55 at 20 mm; a per-record fit keeps n in 1–3
+  // (the Bouc–Wen rule, whatever the record), and every other parameter sits inside both records' boxes.
+  const Model& spencer = find_model("mrd.spencer");
+  const LawModel law(spencer, parse_laws("n=power(amp)", "--laws"));
+  const Signals small = forced_record(0.002), large = forced_record(0.02);
+  const ResolvedModel gauged = gauged_model(spencer);
+  const Signals* const a[] = {&small};
+  const Signals* const b[] = {&large};
+  const Bounds box_small = gauged.bounds_for(a), box_large = gauged.bounds_for(b);
+  std::vector<double> c(static_cast<std::size_t>(law.dim()));
+  for (int j = 0; j < gauged.model->dim(); ++j) {
+    const std::string& name = gauged.model->parameters()[j].name;
+    if (name == "n") continue;
+    const double lo = std::max(box_small.lower[j], box_large.lower[j]), hi = std::min(box_small.upper[j], box_large.upper[j]);
+    ASSERT_LT(lo, hi) << name;
+    c[law.parameter_index(name)] = 0.5 * (lo + hi);
+  }
+  c[law.parameter_index("n_k")] = 0.011;
+  c[law.parameter_index("n_p")] = -1;
+  c[law.parameter_index("n_c")] = 2;
+  const std::string failed = prediction_failure(law, c, small);
+  EXPECT_NE(failed.find("amp=0.002"), std::string::npos) << failed;
+  EXPECT_NE(failed.find("the laws give a parameter outside a per-record fit's box: n = 7.5 (1 to 3)"), std::string::npos)
+      << failed;
+  const std::string inside = prediction_failure(law, c, large);
+  EXPECT_NE(inside.find("the laws give every parameter inside a per-record fit's box"), std::string::npos) << inside;
+  // A model without laws has nothing to name but the fit's parameters.
+  EXPECT_NE(prediction_failure(spencer, std::vector<double>(10, 1.0), small).find("the fit's parameters give no finite"),
+            std::string::npos);
 }
 
 TEST(HeldOut, RecordMetricIsEvaluatesMetric) {
@@ -292,6 +355,35 @@ TEST(HeldOutCommand, ReferenceIsTheBaseModelFittedToEachRecordAlone) {
   EXPECT_EQ(s.at("worst_record"), "rec_0.25A");
   EXPECT_EQ(bits(s.at("worst_ratio").get<double>()), bits(rows[3].at("ratio").get<double>()));
   EXPECT_EQ(h.at("summary").at("fitted").at("count"), 3);
+}
+
+TEST(HeldOutCommand, ARecordPredictedWithoutAFiniteForceSaysWhyAndTheMeansKeepTheOthers) {
+  // f_c = k·I^p + c with k > 0 and p < 0, fitted on 0.5 and 1 A: at 0 A the law gives f_c = inf, so no finite force.
+  const Simulated sim("mrd.bingham", "f_c=poly(I,1)", {150.0, 300.0, 2500.0, -5.0}, 0.02);
+  const std::string fit = fmt::format("fit --model mrd.bingham --laws 'f_c=power(I)' --bounds f_c_k=10:1000,f_c_p=-1:-0.5 --runs 2 "
+                                      "--metric nrmse --reference per-file --data {} --data {} --predict {} --predict {}",
+                                      sim.file(0.5), sim.file(1), sim.file(0), sim.file(0.25));
+  const auto j = run_json(fit);
+  const auto& h = j.at("held_out");
+  const auto& rows = h.at("records");
+  ASSERT_EQ(rows.size(), 4u);  // the two fitted records, then the two predicted ones
+  EXPECT_EQ(rows[2].at("record"), "rec_0A");
+  EXPECT_TRUE(rows[2].at("metric").is_null());
+  const std::string failure = rows[2].at("failure").get<std::string>();
+  EXPECT_NE(failure.find("at I=0"), std::string::npos) << failure;
+  EXPECT_NE(failure.find("f_c = inf"), std::string::npos) << failure;
+  EXPECT_TRUE(rows[3].at("failure").is_null());
+  const auto& s = h.at("summary").at("held_out");
+  EXPECT_EQ(s.at("count"), 2);
+  EXPECT_EQ(s.at("failed"), 1);
+  EXPECT_EQ(bits(s.at("mean").get<double>()), bits(rows[3].at("metric").get<double>()));
+  EXPECT_EQ(s.at("worst_record"), "rec_0.25A");
+  EXPECT_EQ(h.at("summary").at("fitted").at("failed"), 0);
+  const auto md = testing::run_dampbench(fit);
+  ASSERT_EQ(md.exit_code, 0) << md.output;
+  for (const char* text : {"NO FINITE nrmse (left out of the means): rec_0A (fold all) at I=0", "| no finite nrmse |",
+                           "held out rec_0A (fold all): no finite nrmse; at I=0"})
+    EXPECT_NE(md.output.find(text), std::string::npos) << text << "\n" << md.output;
 }
 
 TEST(HeldOutCommand, BadOptionsAreReportedBeforeTheFit) {
