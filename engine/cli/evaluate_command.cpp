@@ -51,11 +51,14 @@ Evaluation run_evaluate(const EvaluateOptions& o) {
   CandidateBatch batch(model.dim(), 1);
   batch.set_candidate(0, loaded.params);
   Evaluation e{std::string(model.id()), {}, {}};
+  const bool from_file = !o.model_file.empty();
+  const FittedRange fitted = from_file ? fitted_range_of(loaded) : FittedRange(model, {});
   for (const Signals& s : records.signals) {
     std::vector<MetricRow> row(1);
     BatchEvaluator(model, s).evaluate_all(batch, row);
     e.names.push_back(s.name);
     e.metrics.push_back(row[0]);
+    if (from_file) e.extrapolated.push_back(fitted.outside(s.law_variables));
   }
   return e;
 }
@@ -74,6 +77,13 @@ int evaluate_command(const EvaluateOptions& o) {
       cells.push_back(format_number(e.metrics[r][m]));
     }
     t.rows.push_back(std::move(cells));
+    if (!e.extrapolated.empty()) {
+      const std::string& outside = e.extrapolated[r];
+      j[o.paths[r]]["extrapolated"] = outside.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(outside);
+      if (!outside.empty())
+        t.note += fmt::format("{}{}: {}", t.note.empty() ? "Outside the range the model file was fitted on: " : "; ",
+                              e.names[r], outside);
+    }
   }
   if (o.format == "json") std::cout << j.dump(2) << "\n";
   else std::cout << t.to_markdown();

@@ -28,6 +28,9 @@ struct Evaluation {
   std::string model_id;
   std::vector<std::string> names;  ///< each record's name (a file's stem)
   std::vector<MetricRow> metrics;  ///< per record, every metric in the order of kAllMetrics
+  /// With --model-file: per record, its law variables outside the range the model was fitted on ("" inside;
+  /// FittedRange::outside). Empty without a model file.
+  std::vector<std::string> extrapolated = {};
 };
 
 void add_evaluate_options(CLI::App* cmd, EvaluateOptions& options);

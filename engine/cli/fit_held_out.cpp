@@ -48,10 +48,11 @@ Table records_table(const HeldOut& h, std::string_view metric, std::string_view 
     t.columns.emplace_back("ratio");
   }
   std::vector<std::string> unconverged;  // each per-file fit once, though its record may be fitted and held out
-  std::vector<std::string> failed;
+  std::vector<std::string> failed, extrapolated;
   for (const auto* rows : {&h.fitted, &h.held_out})
     for (const RecordError& e : *rows) {
       if (!e.failure.empty()) failed.push_back(fmt::format("{} (fold {}) {}", e.record, e.fold, e.failure));
+      if (!e.extrapolated.empty()) extrapolated.push_back(fmt::format("{} (fold {}): {}", e.record, e.fold, e.extrapolated));
       std::vector<Cell> row{e.role, e.fold, e.record, number_cell(e.metric)};
       if (h.reference) {
         row.push_back(number_cell(*e.per_file));
@@ -67,6 +68,9 @@ Table records_table(const HeldOut& h, std::string_view metric, std::string_view 
   if (!failed.empty())
     t.note += fmt::format("{}NO FINITE {} (left out of the means): {}", t.note.empty() ? "" : " ", metric,
                           joined(failed, "; "));
+  if (!extrapolated.empty())
+    t.note += fmt::format("{}Extrapolated (a law variable outside the range of the records its fold is fitted on): {}",
+                          t.note.empty() ? "" : " ", joined(extrapolated, "; "));
   return t;
 }
 
@@ -147,7 +151,9 @@ nlohmann::ordered_json held_out_json(const HeldOut& h, const Model& model) {
                          {"per_file_verdict", e.per_file_verdict ? nlohmann::ordered_json(*e.per_file_verdict)
                                                                  : nlohmann::ordered_json(nullptr)},
                          {"ratio", e.per_file ? json_number(e.ratio()) : nlohmann::ordered_json(nullptr)},
-                         {"failure", e.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.failure)}});
+                         {"failure", e.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.failure)},
+                         {"extrapolated", e.extrapolated.empty() ? nlohmann::ordered_json(nullptr)
+                                                                 : nlohmann::ordered_json(e.extrapolated)}});
   j["records"] = records;
   j["summary"] = {{"fitted", summary_json(h.fitted_summary)}, {"held_out", summary_json(h.held_out_summary)}};
   if (h.folds_summary.count > 0) {

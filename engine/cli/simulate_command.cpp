@@ -80,6 +80,7 @@ Simulation run_simulate(const SimulateOptions& o) {
   if (o.input.path.empty() && !o.input.set.empty()) set_operating(sim.data, o.input.set);
   const Signals signals = prepare_signals(sim.data);
   check_record(model, signals);
+  if (!o.model_file.empty()) sim.extrapolated = fitted_range_of(loaded).outside(signals.law_variables);
   sim.force = model.simulate(loaded.params, signals);
   sim.response = structure_response(model, loaded.params, signals);
   if (o.noise_rel > 0) add_noise(sim.force, o.noise_rel, o.seed);
@@ -88,6 +89,8 @@ Simulation run_simulate(const SimulateOptions& o) {
 
 int simulate_command(const SimulateOptions& o) {
   const Simulation sim = run_simulate(o);
+  if (!sim.extrapolated.empty())
+    std::cerr << fmt::format("note: outside the range {} was fitted on: {}\n", o.model_file, sim.extrapolated);
   const Dataset& data = sim.data;
   std::ofstream file;
   if (!o.output.empty()) {

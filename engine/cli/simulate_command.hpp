@@ -35,6 +35,8 @@ struct Simulation {
   Dataset data;               ///< t, x, v, a (SI) of the record or sine; t, u of a system record
   std::vector<double> force;  ///< F [N], with the noise asked for; a structure model's displacement y [m]
   std::optional<StructureResponse> response;  ///< a structure model's y (without noise), ẏ, ÿ and z
+  /// With --model-file: the record's law variables outside the range the model was fitted on ("" inside).
+  std::string extrapolated = {};
 };
 
 void add_simulate_options(CLI::App* cmd, SimulateOptions& options);

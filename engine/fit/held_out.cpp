@@ -12,6 +12,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
+#include "engine/fit/fitted_range.hpp"
 #include "engine/fit/record_start.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/model/bounds.hpp"
@@ -265,8 +266,9 @@ class References {
   /// `model`'s metric with `params` on `record` beside the record's per-file fit; when the metric is not finite,
   /// why (told to the progress too, as it happens).
   RecordError judge(std::string role, std::string fold, const Model& model, std::span<const double> params,
-                    const Signals& record) {
+                    const Signals& record, const FittedRange& fitted) {
     RecordError e = error(std::move(role), std::move(fold), record, record_metric(model, params, record, metric_));
+    e.extrapolated = fitted.outside(record.law_variables);
     if (std::isfinite(e.metric)) return e;
     e.failure = prediction_failure(model, params, record);
     if (progress_)
@@ -298,6 +300,13 @@ class References {
   std::map<const Signals*, std::pair<double, std::string>> done_;
 };
 
+
+/// The range of `model`'s law variables over `records`.
+FittedRange fitted_range(const Model& model, const std::vector<const Signals*>& records) {
+  std::vector<std::map<std::string, double>> variables;
+  for (const Signals* r : records) variables.push_back(r->law_variables);
+  return FittedRange(model, variables);
+}
 
 /// A fold of a `--laws auto` fit: its laws chosen and fitted on the fold's records alone.
 FitOutcome fit_fold_with_auto_laws(const PreparedFit& fit, const FitRequest& request, const Fold& fold,
@@ -352,10 +361,12 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       for (const Signals* r : plan.predict.pointers())
         if (same_fold_value(*r, *request.records[fold.predict.front()], plan.spec.folds)) predicted.push_back(r);
     h.folds.push_back(fold_fit(fold, request.records, f, predicting, predicted));
+    const FittedRange range = fitted_range(predicting, seeded.records);
     for (const Signals* r : predicted)
-      h.held_out.push_back(references.judge("held out", fold.name, predicting, f.best().best_params, *r));
+      h.held_out.push_back(references.judge("held out", fold.name, predicting, f.best().best_params, *r, range));
   }
   const std::vector<double>& best = outcome.best().best_params;
+  const FittedRange range = fitted_range(model, request.records);
   if (!plan.predict.signals.empty()) {
     // The fit on every --data record, as a fold of its own: it predicts the --predict records.
     std::vector<const Signals*> all = request.records;
@@ -366,11 +377,11 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       (i < static_cast<int>(request.records.size()) ? fold.fit : fold.predict).push_back(i);
     h.folds.push_back(fold_fit(fold, all, outcome, model, predicted));
     for (const Signals* r : predicted)
-      h.held_out.push_back(references.judge("held out", "all", model, best, *r));
+      h.held_out.push_back(references.judge("held out", "all", model, best, *r, range));
   }
   if (h.reference)
     for (const Signals* r : request.records)
-      h.fitted.push_back(references.judge("fitted", "all", model, best, *r));
+      h.fitted.push_back(references.judge("fitted", "all", model, best, *r, range));
   h.fitted_summary = summarize_errors(h.fitted);
   h.held_out_summary = summarize_errors(h.held_out);
   if (!plan.folds.empty() && !plan.predict.signals.empty()) {

@@ -87,6 +87,7 @@ struct RecordError {
   std::optional<double> per_file;            ///< the per-file reference fit's best value (--reference per-file)
   std::optional<std::string> per_file_verdict;  ///< its convergence verdict
   std::string failure = {};  ///< why `metric` is not finite (prediction_failure); "" when it is
+  std::string extrapolated = {};  ///< its law variables outside the fold's fitted records' (FittedRange::outside)
   [[nodiscard]] double ratio() const;        ///< metric / per_file; NaN without a reference
 };
 

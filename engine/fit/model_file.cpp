@@ -266,4 +266,13 @@ LoadedModel load_model_file(const std::string& path) {
   return m;
 }
 
+FittedRange fitted_range_of(const LoadedModel& loaded) {
+  std::vector<std::map<std::string, double>> fitted;
+  for (const ModelFileRecord& r : loaded.file.records) {
+    std::map<std::string, double>& variables = fitted.emplace_back();
+    for (const auto& [name, entry] : r.operating.items()) variables[name] = entry.at("value").get<double>();
+  }
+  return FittedRange(*loaded.model.model, fitted);
+}
+
 }  // namespace dampbench

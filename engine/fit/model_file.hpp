@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/fit/fitted_range.hpp"
 #include "engine/fit/prepared_fit.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/record/signals.hpp"
@@ -67,5 +68,8 @@ struct LoadedModel {
 /// Reads, parses and resolves a model file; InputError naming the file and the key for an unknown model, laws
 /// that no longer parse, or coefficients that are not the model's (missing, unknown or not numbers).
 LoadedModel load_model_file(const std::string& path);
+
+/// The range of the model's law variables over the records the file says it was fitted on (their "operating").
+FittedRange fitted_range_of(const LoadedModel& loaded);
 
 }  // namespace dampbench

@@ -189,6 +189,15 @@ void LawModel::check_variables(const Signals& data) const {
   }
 }
 
+std::vector<std::string> LawModel::law_variables() const {
+  std::vector<std::string> out;
+  for (const auto& law : laws_)
+    for (const auto& v : law.variables()) out.push_back(v);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const {
   // Per-thread scratch of this law model (a law model over a law model must not share it with its base):
   // the base parameters of this block, grown once, never shrunk.

@@ -54,6 +54,8 @@ class LawModel final : public Model {
   [[nodiscard]] std::vector<double> base_parameters(std::span<const double> coefficients, const Signals& data) const;
   /// Throws InputError if the record lacks a variable some law needs.
   void check_variables(const Signals& data) const;
+  /// The operating variables its laws read, sorted, each once.
+  [[nodiscard]] std::vector<std::string> law_variables() const;
 
   [[nodiscard]] const Model& base() const { return base_; }
 

@@ -124,6 +124,25 @@ TEST(ModelFileCli, ALawModelRoundTripsWithItsOperatingVariables) {
   EXPECT_EQ(read(from_file), read(by_hand));
   EXPECT_GT(read(from_file).size(), 1000u);
 
+  // Fitted at 0.5 A only: another current is an extrapolation of c0's law, flagged (not refused) by evaluate and
+  // simulate; the fitted current is not.
+  const std::string model = (dir / "model.json").string();
+  r = run_dampbench("evaluate --model-file " + model + " --data " + csv.string() + " --set I=2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Outside the range the model file was fitted on: spencer: I = 2 (fitted on 0.5 to 0.5)"),
+            std::string::npos) << r.output;
+  r = run_dampbench("evaluate --model-file " + model + " " + record + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(nlohmann::json::parse(r.output).at(csv.string()).at("extrapolated").is_null()) << r.output;
+  r = run_dampbench("simulate --model-file " + model + " --input " + csv.string() + " --set I=2 -o " +
+                    (dir / "at_2A.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: outside the range " + model + " was fitted on: I = 2 (fitted on 0.5 to 0.5)"),
+            std::string::npos) << r.output;
+  r = run_dampbench("simulate --model-file " + model + " --input " + csv.string() + " --set I=0.5 -o " +
+                    from_file.string());
+  EXPECT_EQ(r.output.find("note: outside"), std::string::npos) << r.output;
+
   r = run_dampbench("evaluate --model-file " + (dir / "model.json").string() + " --model mrd.spencer " + record);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("--model-file gives the model"), std::string::npos) << r.output;

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/fit/fit_records.hpp"
+#include "engine/fit/fitted_range.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/model/parameter_law.hpp"
@@ -208,6 +209,17 @@ TEST(HeldOut, AFailedPredictionNamesTheLawValuesOutsideAPerRecordBox) {
             std::string::npos);
 }
 
+TEST(HeldOut, FittedRangeNamesTheLawVariablesOutsideTheFittedRecords) {
+  const LawModel law(find_model("mrd.spencer"), parse_laws("c0=poly(I,1);n=power(amp)", "--laws"));
+  const FittedRange range(law, {{{"I", 0.0}, {"amp", 0.025}, {"freq", 1.0}}, {{"I", 1.0}, {"amp", 0.005}, {"freq", 5.0}}});
+  EXPECT_EQ(range.outside({{"I", 0.5}, {"amp", 0.002}, {"freq", 9.0}}), "amp = 0.002 (fitted on 0.005 to 0.025)");
+  EXPECT_EQ(range.outside({{"I", 3.0}, {"amp", 0.03}}), "I = 3 (fitted on 0 to 1), amp = 0.03 (fitted on 0.005 to 0.025)");
+  EXPECT_EQ(range.outside({{"I", 1.0 + 1e-12}, {"amp", 0.005}}), "");  // the ends, read from files, are inside
+  // freq is no law's variable here, and a model without laws never extrapolates a law.
+  EXPECT_EQ(range.outside({{"I", 0.5}, {"amp", 0.01}, {"freq", 50.0}}), "");
+  EXPECT_EQ(FittedRange(find_model("mrd.spencer"), {{{"I", 0.0}}}).outside({{"I", 9.0}}), "");
+}
+
 TEST(HeldOut, RecordMetricIsEvaluatesMetric) {
   const std::string file = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/test3_20mm_460mms.csv";
   const auto printed = testing::run_dampbench("evaluate --model fvd.gv_linear_elastic --params m=300,C=8e5,alpha=0.3,"
@@ -373,6 +385,11 @@ TEST(HeldOutCommand, ARecordPredictedWithoutAFiniteForceSaysWhyAndTheMeansKeepTh
   EXPECT_NE(failure.find("at I=0"), std::string::npos) << failure;
   EXPECT_NE(failure.find("f_c = inf"), std::string::npos) << failure;
   EXPECT_TRUE(rows[3].at("failure").is_null());
+  // Both predicted currents lie below the fitted 0.5–1 A: each is flagged as an extrapolation, the fitted ones not.
+  for (int i : {2, 3})
+    EXPECT_NE(rows[i].at("extrapolated").get<std::string>().find("(fitted on 0.5 to 1)"), std::string::npos) << i;
+  EXPECT_EQ(rows[3].at("extrapolated"), "I = 0.25 (fitted on 0.5 to 1)");
+  EXPECT_TRUE(rows[0].at("extrapolated").is_null());
   const auto& s = h.at("summary").at("held_out");
   EXPECT_EQ(s.at("count"), 2);
   EXPECT_EQ(s.at("failed"), 1);
