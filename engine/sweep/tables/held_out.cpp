@@ -80,9 +80,12 @@ Table held_out_table(const Context& c, const Series& s) {
     }
     if (referenced.empty()) continue;
     const ErrorSummary sum = summarize_errors(referenced);
-    r.rows.push_back({txt(fmt::format("mean of {}", sum.count)), txt(role), num(sum.mean), num(sum.mean_per_file),
-                      num(sum.ratio_of_means)});
+    r.rows.push_back({txt(fmt::format("mean of {}", sum.count - sum.failed)), txt(role), num(sum.mean),
+                      num(sum.mean_per_file), num(sum.ratio_of_means)});
     summary_note += fmt::format(" Worst {}: {} ({:.3g}).", role, sum.worst_record, sum.worst_ratio);
+    if (sum.failed > 0)
+      summary_note += fmt::format(" {} {} record{} without a finite value, not in the mean.", sum.failed, role,
+                                  sum.failed == 1 ? "" : "s");
   }
   r.note = "ratio = the model's value / the record's own fit; a mean row's ratio is the ratio of the means." +
            summary_note;
