@@ -1,11 +1,11 @@
 #include "engine/fit/fitted_range.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include <fmt/format.h>
 
 #include "engine/model/law_model.hpp"
+#include "engine/record/signals.hpp"
 
 namespace dampbench {
 
@@ -27,8 +27,10 @@ std::string FittedRange::outside(const std::map<std::string, double>& record) co
   for (const auto& [name, range] : range_) {
     const auto it = record.find(name);
     if (it == record.end()) continue;
-    const double v = it->second, slack = 1e-9 * std::max(std::fabs(range.first), std::fabs(range.second));
-    if (v >= range.first - slack && v <= range.second + slack) continue;
+    const double v = it->second;
+    if ((v >= range.first && v <= range.second) || same_operating_value(v, range.first) ||
+        same_operating_value(v, range.second))
+      continue;
     out += fmt::format("{}{} = {:g} (fitted on {:g} to {:g})", out.empty() ? "" : ", ", name, v, range.first,
                        range.second);
   }

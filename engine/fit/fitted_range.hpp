@@ -20,7 +20,7 @@ class FittedRange {
   FittedRange(const Model& model, const std::vector<std::map<std::string, double>>& fitted);
 
   /// Each variable of `record` outside its fitted range, e.g. "amp = 0.002 (fitted on 0.005 to 0.025)", joined by
-  /// ", "; "" when every one lies inside (within a relative 1e-9, as fold values are compared).
+  /// ", "; "" when every one lies inside (a value same_operating_value as an end is inside, as folds compare).
   [[nodiscard]] std::string outside(const std::map<std::string, double>& record) const;
 
  private:

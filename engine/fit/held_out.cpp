@@ -24,11 +24,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// One value for the folds: the same number read from two files, or computed twice, may differ in its last bits.
-bool same_value(double a, double b) {
-  return a == b || std::fabs(a - b) <= 1e-9 * std::max(std::fabs(a), std::fabs(b));
-}
-
 /// The distinct values among `v` (ascending, each the smallest of its group) and each element's index among them.
 struct Distinct {
   std::vector<double> values;
@@ -43,7 +38,7 @@ Distinct distinct_values(const std::vector<double>& v) {
   d.of.assign(v.size(), -1);
   for (int i : order) {
     // Against the group's first value, so that a chain of near values cannot drift into one group.
-    if (d.values.empty() || !same_value(d.values.back(), v[i])) d.values.push_back(v[i]);
+    if (d.values.empty() || !same_operating_value(d.values.back(), v[i])) d.values.push_back(v[i]);
     d.of[i] = static_cast<int>(d.values.size()) - 1;
   }
   return d;
@@ -131,7 +126,7 @@ std::string_view leave_one_variable(std::string_view rule) {
 bool same_fold_value(const Signals& a, const Signals& b, std::string_view rule) {
   const auto near = [&](std::string_view v) {
     const auto x = a.law_variables.find(std::string(v)), y = b.law_variables.find(std::string(v));
-    return x != a.law_variables.end() && y != b.law_variables.end() && same_value(x->second, y->second);
+    return x != a.law_variables.end() && y != b.law_variables.end() && same_operating_value(x->second, y->second);
   };
   if (const std::string_view variable = leave_one_variable(rule); !variable.empty()) return near(variable);
   return rule == "leave-setting" && near("amp") && near("freq");
@@ -216,7 +211,8 @@ ErrorSummary summarize_errors(std::span<const RecordError> errors) {
 
 std::string prediction_failure(const Model& model, std::span<const double> parameters, const Signals& record) {
   std::string at;
-  for (const auto& [name, value] : record.law_variables) at += fmt::format("{}{}={:g}", at.empty() ? "" : ", ", name, value);
+  for (const auto& [name, value] : record.law_variables)
+    at += fmt::format("{}{}={:g}", at.empty() ? "" : ", ", name, value);
   at = at.empty() ? "on this record" : "at " + at;
   const auto* law = dynamic_cast<const LawModel*>(&model);
   if (!law) return fmt::format("{}: the fit's parameters give no finite force", at);

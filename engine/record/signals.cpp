@@ -69,6 +69,10 @@ void prepare_measured_statistics(Signals& s) {
 
 }  // namespace
 
+bool same_operating_value(double a, double b) {
+  return a == b || std::fabs(a - b) <= 1e-9 * std::max(std::fabs(a), std::fabs(b));
+}
+
 void check_uniform_sampling(const Dataset& data) {
   const std::size_t n = data.size();
   if (n < 2) return;

@@ -35,6 +35,10 @@ struct Signals : Dataset {
   std::map<std::string, std::string> law_variable_source;
 };
 
+/// Whether two operating values (law_variables) are one value: the same number read from two files, or computed
+/// twice, may differ in its last bits (a relative 1e-9). Folds, sweep selections and fitted ranges compare by it.
+bool same_operating_value(double a, double b);
+
 /// Builds the kernel view of a dataset (copies its signals; computes weights and force statistics).
 Signals prepare_signals(const Dataset& data);
 

@@ -14,6 +14,7 @@
 #include <toml++/toml.h>
 
 #include "engine/record/csv_loader.hpp"
+#include "engine/record/signals.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/model/law_model.hpp"
@@ -41,8 +42,7 @@ bool Selection::matches(const std::string& name, const std::map<std::string, dou
       if (!ok) break;
       const auto it = variables.find(var);
       ok = it != variables.end() && std::any_of(values.begin(), values.end(), [&](double v) {
-             return std::fabs(it->second - v) <= 1e-9 * std::max(std::fabs(v), std::fabs(it->second)) ||
-                    it->second == v;
+             return same_operating_value(it->second, v);
            });
     }
     if (ok) return true;
