@@ -49,13 +49,35 @@ ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::
   return out;
 }
 
+/// The smallest box holding the boxes of fits of each of `training`'s records alone.
+Bounds training_hull(const ResolvedModel& gauged, const std::vector<const Signals*>& records,
+                     const std::vector<int>& training) {
+  Bounds hull;
+  for (int r : training) {
+    const Bounds box = gauged.bounds_for(std::span<const Signals* const>(&records[r], 1));
+    if (hull.lower.empty()) {
+      hull = box;
+      continue;
+    }
+    for (int j = 0; j < box.dim(); ++j) {
+      hull.lower[j] = std::min(hull.lower[j], box.lower[j]);
+      hull.upper[j] = std::max(hull.upper[j], box.upper[j]);
+    }
+  }
+  return hull;
+}
+
 /// What scoring needs, fixed for one selection.
 struct Scoring {
   const Model& model;  ///< the gauged model, its parameters those of the per-record fits
   const std::vector<const Signals*>& records;
   const std::vector<std::vector<double>>& per_record;
   ChoiceFolds folds;
-  std::vector<Bounds> boxes;  ///< each record's own box, which predictions are clamped into
+  /// Per fold, the hull of the boxes a fit of each of its training records alone searches. A left-out record's
+  /// predicted parameters are clamped into it, so that a law extrapolated past what any training record reached
+  /// does not end the simulation; the left-out record's own box would scale with its measured force, which a
+  /// prediction must not see.
+  std::vector<Bounds> fold_boxes;
   Metric metric;
   mutable double simulated_samples = 0;  ///< Σ samples of the left-out records simulated
   /// Law fits by (fold, parameter, law): a coordinate step changes one parameter's law, the others' fits stay.
@@ -96,7 +118,8 @@ struct Scoring {
         const int r = fold.predict[i];
         std::vector<double> p(model.dim());
         for (int j = 0; j < model.dim(); ++j)
-          p[j] = std::clamp(fits[j]->predict(laws[j], records[r]->law_variables), boxes[r].lower[j], boxes[r].upper[j]);
+          p[j] = std::clamp(fits[j]->predict(laws[j], records[r]->law_variables), fold_boxes[f].lower[j],
+                            fold_boxes[f].upper[j]);
         const double v = record_metric(model, p, *records[r], metric);
         m[i] = std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
       });
@@ -269,7 +292,7 @@ LawSelection select_laws(const LawSearch& search, const ResolvedModel& gauged,
   const auto start = std::chrono::steady_clock::now();
   const Model& model = *gauged.model;
   Scoring s{model, search.records, per_record, choice_folds(search.records, search.label), {}, search.settings.metric};
-  for (const Signals* r : search.records) s.boxes.push_back(gauged.bounds_for(std::span<const Signals* const>(&r, 1)));
+  for (const Fold& fold : s.folds.folds) s.fold_boxes.push_back(training_hull(gauged, search.records, fold.fit));
   LawSelection out;
   for (const auto& p : model.parameters()) out.parameters.push_back(p.name);
   const LawSet shared(static_cast<std::size_t>(model.dim()));

@@ -8,11 +8,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
 #include "engine/common/error.hpp"
+#include "engine/fit/held_out.hpp"
 #include "engine/fit/prepared_fit.hpp"
 #include "engine/model/law_model.hpp"
 #include "engine/record/excitation.hpp"
@@ -216,6 +218,43 @@ TEST(LawSelection, LeavesTheInnerCurrentsOutWhenTheRecordsHoldFourOrMore) {
   EXPECT_NE(three.folds.note.find("with 3 training currents"), std::string::npos) << three.folds.note;
   EXPECT_EQ(four.folds.note, "");
   EXPECT_NEAR(three.score, mean_of_rows(three.folds, 0, 2), 1e-12 * three.score);
+}
+
+TEST(LawSelection, ClampsAPredictionIntoTheTrainingRecordsBoxesNotTheLeftOutRecordsOwn) {
+  // Bouc-Wen under its gauge (alpha the hysteretic force in N, its box 0 to 2 F of the record), two settings that
+  // differ only in alpha: 100 N at 10 mm-1 Hz (peak force about 130 N, so its own box stops alpha at about 260 N)
+  // and 1000 N at 20 mm-0.5 Hz. Leaving the first out, every parameter shared predicts alpha = 1000 N, inside the
+  // training record's box: the left-out record is simulated with it, not with alpha cut down to its own force.
+  const ResolvedModel gauged = gauged_model(find_model("mrd.bouc_wen"));
+  const Model& model = *gauged.model;
+  const auto with_alpha = [&](double alpha) {
+    const std::map<std::string, double> value{{"c0", 500},    {"k0", 200},    {"x0", 0}, {"alpha", alpha},
+                                              {"beta", 100}, {"gamma", 200}, {"n", 1.5}};
+    std::vector<double> p;
+    for (const auto& info : model.parameters()) p.push_back(value.at(info.name));
+    return p;
+  };
+  std::vector<Signals> records;
+  std::vector<std::vector<double>> truth;
+  for (auto [amp, freq, alpha] : {std::tuple{0.01, 1.0, 100.0}, {0.02, 0.5, 1000.0}})
+    for (double I : {0.0, 1.0}) {
+      SineSpec spec;
+      spec.amplitude_m = amp, spec.freq_hz = freq, spec.cycles = 2, spec.fs_hz = 400 * freq;
+      Dataset d = make_sine(spec);
+      d.operating["I"] = I;
+      truth.push_back(with_alpha(alpha));
+      d.F_N = model.simulate(truth.back(), prepare_signals(d));
+      d.name = fmt::format("{}mm{}A", amp * 1e3, I);
+      records.push_back(prepare_signals(d));
+    }
+  ASSERT_GT(1000.0, 2 * records[0].measured_max_abs);  // the left-out record's own box would cut alpha
+  LawSearch search = bingham_search(records);
+  search.base = &find_model("mrd.bouc_wen");
+  const LawSelection selection = select_laws(search, gauged, truth);
+  double expected = 0;
+  for (std::size_t r = 0; r < records.size(); ++r)
+    expected += record_metric(model, truth[(r + 2) % 4], records[r], Metric::nrmse) / 4;
+  EXPECT_NEAR(selection.shared_score, expected, 1e-12 * expected);
 }
 
 TEST(RecordStart, FitsEachLawToValuesItWasGeneratedFrom) {
