@@ -357,6 +357,10 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
       for (const Signals* r : plan.predict.pointers())
         if (same_fold_value(*r, *request.records[fold.predict.front()], plan.spec.folds)) predicted.push_back(r);
     h.folds.push_back(fold_fit(fold, request.records, f, predicting, predicted));
+    if (plan.progress)
+      plan.progress(fmt::format("fold {}: fitted on {} records, {} {:.6g} ({}); predicts {}", fold.name,
+                                fold.fit.size(), metric_name(fit.metric), f.best().best_value,
+                                f.convergence.verdict(), predicted.size()));
     const FittedRange range = fitted_range(predicting, seeded.records);
     for (const Signals* r : predicted)
       h.held_out.push_back(references.judge("held out", fold.name, predicting, f.best().best_params, *r, range));

@@ -128,7 +128,8 @@ struct HeldOutPlan {
   /// `--laws auto` and `--start per-file`: each --data record's own fit (LawSearch::record_fits), made by the fit on
   /// all of them and reused by the folds.
   std::shared_ptr<RecordFitCache> record_fits = std::make_shared<RecordFitCache>();
-  /// Told one line per step of a `--laws auto` or `--start per-file` fold (LawSearch::progress); may be empty.
+  /// Told one line per step of a `--laws auto` or `--start per-file` fold (LawSearch::progress) and one per fold
+  /// fitted; may be empty.
   std::function<void(const std::string&)> progress;
 };
 
