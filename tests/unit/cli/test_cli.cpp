@@ -272,9 +272,9 @@ TEST(Cli, FitReportDrawsEachHeldOutRecordAgainstItsFoldsPrediction) {
   const auto file = dir / "held_out.html";
   // Three settings (one frequency each): three folds, each predicting its left-out record, and the fit on all three
   // predicting the fourth record.
-  const auto r = run_dampbench(fit + " --folds leave-setting --reference per-file --predict " + paths[3] + " --report " +
-                               file.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto r = run_dampbench_json(fit + " --folds leave-setting --reference per-file --predict " + paths[3] +
+                                    " --report " + file.string());
+  ASSERT_EQ(r.exit_code, 0) << r.errors;
   const auto out = nlohmann::json::parse(r.output);
   const auto& h = out.at("held_out");
   const auto j = report_data_of(file);
