@@ -270,11 +270,13 @@ class Simulated {
   fs::path dir_;
 };
 
-nlohmann::json run_json(const std::string& args) {
-  const auto r = testing::run_dampbench(args + " --format json");
-  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+/// The JSON a command prints on stdout; its stderr (progress lines, messages) into `errors` when given.
+nlohmann::json run_json(const std::string& args, std::string* errors = nullptr) {
+  const auto r = testing::run_dampbench_json(args + " --format json");
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.errors;
+  if (errors) *errors = r.errors;
   if (r.exit_code != 0) return nlohmann::json::object();
-  return nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  return nlohmann::json::parse(r.output);
 }
 
 /// The held-out rows of a fit's JSON: record name -> metric.
@@ -321,14 +323,11 @@ TEST(HeldOutCommand, FoldsGiveTheSameBitsOnOneAndTwoThreads) {
   const std::string args = fmt::format("fit --model mrd.bouc_wen --laws 'c0=poly(I,1);A=free' --bounds "
                                        "c0_I0=500:2000,c0_I1=2000:8000,{}{}{} --folds leave-one:I --predict {}",
                                        kShared, kBudget, sim.fitted_on(), sim.file(0.25));
-  auto one = run_json("--threads 1 " + args);
-  const auto two_run = testing::run_dampbench_json("--threads 2 " + args + " --format json");
-  ASSERT_EQ(two_run.exit_code, 0) << two_run.errors;
-  auto two = nlohmann::json::parse(two_run.output);
+  std::string progress;
+  auto one = run_json("--threads 1 " + args), two = run_json("--threads 2 " + args, &progress);
   // One progress line per fold fitted, so that a long fold sweep is not silent.
   for (const char* fold : {"I=0", "I=0.5", "I=1"})
-    EXPECT_NE(two_run.errors.find(fmt::format("fold {}: fitted on 2 records, nrmse ", fold)), std::string::npos)
-        << two_run.errors;
+    EXPECT_NE(progress.find(fmt::format("fold {}: fitted on 2 records, nrmse ", fold)), std::string::npos) << progress;
   const auto folds = one.at("held_out").at("folds");
   ASSERT_EQ(folds.size(), 4u);  // I=0, I=0.5, I=1, then "all" for --predict
   EXPECT_EQ(folds[0].at("name"), "I=0");
