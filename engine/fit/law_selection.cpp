@@ -49,22 +49,12 @@ ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::
   return out;
 }
 
-/// The smallest box holding the boxes of fits of each of `training`'s records alone.
+/// The box of a fit of `training`'s records together, which is the smallest holding each one's own box.
 Bounds training_hull(const ResolvedModel& gauged, const std::vector<const Signals*>& records,
                      const std::vector<int>& training) {
-  Bounds hull;
-  for (int r : training) {
-    const Bounds box = gauged.bounds_for(std::span<const Signals* const>(&records[r], 1));
-    if (hull.lower.empty()) {
-      hull = box;
-      continue;
-    }
-    for (int j = 0; j < box.dim(); ++j) {
-      hull.lower[j] = std::min(hull.lower[j], box.lower[j]);
-      hull.upper[j] = std::max(hull.upper[j], box.upper[j]);
-    }
-  }
-  return hull;
+  std::vector<const Signals*> kept;
+  for (int r : training) kept.push_back(records[r]);
+  return gauged.bounds_for(kept);
 }
 
 /// What scoring needs, fixed for one selection.

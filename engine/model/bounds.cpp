@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -21,21 +22,24 @@ Bounds default_bounds(const Model& model) {
 
 Bounds default_bounds(const Model& model, std::span<const Signals* const> records) {
   Bounds b = default_bounds(model);
-  double F = 0, V = 0, X = 0;
-  for (const Signals* r : records) {
-    F = std::max(F, r->measured_max_abs);
-    V = std::max(V, r->velocity_max_abs);
-    X = std::max(X, 0.5 * r->displacement_ptp);
-  }
-  if (!(F > 0 && V > 0 && X > 0)) return b;
   const auto params = model.parameters();
   for (const RecordBoundsRule& rule : model.record_bounds_rules()) {
-    const double scale = std::pow(F, rule.force) * std::pow(V, rule.velocity) * std::pow(X, rule.amplitude);
     const auto it = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return p.name == rule.name; });
     if (it == params.end()) continue;  // a law model replaced the parameter by its law's coefficients
+    // The smallest box that holds each record's own: parameters shared by records of different strokes and forces
+    // must reach what a fit of any one of them reaches (a start built from the records' own fits lies inside it).
+    double lower = std::numeric_limits<double>::infinity(), upper = -lower;
+    for (const Signals* r : records) {
+      const double F = r->measured_max_abs, V = r->velocity_max_abs, X = 0.5 * r->displacement_ptp;
+      if (!(F > 0 && V > 0 && X > 0)) continue;  // a constant record scales nothing
+      const double scale = std::pow(F, rule.force) * std::pow(V, rule.velocity) * std::pow(X, rule.amplitude);
+      lower = std::min(lower, rule.lower * scale);
+      upper = std::max(upper, rule.upper * scale);
+    }
+    if (!(lower <= upper)) continue;
     const auto j = it - params.begin();
-    b.lower[j] = rule.lower * scale;
-    b.upper[j] = rule.upper * scale;
+    b.lower[j] = lower;
+    b.upper[j] = upper;
   }
   return b;
 }

@@ -24,7 +24,8 @@ struct ParameterInfo {
 
 /// A default bound that scales with the record, so the box fits any damper size: parameter
 /// `name` in [lower, upper] × F^force · V^velocity · X^amplitude, where F = max |F| [N], V = max |v| [m/s] and
-/// X = half the peak-to-peak stroke [m] of the fitted records (the largest over several).
+/// X = half the peak-to-peak stroke [m] of a fitted record; over several records, the smallest box holding each
+/// record's own.
 struct RecordBoundsRule {
   std::string name;
   double lower = 0, upper = 0;
