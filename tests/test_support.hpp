@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: synthetic records with analytic derivatives, and running the CLI.
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -28,6 +29,21 @@ inline std::filesystem::path test_temp_dir(const std::string& prefix) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+/// Writes `text` to p, creating p's folder.
+inline void write_text(const std::filesystem::path& p, const std::string& text) {
+  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+/// The bits of a double, for tests that compare results bit for bit.
+inline std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+/// Passes when `message` contains `expected`, and shows both when it does not.
+inline ::testing::AssertionResult HasText(const std::string& message, const std::string& expected) {
+  if (message.find(expected) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << expected << "\"";
 }
 
 /// x = X1 sin(ω1 t) + X2 sin(ω2 t + φ) with exact v and a; no force. Two frequencies make the mass

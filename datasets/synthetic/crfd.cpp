@@ -37,7 +37,7 @@ constexpr double kTable3[7][9] = {{0.011, 0.277, 0.852, 12.268, 0.907, 0.015, 0.
                                   {0.012, 9.991, 0.892, 42.049, 0.865, 0.019, 1.173, 11.012, 52.941}};
 constexpr double kAmplitudesMm[] = {0.8, 1, 1.5, 2, 2.5, 3};
 constexpr double kFrequenciesHz[] = {1, 2, 3, 4, 5};
-constexpr int kCycles = 10, kSamplesPerCycle = 100;
+constexpr int kCrfdCycles = 10, kCrfdSamplesPerCycle = 100;
 
 std::string mm_label(double v) {
   std::string s = fmt::format("{:g}", v);
@@ -62,13 +62,13 @@ void write_crfd(const std::filesystem::path& dir, std::uint64_t seed) {
         r.description = fmt::format(
             "Synthetic crfd MTS record: phi = {} deg, +-{:g} mm, {:g} Hz, {} cycles; truth GV-NEM interpolated "
             "between Tables 2 and 3 (s = {:.3f}), 1 % torque noise (datasets/README.md)",
-            30 * a, amp_mm, f, kCycles, s);
+            30 * a, amp_mm, f, kCrfdCycles, s);
         r.operating = {{"phi", 30.0 * a}, {"amp", amp_mm * 1e-3}, {"freq", f}};
         Dataset rot;
         rot.name = r.file;
         std::vector<SliderCrank::Pose> poses;
-        for (int k = 0; k <= kCycles * kSamplesPerCycle; ++k) {
-          const double t = k / (f * kSamplesPerCycle), x_e = amp_mm * 1e-3 * std::sin(2 * std::numbers::pi * f * t);
+        for (int k = 0; k <= kCrfdCycles * kCrfdSamplesPerCycle; ++k) {
+          const double t = k / (f * kCrfdSamplesPerCycle), x_e = amp_mm * 1e-3 * std::sin(2 * std::numbers::pi * f * t);
           r.t_s.push_back(t);
           r.x.push_back(x_e * 1e3);
           poses.push_back(rig.solve(x_e));

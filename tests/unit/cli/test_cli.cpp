@@ -22,17 +22,6 @@ using testing::retry;
 using testing::run_dampbench;
 using testing::run_dampbench_json;
 
-std::filesystem::path temp_dir() {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("dampbench_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  std::filesystem::remove_all(dir);  // a fresh folder: no store from an earlier build to resume
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
-
 void expect_error(const std::string& args, const std::string& message) {
   const auto r = run_dampbench(args);
   EXPECT_NE(r.exit_code, 0) << args;
@@ -41,7 +30,7 @@ void expect_error(const std::string& args, const std::string& message) {
 
 /// A noise-free Spencer record (10 mm, 1 Hz, like the UTFSM tests) from parameters inside the default box.
 std::filesystem::path synthetic_spencer_record() {
-  const auto csv = temp_dir() / "spencer.csv";
+  const auto csv = testing::test_temp_dir("cli") / "spencer.csv";
   const auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,"
                                "alpha=9000,beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=3,fs=200 -o " +
                                csv.string());
@@ -65,7 +54,7 @@ TEST(Cli, ModelsJsonListsEveryFvdModel) {
 }
 
 TEST(Cli, SimulateThenFitRecoversParameters) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const auto csv = dir / "sim.csv";
   auto r = run_dampbench("simulate --model fvd.generalized_viscous --params m=0,C=2e5,alpha=0.4 "
                          "--sine amp=0.02,freq=1,cycles=2,fs=400 -o " + csv.string());
@@ -146,8 +135,8 @@ TEST(Cli, ACappedFitStillImprovingIsPointedToALocalStage) {
 }
 
 TEST(Cli, SimulateOnAnInputFileUsesItsSamples) {
-  const auto dir = temp_dir();
-  write(dir / "in.csv", "t[ms],x[mm]\n0,0\n10,1\n20,2\n30,3\n40,4\n50,5\n60,6\n70,7\n80,8\n");
+  const auto dir = testing::test_temp_dir("cli");
+  testing::write_text(dir / "in.csv", "t[ms],x[mm]\n0,0\n10,1\n20,2\n30,3\n40,4\n50,5\n60,6\n70,7\n80,8\n");
   const auto out = dir / "out.csv";
   const auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1000 --input " +
                                (dir / "in.csv").string() + " -o " + out.string());
@@ -169,9 +158,9 @@ TEST(Cli, SimulateOnAnInputFileUsesItsSamples) {
 }
 
 TEST(Cli, BadInputIsReportedClearly) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const auto good = dir / "good.csv";
-  write(good, "t,x,F\n0,0,0\n1,1,1\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  testing::write_text(good, "t,x,F\n0,0,0\n1,1,1\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
   const std::string data = " --data " + good.string();
   expect_error("fit --model fvd.nope" + data, "unknown model 'fvd.nope' (known: fvd.linear_viscous");
   expect_error("fit --model fvd.linear_viscous --bounds K9=0:1" + data,
@@ -199,22 +188,22 @@ TEST(Cli, BadInputIsReportedClearly) {
   expect_error("simulate --model fvd.linear_viscous --params m=1,C=2", "give exactly one of --input FILE or --sine");
 
   const auto no_force = dir / "noF.csv";
-  write(no_force, "t,x\n0,0\n1,1\n2,2\n3,3\n4,4\n5,5\n6,6\n7,7\n8,8\n");
+  testing::write_text(no_force, "t,x\n0,0\n1,1\n2,2\n3,3\n4,4\n5,5\n6,6\n7,7\n8,8\n");
   expect_error("fit --model fvd.linear_viscous --data " + no_force.string(), "missing column 'F'");
   const auto bad_time = dir / "time.csv";
-  write(bad_time, "t,x,F\n0,0,0\n1,1,1\n1,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  testing::write_text(bad_time, "t,x,F\n0,0,0\n1,1,1\n1,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
   expect_error("fit --model fvd.linear_viscous --data " + bad_time.string(), "time.csv:4: time must increase");
   const auto bad_cell = dir / "cell.csv";
-  write(bad_cell, "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
+  testing::write_text(bad_cell, "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,9\n");
   expect_error("fit --model fvd.linear_viscous --data " + bad_cell.string(),
                "cell.csv:3: column 3 ('F'): expected a number, got 'abc'");
   expect_error("fit --model fvd.linear_viscous --units x=furlong" + data, "unknown unit 'furlong'");
 }
 
 TEST(Cli, RunPresetWritesTheFvdTables) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const std::string root = DAMPBENCH_SOURCE_DIR;
-  write(dir / "mini.toml",
+  testing::write_text(dir / "mini.toml",
         "name = \"mini\"\nseed = 3\nruns = 3\nmodels = [\"fvd.linear_viscous\", \"fvd.gv_linear_elastic\"]\n"
         "[optimizer]\nname = \"pso\"\npopulation = 20\niterations = 20\n"
         "[[datasets]]\nname = \"Test 1\"\nfile = \"" + root + "/datasets/fvd/test1_20mm_92mms.csv\"\n"
@@ -241,7 +230,7 @@ nlohmann::json report_data_of(const std::filesystem::path& html_file) {
 }
 
 TEST(Cli, FitWritesAReportOfItsRuns) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const std::string data = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/test1_20mm_92mms.csv";
   const auto file = dir / "fit.html";
   const auto r = run_dampbench("fit --model fvd.linear_viscous --data " + data +
@@ -263,7 +252,7 @@ TEST(Cli, FitWritesAReportOfItsRuns) {
 }
 
 TEST(Cli, FitReportDrawsEachHeldOutRecordAgainstItsFoldsPrediction) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const std::string fvd = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/";
   const std::vector<std::string> paths{fvd + "test1_20mm_92mms.csv", fvd + "test2_20mm_230mms.csv",
                                        fvd + "test3_20mm_460mms.csv", fvd + "test4_17mm_460mms.csv"};
@@ -318,7 +307,7 @@ TEST(Cli, FitReportDrawsEachHeldOutRecordAgainstItsFoldsPrediction) {
 }
 
 TEST(Cli, StoreReportShowsTheRuntimeTablesOfItsOwnTargetBesideTheEcdfs) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const std::string root = DAMPBENCH_SOURCE_DIR;
   const std::string fvd = root + "/datasets/fvd/";
   auto sweep = [&](const std::string& top, const std::string& tail) {
@@ -329,7 +318,7 @@ TEST(Cli, StoreReportShowsTheRuntimeTablesOfItsOwnTargetBesideTheEcdfs) {
            "test2_20mm_230mms.csv\"]\n" + tail;
   };
   // The sweep's own runtime table sets the target: the report's tables and ECDF use it.
-  write(dir / "rt.toml", sweep("", "[[tables]]\nkind = \"runtime\"\ntarget_rel = 0.05\n"));
+  testing::write_text(dir / "rt.toml", sweep("", "[[tables]]\nkind = \"runtime\"\ntarget_rel = 0.05\n"));
   ASSERT_EQ(run_dampbench("run " + (dir / "rt.toml").string() + " -o " + (dir / "out").string() + " --quiet").exit_code, 0);
   const auto j = report_data_of(dir / "out" / "report.html");
   ASSERT_FALSE(j.is_null());
@@ -342,7 +331,7 @@ TEST(Cli, StoreReportShowsTheRuntimeTablesOfItsOwnTargetBesideTheEcdfs) {
   EXPECT_NE(t.at("title").get<std::string>().find("best known + 0.05 ×"), std::string::npos) << t.at("title");
   EXPECT_NE(j.at("ecdfs")[0].at("title").get<std::string>().find("best known + 0.05 ×"), std::string::npos);
   // Without a runtime table in the file, the report still shows one, at the default target.
-  write(dir / "plain.toml", sweep("tables = [\"runs\"]\n", ""));
+  testing::write_text(dir / "plain.toml", sweep("tables = [\"runs\"]\n", ""));
   ASSERT_EQ(run_dampbench("run " + (dir / "plain.toml").string() + " -o " + (dir / "plain").string() + " --quiet").exit_code,
             0);
   const auto p = report_data_of(dir / "plain" / "report.html");
@@ -351,20 +340,20 @@ TEST(Cli, StoreReportShowsTheRuntimeTablesOfItsOwnTargetBesideTheEcdfs) {
 }
 
 TEST(Cli, ReportOfAStoreAndItsErrors) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   expect_error("report " + (dir / "missing.sqlite").string(), "dampbench: error:");
-  write(dir / "text.sqlite", "not a database");
+  testing::write_text(dir / "text.sqlite", "not a database");
   expect_error("report " + (dir / "text.sqlite").string() + " -o " + (dir / "r.html").string(), "dampbench: error:");
   EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
   expect_error("report x.sqlite --max-points 1", "--max-points");
 }
 
 TEST(Cli, EveryErrorHasThePrefixAndTheExitCodeOfItsClass) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("cli");
   const std::string data = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/test1_20mm_92mms.csv";
-  write(dir / "bad.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"\n");  // unclosed array
-  write(dir / "not_a_store.sqlite", "hello");
-  write(dir / "file", "a regular file");
+  testing::write_text(dir / "bad.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"\n");  // unclosed array
+  testing::write_text(dir / "not_a_store.sqlite", "hello");
+  testing::write_text(dir / "file", "a regular file");
   struct Case {
     std::string args;
     int code;
@@ -398,14 +387,14 @@ TEST(Cli, EveryErrorHasThePrefixAndTheExitCodeOfItsClass) {
 }
 
 TEST(Cli, BadPresetIsReportedWithFileLineAndKey) {
-  const auto dir = temp_dir();
-  write(dir / "bad.toml", "name = \"bad\"\nruns = 0\nmodels = [\"fvd.linear_viscous\"]\n");
+  const auto dir = testing::test_temp_dir("cli");
+  testing::write_text(dir / "bad.toml", "name = \"bad\"\nruns = 0\nmodels = [\"fvd.linear_viscous\"]\n");
   expect_error("run " + (dir / "bad.toml").string(), "bad.toml:2: key 'runs': expected an integer >= 1, got 0");
-  write(dir / "bad2.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\", \"fvd.x\"]\n");
+  testing::write_text(dir / "bad2.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\", \"fvd.x\"]\n");
   expect_error("run " + (dir / "bad2.toml").string(), "key 'models': unknown model 'fvd.x'");
-  write(dir / "bad3.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\nfile = \"nowhere.csv\"\n");
+  testing::write_text(dir / "bad3.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\nfile = \"nowhere.csv\"\n");
   expect_error("run " + (dir / "bad3.toml").string(), "cannot open data file");
-  write(dir / "bad4.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\n"
+  testing::write_text(dir / "bad4.toml", "name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"a\"\n"
                            "file = \"a.csv\"\n[bounds]\n\"fvd.linear_viscous\" = \"C=3:1\"\n");
   expect_error("run " + (dir / "bad4.toml").string(), "bad4.toml:7: key 'fvd.linear_viscous': bounds C: lower bound 3");
   expect_error("run " + (dir / "nothere.toml").string(), "cannot open preset file");

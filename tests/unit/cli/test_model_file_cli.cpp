@@ -19,15 +19,6 @@ namespace {
 
 using testing::run_dampbench;
 
-std::filesystem::path temp_dir() {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("dampbench_model_file_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 std::string read(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;
@@ -74,7 +65,7 @@ std::filesystem::path fvd_record(const std::filesystem::path& dir, const std::st
 }
 
 TEST(ModelFileCli, AFittedModelEvaluatesToTheFitsMetricBitForBit) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   const auto csv = fvd_record(dir, "--noise-rel 0.02");
   const auto file = fit_save_evaluate(dir, "--model fvd.generalized_viscous --runs 2 --iters 30 --threads 2",
                                       "--data " + csv.string(), "of_abs");
@@ -88,7 +79,7 @@ TEST(ModelFileCli, AFittedModelEvaluatesToTheFitsMetricBitForBit) {
 // A law model (Spencer with c0 linear in I) on a record whose current comes from --set: the laws string, the
 // coefficients and the current's source are in the file; evaluate and simulate rebuild the same model.
 TEST(ModelFileCli, ALawModelRoundTripsWithItsOperatingVariables) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   const auto csv = dir / "spencer.csv";
   auto r = run_dampbench("simulate --model mrd.spencer --params c0=8000,c1=1e5,k0=500,k1=200,x0=0.002,alpha=9000,"
                          "beta=2e4,gamma=5e4,A=150,n=1.5 --sine amp=0.01,freq=1,cycles=2,fs=200 -o " + csv.string());
@@ -150,7 +141,7 @@ TEST(ModelFileCli, ALawModelRoundTripsWithItsOperatingVariables) {
 
 // Fitted on two records: each record's metric in the file is what evaluate gives for it, bit for bit.
 TEST(ModelFileCli, EachFittedRecordsMetricIsWhatEvaluateGives) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   std::string data;
   for (const char* amp : {"0.01", "0.02"}) {
     const auto csv = dir / (std::string("amp") + amp + ".csv");
@@ -176,7 +167,7 @@ TEST(ModelFileCli, EachFittedRecordsMetricIsWhatEvaluateGives) {
 }
 
 TEST(ModelFileCli, OptionsThatCannotGoTogetherAreRefused) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   const auto csv = dir / "r.csv";
   auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 --sine amp=0.01,freq=1,fs=100 -o " +
                          csv.string());
@@ -212,7 +203,7 @@ TEST(ModelFileCli, OptionsThatCannotGoTogetherAreRefused) {
 /// fit --start FILE: a model file whose coefficients are the true parameters of a noise-free record starts every run
 /// there, so that one generation of a small population ends at zero error; from the box it does not.
 TEST(ModelFileCli, AFitStartsFromAModelFilesCoefficients) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   const auto csv = fvd_record(dir, "");
   const auto fitted = dir / "fitted.json";
   const std::string tiny = "fit --model fvd.generalized_viscous --data " + csv.string() +
@@ -234,7 +225,7 @@ TEST(ModelFileCli, AFitStartsFromAModelFilesCoefficients) {
 }
 
 TEST(ModelFileCli, FitPrintsWhereEachOperatingVariableComesFrom) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   const auto csv = dir / "10mm1Hz0x5A.csv";
   auto r = run_dampbench("simulate --model fvd.linear_viscous --params m=0,C=1e4 "
                          "--sine amp=0.01,freq=1,cycles=2,fs=100 -o " + csv.string());
@@ -250,7 +241,7 @@ TEST(ModelFileCli, FitPrintsWhereEachOperatingVariableComesFrom) {
 }
 
 TEST(ModelFileCli, ATimeVaryingCurrentColumnIsRefusedForALaw) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("model_file");
   std::string text = "t,x,F,I\n";
   for (int k = 0; k < 40; ++k) {
     const double x = 0.01 * std::sin(6.283185307179586 * 0.025 * k);

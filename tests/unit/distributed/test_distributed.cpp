@@ -32,8 +32,6 @@ using sweep::Plan;
 using sweep::Shard;
 using sweep::Store;
 
-fs::path temp_dir() { return dampbench::testing::test_temp_dir("distributed"); }
-
 /// The repository's fvd records; an algebraic and an ODE model; one split per record with a sensitivity study,
 /// one joint fit of the ±20 mm tests predicting the ±17 mm one (per-dataset metrics): every field of a record.
 std::string sweep_text(int seed) {
@@ -78,7 +76,7 @@ void run_into(const Plan& plan, const fs::path& dir, const std::string& path, co
 }
 
 TEST(GroupCodec, EveryFieldOfEveryGroupSurvivesTheTripBitForBit) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("distributed");
   const Plan plan = make_plan(dir);
   int with_sensitivity = 0, with_dataset_metrics = 0, with_identifiability = 0;
   for (long long i = 0; i < plan.groups(); ++i) {
@@ -169,7 +167,7 @@ TEST(GroupCodec, AnUnusualRecordSurvivesAndReencodesToTheSameBytes) {
 }
 
 TEST(GroupCodec, TruncatedOrPaddedMessagesAreRefused) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("distributed");
   const Plan plan = make_plan(dir);
   const std::string bytes = encode_group(sweep::run_group(plan, plan.groups() - 1));
   ASSERT_NO_THROW((void)decode_group(bytes));
@@ -199,7 +197,7 @@ TEST(Shards, TextIsParsedOrRefusedWithTheExpectedForm) {
 }
 
 TEST(Shards, CoverTheSweepOnceWithBalancedCost) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("distributed");
   const Plan plan = make_plan(dir);
   ASSERT_GE(plan.groups(), 6);
   double total = 0, largest = 0;
@@ -247,7 +245,7 @@ void expect_same_results(const std::string& a_path, const std::string& b_path) {
 }
 
 TEST(Merge, ThreeShardsMergeIntoTheStoreOfOneProcess) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("distributed");
   const Plan plan = make_plan(dir);
   run_into(plan, dir, (dir / "whole.sqlite").string());
   std::vector<std::string> parts;
@@ -280,7 +278,7 @@ TEST(Merge, ThreeShardsMergeIntoTheStoreOfOneProcess) {
 }
 
 TEST(Merge, PartsOfAnotherSweepOrWithOtherNumbersAreRefused) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("distributed");
   const std::string part1 = (dir / "part1.sqlite").string(), other = (dir / "other.sqlite").string();
   {
     const Plan plan = make_plan(dir);

@@ -31,7 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+using testing::bits;
 
 /// A short sine record named `name` with the given operating variables.
 Signals record(const std::string& name, const std::map<std::string, double>& operating, double amp = 0.01,

@@ -22,7 +22,7 @@ namespace {
 
 using testing::FunctionProblem;
 
-GaLmSettings settings(int population, int generations) { return testing::generational<GaLmSettings>(population, generations); }
+GaLmSettings ga_lm_settings(int population, int generations) { return testing::generational<GaLmSettings>(population, generations); }
 
 testing::HybridRun<GaLm> run_hybrid(const GaLmSettings& s, const FunctionProblem& problem, std::uint64_t seed) {
   return testing::run_hybrid<GaLm>(s, problem, seed);
@@ -33,14 +33,14 @@ testing::HybridRun<GaLm> run_hybrid(const GaLmSettings& s, const FunctionProblem
 // ---- the population phase is the ga -----------------------------------------------------------------
 
 TEST(GaLm, PopulationPhaseIsTheGa) {
-  const GaLmSettings s = settings(12, 6);
+  const GaLmSettings s = ga_lm_settings(12, 6);
   testing::expect_same_run(testing::factory_of<GaLm>(s), testing::factory_of<Ga>(static_cast<const GaSettings&>(s)));
 }
 
 // With global = cmaes the population phase is the cmaes run of the hybrid's population, iterations and cmaes
 // settings, bit for bit, and LM then refines its best; the ga's settings are then unknown keys.
 TEST(GaLm, CmaesAsTheGlobalStage) {
-  GaLmSettings s = settings(8, 6);
+  GaLmSettings s = ga_lm_settings(8, 6);
   s.global = GlobalStage::cmaes;
   s.cmaes.restarts = CmaesRestarts::bipop;
   s.cmaes.sigma0 = 0.2;
@@ -77,7 +77,7 @@ TEST(GaLm, RosenbrockToTheLeastSquaresOptimumWhereTheGaStops) {
   for (int dim : {2, 4}) {
     SCOPED_TRACE(::testing::Message() << "geodesic " << geodesic);
     const FunctionProblem problem(testing::rosenbrock_residuals, testing::box(dim, -2.048, 2.048));
-    GaLmSettings s = settings(20, 15);
+    GaLmSettings s = ga_lm_settings(20, 15);
     s.geodesic = geodesic;
     const auto h = run_hybrid(s, problem, 1);
     EXPECT_GT(h.ga_best, 1e-3) << dim;  // 300 GA evaluations stop well short
@@ -96,7 +96,7 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
   const FunctionProblem problem(
       [](std::span<const double> x) { return std::vector<double>{x[0] - 0.3, 2 * (x[1] + 0.2), x[2]}; },
       Bounds{{-1, -1, 0.5}, {1, 1, 0.5}});
-  GaLmSettings s = settings(6, 2);
+  GaLmSettings s = ga_lm_settings(6, 2);
   s.lm_iterations = 1;
   const auto h = run_hybrid(s, problem, 2);
   EXPECT_EQ(h.report.iterations, 1);
@@ -128,7 +128,7 @@ TEST(GaLm, AtItsCapAnLmThatStillGainsIsNotAtItsOptimumAndOneThatCreepsIs) {
           return std::vector<double>{std::pow(x[0] - 0.3, 3), std::pow(x[1] - 0.3, 3), fixed};
         },
         testing::box(2, 0.25, 0.36));
-    GaLmSettings s = settings(6, 2);
+    GaLmSettings s = ga_lm_settings(6, 2);
     s.lm_iterations = 3;
     s.ftol = 0;
     const auto h = run_hybrid(s, problem, 5);
@@ -149,7 +149,7 @@ TEST(GaLm, OptimumOutsideTheBoxEndsOnTheBound) {
   const FunctionProblem problem(
       [](std::span<const double> x) { return std::vector<double>{x[0] - 3, x[1] - 0.25, x[2] + 4}; },
       testing::box(3, -1, 1));
-  const auto h = run_hybrid(settings(8, 3), problem, 3);
+  const auto h = run_hybrid(ga_lm_settings(8, 3), problem, 3);
   EXPECT_TRUE(testing::all_points_inside(problem));
   EXPECT_EQ(h.run.best_position[0], 1.0);
   EXPECT_NEAR(h.run.best_position[1], 0.25, 1e-8);
@@ -166,7 +166,7 @@ TEST(GaLm, BacksOffFromAFailureRegion) {
         return std::vector<double>{x[0] + 1, x[1] - 0.5};
       },
       testing::box(2, -2, 2));
-  const auto h = run_hybrid(settings(12, 5), problem, 4);
+  const auto h = run_hybrid(ga_lm_settings(12, 5), problem, 4);
   testing::expect_refine_avoids_failures(h);
   EXPECT_LT(h.run.best_value, h.ga_best);
   // Rejected steps shrink towards the wall: x0 ends on it. x1 is not driven to 0.5 as well: after the
@@ -181,7 +181,7 @@ TEST(GaLm, BacksOffFromAFailureRegion) {
 TEST(GaLm, NothingToRefineWhenEveryCandidateFailed) {
   const FunctionProblem problem([](std::span<const double>) { return std::vector<double>{std::nan("")}; },
                                 testing::box(2, -1, 1));
-  const auto h = run_hybrid(settings(6, 2), problem, 5);
+  const auto h = run_hybrid(ga_lm_settings(6, 2), problem, 5);
   EXPECT_FALSE(h.report.ran);
   EXPECT_FALSE(h.at_local_optimum);
 }
@@ -200,7 +200,7 @@ TEST(GaLm, KeepsTheGaBestWhenTheLeastSquaresOptimumIsWorseInTheRunMetric) {
     [[nodiscard]] std::vector<double> residuals(std::span<const double> p) const override { return {p[0] - 1, p[0] + 1}; }
     [[nodiscard]] const Bounds& bounds() const override { return b; }
   } problem;
-  GaLm opt(settings(8, 4), problem.bounds(), 6);
+  GaLm opt(ga_lm_settings(8, 4), problem.bounds(), 6);
   CandidateBatch batch;
   std::vector<double> values;
   while (!opt.finished()) {
@@ -258,7 +258,7 @@ TEST(GaLm, RecoversMagicFormulaParametersOnNoiseFreeData) {
 // The class validates its settings too (the registry's messages are checked in
 // test_optimizer_conformance.cpp).
 TEST(GaLm, ConstructorRejectsBadSettings) {
-  GaLmSettings s = settings(20, 10);
+  GaLmSettings s = ga_lm_settings(20, 10);
   s.tournament = 30;
   EXPECT_EQ(testing::error_of([&] { GaLm(s, testing::box(2, -1, 1), 1); }),
             "ga-lm: tournament must be in [2, population = 20], got 30");

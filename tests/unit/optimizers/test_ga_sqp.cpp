@@ -22,7 +22,7 @@ namespace {
 using testing::FunctionProblem;
 using testing::sphere_residuals;
 
-GaSqpSettings settings(int population, int generations) {
+GaSqpSettings ga_sqp_settings(int population, int generations) {
   return testing::generational<GaSqpSettings>(population, generations);
 }
 
@@ -40,7 +40,7 @@ const std::vector<double> kTable2 = {3361.58, 420.0,     1176.0,    21973.50, 18
 // ---- the population phase is the ga -----------------------------------------------------------------
 
 TEST(GaSqp, PopulationPhaseIsTheGa) {
-  const GaSqpSettings s = settings(12, 6);
+  const GaSqpSettings s = ga_sqp_settings(12, 6);
   testing::expect_same_run(testing::factory_of<GaSqp>(s), testing::factory_of<Ga>(static_cast<const GaSettings&>(s)));
 }
 
@@ -48,7 +48,7 @@ TEST(GaSqp, PopulationPhaseIsTheGa) {
 
 TEST(GaSqp, SphereToNearMachinePrecisionWhereTheGaStops) {
   const FunctionProblem problem(sphere_residuals, testing::box(4, -5.12, 5.12));
-  const auto h = run_hybrid(settings(20, 10), problem, 1);
+  const auto h = run_hybrid(ga_sqp_settings(20, 10), problem, 1);
   EXPECT_GT(h.ga_best, 1e-3);  // 200 evaluations of GA in 4-D: far from the optimum
   EXPECT_LT(h.run.best_value, 1e-10);
   for (double x : h.run.best_position) EXPECT_NEAR(x, 0.0, 1e-5);
@@ -60,7 +60,7 @@ TEST(GaSqp, SphereToNearMachinePrecisionWhereTheGaStops) {
 
 TEST(GaSqp, RosenbrockValley) {
   const FunctionProblem problem(testing::rosenbrock_residuals, testing::box(2, -2.048, 2.048));
-  GaSqpSettings s = settings(20, 10);
+  GaSqpSettings s = ga_sqp_settings(20, 10);
   s.sqp_iterations = 300;
   s.fd_step = 1e-9;  // forward differences are biased by O(step × curvature); the default 1e-7 ends near 1e-8 here
   const auto h = run_hybrid(s, problem, 2);
@@ -83,7 +83,7 @@ TEST(GaSqp, GradientIsOneBatchOfTheFreeParametersPlusOne) {
     [[nodiscard]] std::vector<double> residuals(std::span<const double> p) const override { return inner.residuals(p); }
     [[nodiscard]] const Bounds& bounds() const override { return inner.bounds(); }
   } problem;
-  GaSqp opt(settings(8, 3), problem.bounds(), 5);
+  GaSqp opt(ga_sqp_settings(8, 3), problem.bounds(), 5);
   testing::minimize(opt, [&](std::span<const double> x) { return problem.inner.value(x); }, 4);
   opt.refine(problem);
   ASSERT_FALSE(problem.sizes.empty());
@@ -103,7 +103,7 @@ TEST(GaSqp, StaysInsideTheBoxAndEndsOnTheBound) {
         return r;
       },
       testing::box(3, -1, 1));
-  GaSqpSettings s = settings(10, 4);
+  GaSqpSettings s = ga_sqp_settings(10, 4);
   s.constraint = std::numeric_limits<double>::infinity();
   const auto h = run_hybrid(s, problem, 3);
   EXPECT_TRUE(testing::all_points_inside(problem));
@@ -122,7 +122,7 @@ TEST(GaSqp, NeverReturnsAFailureOrSomethingWorseThanTheGa) {
         return std::vector<double>{x[0] + 1, x[1] - 0.5, x[2] - 0.5};
       },
       testing::box(3, -2, 2));
-  const auto h = run_hybrid(settings(12, 5), problem, 4);
+  const auto h = run_hybrid(ga_sqp_settings(12, 5), problem, 4);
   testing::expect_refine_avoids_failures(h);
   EXPECT_TRUE(h.report.ran);
   EXPECT_GT(h.report.evaluations, 0);
@@ -132,7 +132,7 @@ TEST(GaSqp, NeverReturnsAFailureOrSomethingWorseThanTheGa) {
 TEST(GaSqp, NothingToRefineWhenEveryCandidateFailed) {
   const FunctionProblem problem([](std::span<const double>) { return std::vector<double>{std::nan("")}; },
                                 testing::box(2, -1, 1));
-  const auto h = run_hybrid(settings(6, 2), problem, 5);
+  const auto h = run_hybrid(ga_sqp_settings(6, 2), problem, 5);
   EXPECT_FALSE(h.report.ran);
   EXPECT_FALSE(h.report.feasible);
   EXPECT_FALSE(h.at_local_optimum);
@@ -153,7 +153,7 @@ const FunctionProblem& offset_sphere() {
 }
 
 TEST(GaSqp, ConstraintIsHonouredFromAnInfeasibleStart) {
-  GaSqpSettings s = settings(4, 1);  // one random generation: the start is far from feasible
+  GaSqpSettings s = ga_sqp_settings(4, 1);  // one random generation: the start is far from feasible
   s.constraint = 2;
   const auto h = run_hybrid(s, offset_sphere(), 6);
   ASSERT_GT(h.ga_best, 2.0) << "the GA start should violate the constraint";
@@ -163,7 +163,7 @@ TEST(GaSqp, ConstraintIsHonouredFromAnInfeasibleStart) {
 }
 
 TEST(GaSqp, UnreachableConstraintIsReportedInfeasible) {
-  GaSqpSettings s = settings(8, 3);
+  GaSqpSettings s = ga_sqp_settings(8, 3);
   s.constraint = 0.5;  // below the lowest value 1
   const auto h = run_hybrid(s, offset_sphere(), 7);
   EXPECT_FALSE(h.report.feasible);
@@ -215,7 +215,7 @@ TEST(GaSqp, RecoversFdspTable2OnNoiseFreeData) {
 // A zero constraint through the class (the registry's messages are checked in
 // test_optimizer_conformance.cpp).
 TEST(GaSqp, ConstructorRejectsAZeroConstraint) {
-  GaSqpSettings s = settings(20, 10);
+  GaSqpSettings s = ga_sqp_settings(20, 10);
   s.constraint = 0;
   EXPECT_EQ(testing::error_of([&] { GaSqp(s, testing::box(2, -1, 1), 1); }),
             "ga-sqp: constraint must be a number > 0 or off, got 0");

@@ -246,14 +246,6 @@ TEST(OptimizerComparison, TableAndConvergenceCsv) {
 
 namespace {
 
-std::filesystem::path temp_dir() {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("dampbench_compare_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 std::string record_file() {
   static const std::string path = [] {
     // named by the test that writes it: ctest runs the tests of this file in parallel processes
@@ -273,7 +265,7 @@ std::string record_file() {
 }  // namespace
 
 TEST(OptimizerComparison, CommandPrintsTheTableAndWritesCurves) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("compare");
   const auto r = testing::run_dampbench("compare --model fvd.gv_linear_elastic --data " + record_file() +
                                         " --metric nrmse --runs 3 --seed 4 --optimizer pso:population=10,iterations=6"
                                         " --optimizer ga-lm:population=10,iterations=6 -o " + dir.string());

@@ -23,7 +23,7 @@
 namespace dampbench {
 namespace {
 
-Dataset parse(const std::string& text, const CsvOptions& options = {}, const std::string& source = "data.csv") {
+Dataset parse_text(const std::string& text, const CsvOptions& options = {}, const std::string& source = "data.csv") {
   std::istringstream in(text);
   return parse_csv(in, source, options);
 }
@@ -32,13 +32,10 @@ using testing::error_of;
 
 /// The message of parsing `text` as "data.csv".
 std::string parse_error(const std::string& text, const CsvOptions& options = {}) {
-  return error_of([&] { parse(text, options); });
+  return error_of([&] { parse_text(text, options); });
 }
 
-::testing::AssertionResult HasText(const std::string& message, const std::string& expected) {
-  if (message.find(expected) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << expected << "\"";
-}
+using testing::HasText;
 
 CsvOptions with_columns(std::vector<std::string> columns) {
   CsvOptions options;
@@ -56,7 +53,7 @@ std::string linear_rows(int n) {
 // ---- formats and units -----------------------------------------------------------------------------------
 
 TEST(CsvLoader, OperatingCommentSetsOperatingVariables) {
-  const Dataset d = parse("# test at 1 A\n# operating: I=1,amp=0.01, freq = 2\nt,x,F\n" + linear_rows(10));
+  const Dataset d = parse_text("# test at 1 A\n# operating: I=1,amp=0.01, freq = 2\nt,x,F\n" + linear_rows(10));
   EXPECT_DOUBLE_EQ(d.operating.at("I"), 1.0);
   EXPECT_DOUBLE_EQ(d.operating.at("amp"), 0.01);
   EXPECT_DOUBLE_EQ(d.operating.at("freq"), 2.0);
@@ -67,7 +64,7 @@ TEST(CsvLoader, OperatingCommentSetsOperatingVariables) {
 }
 
 TEST(CsvLoader, HeaderUnitsAreConvertedToSi) {
-  const Dataset data = parse("t[s],x[mm],F[kN]\n" + linear_rows(10));
+  const Dataset data = parse_text("t[s],x[mm],F[kN]\n" + linear_rows(10));
   ASSERT_EQ(data.size(), 10u);
   EXPECT_DOUBLE_EQ(data.t_s[3], 0.03);
   EXPECT_DOUBLE_EQ(data.x_m[3], 0.003);   // 3 mm
@@ -78,14 +75,14 @@ TEST(CsvLoader, HeaderUnitsAreConvertedToSi) {
 }
 
 TEST(CsvLoader, HeaderUnitsMayBeSeparatedBySpaces) {
-  const Dataset data = parse("t [ms], x [cm], F [lbf]\n" + linear_rows(10));
+  const Dataset data = parse_text("t [ms], x [cm], F [lbf]\n" + linear_rows(10));
   EXPECT_DOUBLE_EQ(data.t_s[3], 3e-5);                   // 0.03 ms
   EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);                   // 3 cm
   EXPECT_NEAR(data.F_N[3], 6 * 4.4482216152605, 1e-12);  // 6 lbf
 }
 
 TEST(CsvLoader, NoUnitMeansSi) {
-  const Dataset data = parse("t,x,F\n" + linear_rows(10));
+  const Dataset data = parse_text("t,x,F\n" + linear_rows(10));
   EXPECT_DOUBLE_EQ(data.x_m[3], 3.0);
   EXPECT_DOUBLE_EQ(data.F_N[3], 6.0);
 }
@@ -93,7 +90,7 @@ TEST(CsvLoader, NoUnitMeansSi) {
 TEST(CsvLoader, UnitsOptionOverridesHeader) {
   CsvOptions options;
   options.units = parse_units_option("x=cm,F=kN");
-  const Dataset data = parse("t,x[mm],F\n" + linear_rows(10), options);
+  const Dataset data = parse_text("t,x[mm],F\n" + linear_rows(10), options);
   EXPECT_DOUBLE_EQ(data.x_m[3], 0.03);    // 3 cm, not 3 mm
   EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);  // 6 kN
 }
@@ -101,7 +98,7 @@ TEST(CsvLoader, UnitsOptionOverridesHeader) {
 TEST(CsvLoader, UnitsOptionForAbsentColumnIsIgnored) {
   CsvOptions options;
   options.units = parse_units_option("v=mm/s");
-  EXPECT_EQ(parse("t,x,F\n" + linear_rows(10), options).size(), 10u);
+  EXPECT_EQ(parse_text("t,x,F\n" + linear_rows(10), options).size(), 10u);
 }
 
 TEST(CsvLoader, ParseUnitsOption) {
@@ -116,7 +113,7 @@ TEST(CsvLoader, WhitespaceSeparatedWithColumnsOption) {
   for (int k = 0; k < 8; ++k) text += fmt::format("  {:.3f}\t-0.0123  {}   -45.6\n", 0.001 * k, 1.23 + k);
   CsvOptions options = with_columns({"t", "x", "v", "F"});
   options.units = parse_units_option("x=mm,v=mm/s");
-  const Dataset data = parse(text, options);
+  const Dataset data = parse_text(text, options);
   ASSERT_EQ(data.size(), 8u);
   EXPECT_DOUBLE_EQ(data.t_s[7], 0.007);
   EXPECT_DOUBLE_EQ(data.x_m[0], -0.0123e-3);
@@ -127,13 +124,13 @@ TEST(CsvLoader, WhitespaceSeparatedWithColumnsOption) {
 }
 
 TEST(CsvLoader, ColumnsOptionMayCarryUnits) {
-  const Dataset data = parse(linear_rows(10), with_columns({"t", "x[mm]", "F[kN]"}));
+  const Dataset data = parse_text(linear_rows(10), with_columns({"t", "x[mm]", "F[kN]"}));
   EXPECT_DOUBLE_EQ(data.x_m[3], 0.003);
   EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);
 }
 
 TEST(CsvLoader, ColumnsOptionRenamesHeaderColumns) {
-  const Dataset data = parse("time[ms],stroke[mm],load\n" + linear_rows(10), with_columns({"t", "x", "F[kN]"}));
+  const Dataset data = parse_text("time[ms],stroke[mm],load\n" + linear_rows(10), with_columns({"t", "x", "F[kN]"}));
   EXPECT_DOUBLE_EQ(data.t_s[3], 3e-5);    // header unit kept
   EXPECT_DOUBLE_EQ(data.x_m[3], 0.003);   // header unit kept
   EXPECT_DOUBLE_EQ(data.F_N[3], 6000.0);  // unit from --columns
@@ -142,7 +139,7 @@ TEST(CsvLoader, ColumnsOptionRenamesHeaderColumns) {
 TEST(CsvLoader, AcceptsExponentsAndLeadingPlus) {
   std::string text = "t,x,F\n";
   for (int k = 0; k < 8; ++k) text += fmt::format("{}e-2,+1.5E+1,-2.5e0\n", k);
-  const Dataset data = parse(text);
+  const Dataset data = parse_text(text);
   EXPECT_DOUBLE_EQ(data.t_s[2], 0.02);
   EXPECT_DOUBLE_EQ(data.x_m[0], 15.0);
   EXPECT_DOUBLE_EQ(data.F_N[0], -2.5);
@@ -152,7 +149,7 @@ TEST(CsvLoader, SkipsCommentsBlankLinesAndCarriageReturns) {
   std::string text = "# rig 3, test 17\n\n   # units below\nt,x,F\r\n";
   for (int k = 0; k < 10; ++k) text += fmt::format("{},{},{}\r\n", 0.01 * k, k, 2 * k) + (k == 4 ? "# pause\n" : "");
   text += "\n\n  \n";
-  const Dataset data = parse(text);
+  const Dataset data = parse_text(text);
   ASSERT_EQ(data.size(), 10u);
   EXPECT_DOUBLE_EQ(data.x_m[9], 9.0);
 }
@@ -169,7 +166,7 @@ TEST(CsvLoader, ComputesVelocityAndAccelerationOfASine) {
   std::string text = "t,x[mm],F\n";
   for (int k = 0; k <= 1000; ++k)
     text += fmt::format("{:.17g},{:.17g},0\n", k * 1e-3, 1e3 * amp * std::sin(omega * k * 1e-3 + phase));
-  const Dataset data = parse(text);
+  const Dataset data = parse_text(text);
   ASSERT_EQ(data.size(), 1001u);
   ASSERT_EQ(data.v_m_s.size(), 1001u);
   ASSERT_EQ(data.a_m_s2.size(), 1001u);
@@ -187,7 +184,7 @@ TEST(CsvLoader, OperatingColumnsGiveTheirMean) {
   std::string text = "t,x,F,I[mA],V,phi[rad]\n";
   for (int k = 0; k < 8; ++k)
     text += fmt::format("{},0,0,{},{},{}\n", k, k % 2 ? 500 : 1500, 2.5, std::numbers::pi / 2);
-  const Dataset data = parse(text);
+  const Dataset data = parse_text(text);
   EXPECT_DOUBLE_EQ(data.operating.at("I"), 1.0);  // mean of 0.5 A and 1.5 A
   EXPECT_DOUBLE_EQ(data.operating.at("V"), 2.5);
   EXPECT_NEAR(data.operating.at("phi"), 90.0, 1e-12);  // π/2 rad in degrees
@@ -199,7 +196,7 @@ TEST(CsvLoader, ForceIsOptionalWhenNotRequired) {
   for (int k = 0; k < 8; ++k) text += fmt::format("{},{}\n", k, k);
   CsvOptions options;
   options.require_force = false;
-  const Dataset data = parse(text, options);
+  const Dataset data = parse_text(text, options);
   EXPECT_FALSE(data.has_force());
   EXPECT_EQ(data.size(), 8u);
 }
@@ -207,13 +204,13 @@ TEST(CsvLoader, ForceIsOptionalWhenNotRequired) {
 TEST(CsvLoader, FileAndVelocityAndAccelerationColumns) {
   std::string text = "t,x,v,a,F\n";
   for (int k = 0; k < 8; ++k) text += fmt::format("{},0,{},{},0\n", k, 10 + k, 20 + k);
-  const Dataset data = parse(text);
+  const Dataset data = parse_text(text);
   EXPECT_DOUBLE_EQ(data.v_m_s[3], 13.0);
   EXPECT_DOUBLE_EQ(data.a_m_s2[3], 23.0);
 }
 
 TEST(CsvLoader, NameIsTheStemOfTheSource) {
-  EXPECT_EQ(parse("t,x,F\n" + linear_rows(8), {}, "rig/test_17.csv").name, "test_17");
+  EXPECT_EQ(parse_text("t,x,F\n" + linear_rows(8), {}, "rig/test_17.csv").name, "test_17");
 }
 
 // ---- errors --------------------------------------------------------------------------------------------------
@@ -265,7 +262,7 @@ TEST(CsvLoaderErrors, TooFewSamples) {
   EXPECT_EQ(parse_error("t,x,F\n" + linear_rows(10), options), "data.csv: 10 samples; at least 20 are needed");
   options.min_samples = 1;  // derivatives still need 4
   EXPECT_EQ(parse_error("t,x,F\n" + linear_rows(3), options), "data.csv: 3 samples; at least 4 are needed");
-  EXPECT_EQ(parse("t,x,F\n" + linear_rows(4), options).size(), 4u);
+  EXPECT_EQ(parse_text("t,x,F\n" + linear_rows(4), options).size(), 4u);
 }
 
 TEST(CsvLoaderErrors, UnknownUnitInHeader) {

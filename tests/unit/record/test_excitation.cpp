@@ -19,10 +19,7 @@ std::string sine_error(const char* text) {
   return error_of([&] { parse_sine_option(text); });
 }
 
-::testing::AssertionResult HasText(const std::string& message, const std::string& expected) {
-  if (message.find(expected) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << expected << "\"";
-}
+using testing::HasText;
 
 TEST(SineOption, ParsesAllKeys) {
   const SineSpec spec = parse_sine_option("amp=0.02,freq=1,cycles=3,fs=500");

@@ -37,18 +37,18 @@ std::string record_text(const std::string& comment, const std::string& extra_nam
   return text;
 }
 
-Dataset parse(const std::string& text, const std::string& source = "rig.csv") {
+Dataset parse_rig(const std::string& text, const std::string& source = "rig.csv") {
   std::istringstream in(text);
   return parse_csv(in, source, {});
 }
 
 TEST(OperatingSources, EachWayARecordStatesAVariableIsNamed) {
-  const Dataset comment = parse(record_text("I=0.5,amp=0.1", ""));
+  const Dataset comment = parse_rig(record_text("I=0.5,amp=0.1", ""));
   EXPECT_EQ(comment.operating.at("I"), 0.5);
   EXPECT_EQ(comment.operating_source.at("I"), "file comment");
   EXPECT_EQ(comment.operating_source.at("amp"), "file comment");
 
-  const Dataset column = parse(record_text("", "I", {0.50, 0.51, 0.49, 0.50, 0.50, 0.51, 0.49, 0.50, 0.50, 0.50}));
+  const Dataset column = parse_rig(record_text("", "I", {0.50, 0.51, 0.49, 0.50, 0.50, 0.51, 0.49, 0.50, 0.50, 0.50}));
   EXPECT_NEAR(column.operating.at("I"), 0.5, 1e-12);
   EXPECT_EQ(column.operating_source.at("I"), "column mean");
   EXPECT_TRUE(column.operating_refused.empty());  // spread 0.02 A = 4 % of 0.5 A: noise
@@ -84,14 +84,14 @@ TEST(OperatingSources, FileNameConditionsAreNamed) {
 }
 
 TEST(OperatingSources, SignalsNameTheirEstimates) {
-  const Signals bare = prepare_signals(parse(record_text("", "")));
+  const Signals bare = prepare_signals(parse_rig(record_text("", "")));
   EXPECT_EQ(bare.law_variable_source.at("amp"), "record estimate (half peak-to-peak)");
   EXPECT_EQ(bare.law_variables.at("amp"), 0.1);  // half of 0.1 − (−0.1)
   EXPECT_EQ(bare.law_variable_source.at("freq"), "record estimate (fdsp eq. 15)");
   EXPECT_EQ(bare.law_variable_source.at("w"), "record estimate (fdsp eq. 15)");
   EXPECT_EQ(bare.law_variable_source.size(), bare.law_variables.size());
 
-  const Signals stated = prepare_signals(parse(record_text("amp=0.2,I=0.5", "")));
+  const Signals stated = prepare_signals(parse_rig(record_text("amp=0.2,I=0.5", "")));
   EXPECT_EQ(stated.law_variables.at("amp"), 0.2);
   EXPECT_EQ(stated.law_variable_source.at("amp"), "file comment");
   EXPECT_EQ(stated.law_variable_source.at("I"), "file comment");
@@ -108,15 +108,15 @@ TEST(OperatingSources, SignalsNameTheirEstimates) {
 // a step from 0.4 to 0.6 A does not, nor does 0 to 0.01 A around zero (the floor: 10 % of 0.1 A).
 TEST(OperatingSources, ATimeVaryingCurrentIsRefusedForLaws) {
   const std::vector<double> step{0.4, 0.4, 0.4, 0.4, 0.4, 0.6, 0.6, 0.6, 0.6, 0.6};
-  Dataset varying = parse(record_text("", "I", step), "step.csv");
+  Dataset varying = parse_rig(record_text("", "I", step), "step.csv");
   EXPECT_NEAR(varying.operating.at("I"), 0.5, 1e-12);  // kept for tables
   ASSERT_TRUE(varying.operating_refused.count("I"));
   const std::string why = varying.operating_refused.at("I");
   for (const char* part : {"step.csv", "column I varies", "min 0.4", "max 0.6", "spread 0.2", "40 %", "out of scope"})
     EXPECT_NE(why.find(part), std::string::npos) << part << " in: " << why;
-  const Dataset near_zero = parse(record_text("", "I", {0, 0.01, 0, 0, 0, 0, 0, 0, 0, 0}));
+  const Dataset near_zero = parse_rig(record_text("", "I", {0, 0.01, 0, 0, 0, 0, 0, 0, 0, 0}));
   EXPECT_TRUE(near_zero.operating_refused.count("I"));
-  const Dataset quiet_zero = parse(record_text("", "I", {0, 0.004, 0, 0, 0, 0, 0, 0, 0, 0}));
+  const Dataset quiet_zero = parse_rig(record_text("", "I", {0, 0.004, 0, 0, 0, 0, 0, 0, 0, 0}));
   EXPECT_FALSE(quiet_zero.operating_refused.count("I"));
 
   const LawModel law(find_model("fvd.linear_viscous"), parse_laws("C=poly(I,1)", "--laws"));

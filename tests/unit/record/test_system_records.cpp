@@ -13,7 +13,7 @@
 namespace dampbench {
 namespace {
 
-Dataset parse(const std::string& text, bool require_output = true) {
+Dataset parse_system(const std::string& text, bool require_output = true) {
   std::istringstream in(text);
   CsvOptions options;
   options.require_force = require_output;
@@ -24,7 +24,7 @@ Dataset parse(const std::string& text, bool require_output = true) {
 const std::string kRecord = "t[s],y[mm],u[kN]\n0,0,0\n0.5,1,0.002\n1,-2,0.001\n1.5,3,-0.004\n2,0,0\n";
 
 TEST(SystemRecords, LoadInSiWithoutRigColumns) {
-  const Dataset d = parse(kRecord);
+  const Dataset d = parse_system(kRecord);
   ASSERT_TRUE(d.is_system());
   EXPECT_EQ(d.y_m, (std::vector<double>{0, 1e-3, -2e-3, 3e-3, 0}));
   EXPECT_EQ(d.u_N, (std::vector<double>{0, 2, 1, -4, 0}));
@@ -35,7 +35,7 @@ TEST(SystemRecords, LoadInSiWithoutRigColumns) {
 }
 
 TEST(SystemRecords, MeasuredStatisticsAreTheDisplacements) {
-  const Signals s = prepare_signals(parse(kRecord));
+  const Signals s = prepare_signals(parse_system(kRecord));
   EXPECT_DOUBLE_EQ(s.measured_max_abs, 3e-3);
   EXPECT_DOUBLE_EQ(s.measured_sum_sq, 14e-6);  // 1 + 4 + 9 mm²
   EXPECT_TRUE(s.sgn_x.empty());
@@ -43,23 +43,23 @@ TEST(SystemRecords, MeasuredStatisticsAreTheDisplacements) {
 }
 
 TEST(SystemRecords, AnInputAloneLoadsWhenNoOutputIsNeeded) {
-  const Dataset d = parse("t,u\n0,1\n1,2\n2,3\n3,4\n", false);
+  const Dataset d = parse_system("t,u\n0,1\n1,2\n2,3\n3,4\n", false);
   EXPECT_TRUE(d.is_system());
   EXPECT_FALSE(d.has_measured());
 }
 
 TEST(SystemRecords, MissingOutputAndMixedKindsAreRefused) {
-  EXPECT_EQ(testing::error_of([] { parse("t,u\n0,1\n1,2\n2,3\n3,4\n"); }),
+  EXPECT_EQ(testing::error_of([] { parse_system("t,u\n0,1\n1,2\n2,3\n3,4\n"); }),
             "bw.csv: missing column 'y' (columns found: t, u)");
-  const std::string mixed = testing::error_of([] { parse("t,x,u\n0,0,1\n1,0,2\n2,0,3\n3,0,4\n"); });
+  const std::string mixed = testing::error_of([] { parse_system("t,x,u\n0,0,1\n1,0,2\n2,0,3\n3,0,4\n"); });
   EXPECT_NE(mixed.find("bw.csv: column 'x' with a force input u"), std::string::npos) << mixed;
   EXPECT_NE(mixed.find("t,y,u (force u in, displacement y out: a system)"), std::string::npos) << mixed;
 }
 
 TEST(SystemRecords, UniformSamplingIsRequiredBySystemModels) {
-  check_uniform_sampling(parse(kRecord));
+  check_uniform_sampling(parse_system(kRecord));
   const std::string message =
-      testing::error_of([] { check_uniform_sampling(parse("t,y,u\n0,0,0\n1,0,1\n2.5,0,2\n3.5,0,3\n")); });
+      testing::error_of([] { check_uniform_sampling(parse_system("t,y,u\n0,0,0\n1,0,1\n2.5,0,2\n3.5,0,3\n")); });
   EXPECT_EQ(message.rfind("record 'bw': sample 1 is at 1 s, -0.143 steps from the uniform grid of 1.16667 s", 0), 0u)
       << message;
 }

@@ -27,6 +27,7 @@
 #include "engine/sweep/store.hpp"
 #include "engine/sweep/store/verify_diff.hpp"
 #include "models/registry.hpp"
+#include "tests/sweep_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::sweep {
@@ -179,10 +180,6 @@ fs::path folds_sweep(const std::string& name, const std::string& folds,
   return dir;
 }
 
-Loader csv_loader() {
-  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
-}
-
 /// "name+name": the datasets of a fit set, sorted.
 std::string names(const PartPlan& part, std::vector<int> ds) {
   std::vector<std::string> n;
@@ -193,7 +190,7 @@ std::string names(const PartPlan& part, std::vector<int> ds) {
 
 TEST(SweepFolds, LeavingASettingOutFitsTheOthersAndPredictsEveryCurrentOfIt) {
   const fs::path dir = folds_sweep("sweep_folds_setting", "leave-setting");
-  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  const Plan plan(load_sweep((dir / "s.toml").string()), testing::csv_loader());
   const PartPlan& part = plan.parts().at(0);
   const auto& fitsets = part.splits.at(0).fitsets;
   ASSERT_EQ(fitsets.size(), 3u);
@@ -223,7 +220,7 @@ TEST(SweepFolds, LeavingASettingOutFitsTheOthersAndPredictsEveryCurrentOfIt) {
 
 TEST(SweepFolds, GroupsThatChooseLawsShareTheRecordsOwnFitsWithTheSameBits) {
   const fs::path dir = folds_sweep("sweep_folds_shared_fits", "leave-setting", "auto");
-  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  const Plan plan(load_sweep((dir / "s.toml").string()), testing::csv_loader());
   ASSERT_EQ(plan.groups(), 3);  // each fits the 0, 0.5 and 1 A records of two settings
   RecordFitCache shared;
   for (long long i = 0; i < plan.groups(); ++i) {
@@ -239,7 +236,7 @@ TEST(SweepFolds, GroupsThatChooseLawsShareTheRecordsOwnFitsWithTheSameBits) {
 
 TEST(SweepFolds, LeavingACurrentOutPredictsOnlyThatCurrent) {
   const fs::path dir = folds_sweep("sweep_folds_current", "leave-one:I");
-  const Plan plan(load_sweep((dir / "s.toml").string()), csv_loader());
+  const Plan plan(load_sweep((dir / "s.toml").string()), testing::csv_loader());
   const PartPlan& part = plan.parts().at(0);
   const auto& fitsets = part.splits.at(0).fitsets;
   ASSERT_EQ(fitsets.size(), 3u);  // the fit currents 0, 0.5, 1 A; 0.25 and 0.75 A are no fold's
@@ -257,7 +254,7 @@ TEST(SweepFolds, AGroupThatChoosesLawsOrFitsItsRecordsFirstIsEstimatedAsTheLarge
     std::string text = sweep_text(laws, dir / "data", "[[splits]]\nname = \"folds\"\nfolds = \"leave-setting\"\n");
     text.insert(text.find('\n', text.find("laws = ")) + 1, extra);
     std::ofstream(dir / "c.toml") << text;
-    const Plan plan(load_sweep((dir / "c.toml").string()), csv_loader());
+    const Plan plan(load_sweep((dir / "c.toml").string()), testing::csv_loader());
     return estimated_cost(plan, plan.group(0));
   };
   const double given = cost_of("f_c=hill(I,2);c0=mono(I,0,1)", "");  // 6 coefficients, the base model's 3

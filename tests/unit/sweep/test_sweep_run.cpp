@@ -32,6 +32,7 @@
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/store.hpp"
 #include "models/registry.hpp"
+#include "tests/sweep_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::sweep {
@@ -39,13 +40,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::run_dampbench;
-
-fs::path temp_dir() { return dampbench::testing::test_temp_dir("sweeprun"); }
-
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-}
 
 /// A sine record, force of a generalized viscous damper plus a little stiffness, with operating variables.
 void write_record(const fs::path& p, const std::string& operating, double amp, double freq, int samples) {
@@ -57,11 +51,7 @@ void write_record(const fs::path& p, const std::string& operating, double amp, d
     const double F = 2e4 * (v > 0 ? 1 : -1) * std::pow(std::fabs(v), 0.4) + 3e5 * x + 500 * std::sin(7 * w * t);
     s += fmt::format("{:.9g},{:.9g},{:.9g}\n", t, 1e3 * x, F);
   }
-  write(p, s);
-}
-
-Loader csv_loader() {
-  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
+  testing::write_text(p, s);
 }
 
 /// Every group of two stores, compared number by number (bits).
@@ -140,7 +130,7 @@ int wait_exit(pid_t pid) {
 class SmallSweep : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = temp_dir();
+    dir_ = testing::test_temp_dir("sweeprun");
     for (int i = 0; i < 3; ++i) write_record(dir_ / "data" / fmt::format("c{}.csv", i), fmt::format("I={}", i), 0.01 * (i + 1), 1, 121);
   }
   std::string spec(const std::string& extra = "") const {
@@ -161,8 +151,8 @@ glob = "{}/data/*.csv"
   }
   /// Runs the sweep in an arena of `threads`, stopping after `stop_after` groups (0: never).
   RunnerSummary run(const std::string& text, const std::string& store_path, int threads, int stop_after = 0) const {
-    write(dir_ / "small.toml", text);
-    const Plan plan(load_sweep((dir_ / "small.toml").string()), csv_loader());
+    testing::write_text(dir_ / "small.toml", text);
+    const Plan plan(load_sweep((dir_ / "small.toml").string()), testing::csv_loader());
     Store store = Store::create_or_resume(store_path, make_store_header(plan, (dir_ / "small.toml").string()));
     std::atomic<bool> stop{false};
     int written = 0;
@@ -214,7 +204,7 @@ sensitivity = { points = 5, where = { I = 0 } }
 )toml");
   const std::string path = (dir_ / "v.sqlite").string();
   run(text, path, 2);
-  const Plan plan(load_sweep((dir_ / "small.toml").string()), csv_loader());
+  const Plan plan(load_sweep((dir_ / "small.toml").string()), testing::csv_loader());
   const Store store = Store::open(path);
   int with_predictions = 0, with_sensitivity = 0;
   for (long long i = 0; i < plan.groups(); ++i) {
@@ -230,7 +220,7 @@ sensitivity = { points = 5, where = { I = 0 } }
 }
 
 TEST_F(SmallSweep, FailedTasksAreRecordedAndTheSweepCompletes) {
-  write(dir_ / "data" / "c9.csv", "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,8\n");
+  testing::write_text(dir_ / "data" / "c9.csv", "t,x,F\n0,0,0\n1,1,abc\n2,2,2\n3,3,3\n4,4,4\n5,5,5\n6,6,6\n7,7,7\n8,8,8\n");
   write_record(dir_ / "data" / "c5.csv", "", 0.02, 2, 121);  // no current: the law in I cannot be evaluated
   std::string s = spec();
   s.replace(s.find("models = [\"fvd.generalized_viscous\", \"fvd.gv_linear_elastic\"]"),
@@ -265,7 +255,7 @@ TEST_F(SmallSweep, FailedTasksAreRecordedAndTheSweepCompletes) {
 /// into dir/out; then `table --kind <kind> --format csv` of its store.
 testing::CommandResult sweep_table(const fs::path& dir, const std::string& model, int runs, int population, int iterations,
                                    const std::string& kind) {
-  write(dir / "s.toml", fmt::format(R"toml(name = "one_model"
+  testing::write_text(dir / "s.toml", fmt::format(R"toml(name = "one_model"
 runs = {}
 metric = "nrmse"
 models = ["{}"]
@@ -284,7 +274,7 @@ glob = "{}/data/*.csv"
 }
 
 TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("sweeprun");
   write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
   const auto starved = sweep_table(dir, "fvd.generalized_viscous", 6, 8, 3, "runs"),
              generous = sweep_table(dir, "fvd.generalized_viscous", 6, 30, 200, "runs");
@@ -298,10 +288,10 @@ TEST(SweepConvergence, TablesMarkAStarvedGroupAndNotAGenerousOne) {
 // tables, although its runs agree (the store keeps the budget's summary as the group's message); with room for the
 // confirming restart the same group is.
 TEST(SweepConvergence, AnAutomaticBudgetStoppedBeforeItsConfirmingRestartIsMarked) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("sweeprun");
   write_record(dir / "data" / "c.csv", "", 0.01, 1, 301);
   const auto table = [&](const std::string& cap) {
-    write(dir / "s.toml", fmt::format(R"toml(name = "auto_budget"
+    testing::write_text(dir / "s.toml", fmt::format(R"toml(name = "auto_budget"
 runs = 4
 metric = "nrmse"
 models = ["fvd.generalized_viscous"]
@@ -331,7 +321,7 @@ glob = "{}/data/*.csv"
 // relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
 // keeps the evidence (read back equal to what the runner computed: the verify test compares it bit for bit).
 TEST(SweepIdentifiability, ParamsTableMarksATradeOffAndNotASeparableFit) {
-  const fs::path dir = temp_dir();
+  const fs::path dir = testing::test_temp_dir("sweeprun");
   write_record(dir / "data" / "one_sine.csv", "", 0.01, 1, 301);
   {
     const Model& model = find_model("fvd.gv_linear_elastic");
@@ -339,7 +329,7 @@ TEST(SweepIdentifiability, ParamsTableMarksATradeOffAndNotASeparableFit) {
     d.F_N = model.simulate(std::vector<double>{300.0, 8.2e5, 0.3, 4e6}, prepare_signals(d));
     std::string csv = "t[s],x[m],F[N]\n";
     for (std::size_t k = 0; k < d.F_N.size(); ++k) csv += fmt::format("{:.17g},{:.17g},{:.17g}\n", d.t_s[k], d.x_m[k], d.F_N[k]);
-    write(dir / "data" / "two_sine.csv", csv);
+    testing::write_text(dir / "data" / "two_sine.csv", csv);
   }
   const auto table = sweep_table(dir, "fvd.gv_linear_elastic", 2, 30, 150, "params");
   ASSERT_EQ(table.exit_code, 0) << table.output;
@@ -386,7 +376,7 @@ TEST(ProgressBar, Renders) {
 class ExeSweep : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = temp_dir();
+    dir_ = testing::test_temp_dir("sweeprun");
     // 8 records x 4 models = 32 groups of ~3e7 candidate-samples: long enough to interrupt on a fast machine.
     for (int i = 0; i < 8; ++i)
       write_record(dir_ / "data" / fmt::format("t{}.csv", i), fmt::format("amp={},freq={}", 0.01 + 0.002 * i, 0.5 + 0.25 * i),
@@ -395,7 +385,7 @@ class ExeSweep : public ::testing::Test {
     write_spec(4);
   }
   void write_spec(int runs) {
-    write(spec_, fmt::format(R"toml(name = "kill"
+    testing::write_text(spec_, fmt::format(R"toml(name = "kill"
 seed = 11
 runs = {}
 models = ["fvd.linear_viscous", "fvd.generalized_viscous", "fvd.gv_linear_elastic", "fvd.gv_quadratic_elastic"]
@@ -476,7 +466,7 @@ TEST_F(ExeSweep, AStoreKeepsItsVectorLevel) {
       GTEST_SKIP() << "this build's Bouc-Wen kernel gives the same bits at " << low << " and " << best
                    << " (lane loops not vectorized, e.g. the sanitizer build): the level cannot be seen in a store";
   }
-  write(spec_, fmt::format(R"toml(name = "levels"
+  testing::write_text(spec_, fmt::format(R"toml(name = "levels"
 runs = 2
 models = ["mrd.bouc_wen"]
 [optimizer]
@@ -532,7 +522,7 @@ files = ["{0}/data/t0.csv"]
 }
 
 TEST_F(ExeSweep, ChangedSpecIsRefusedAndVerifyDetectsAlteredNumbers) {
-  write(spec_, fmt::format(R"toml(name = "small"
+  testing::write_text(spec_, fmt::format(R"toml(name = "small"
 runs = 2
 models = ["fvd.generalized_viscous"]
 tables = ["runs", "errors", "bootstrap"]
@@ -585,7 +575,7 @@ files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
   text.replace(text.find("runs = 2"), 8, "runs = 3");
-  write(spec_, text);
+  testing::write_text(spec_, text);
   r = run_dampbench(args(store));
   EXPECT_EQ(r.exit_code, 4) << r.output;  // store
   EXPECT_NE(r.output.find("belongs to another sweep spec ('small' from"), std::string::npos) << r.output;
@@ -596,7 +586,7 @@ files = ["{0}/data/t0.csv", "{0}/data/t1.csv"]
 
 TEST_F(ExeSweep, ARunRemovesTheOutputsOfThePreviousRunThatItDoesNotWriteAgain) {
   const auto spec = [&](const char* tables) {
-    write(spec_, fmt::format(R"toml(name = "small"
+    testing::write_text(spec_, fmt::format(R"toml(name = "small"
 runs = 2
 models = ["fvd.linear_viscous"]
 tables = [{}]
@@ -623,10 +613,10 @@ files = ["{}/data/t0.csv"]
   // The manifest as an editor on another system might leave it (CRLF, a trailing space, "./"), with lines that
   // must never remove anything: a user's file and a store-like file in the folder, files outside it by "..", by
   // an absolute path and through a symlinked subfolder.
-  write(out / "my_notes.txt", "mine\n");
-  write(out / "fake.sqlite", "a store\n");
-  write(dir_ / "outside.csv", "not an output\n");
-  write(dir_ / "elsewhere" / "linked.csv", "not an output\n");
+  testing::write_text(out / "my_notes.txt", "mine\n");
+  testing::write_text(out / "fake.sqlite", "a store\n");
+  testing::write_text(dir_ / "outside.csv", "not an output\n");
+  testing::write_text(dir_ / "elsewhere" / "linked.csv", "not an output\n");
   fs::create_directory_symlink(dir_ / "elsewhere", out / "link");
   std::ofstream(out / "outputs.txt", std::ios::trunc)
       << "# header\r\nerrors.csv\r\n./runs_fvd.linear_viscous.csv\r\nreport.html \r\ntables.md\r\nmy_notes.txt\r\n"
@@ -648,7 +638,7 @@ files = ["{}/data/t0.csv"]
 }
 
 TEST_F(ExeSweep, NothingStartsUntilTheWholeFileIsValid) {
-  write(spec_, fmt::format("name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"t\"\nglob = \"{}/data/*.csv\"\n"
+  testing::write_text(spec_, fmt::format("name = \"bad\"\nmodels = [\"fvd.linear_viscous\"]\n[[datasets]]\nname = \"t\"\nglob = \"{}/data/*.csv\"\n"
                            "[[tables]]\nkind = \"plots\"\n",
                            dir_.string()));
   const fs::path store = dir_ / "never.sqlite";

@@ -17,19 +17,13 @@
 #include "engine/record/csv_loader.hpp"
 #include "engine/common/error.hpp"
 #include "engine/sweep/plan.hpp"
+#include "tests/sweep_test_support.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::sweep {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path temp_dir() { return dampbench::testing::test_temp_dir("spec"); }
-
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-}
 
 /// A sine record with a Bingham-like force and "# operating:" variables.
 void write_record(const fs::path& p, const std::string& operating, double amp = 0.01, double freq = 1) {
@@ -39,16 +33,12 @@ void write_record(const fs::path& p, const std::string& operating, double amp = 
     const double v = amp * w * std::cos(w * t);
     s += fmt::format("{:.9g},{:.9g},{:.9g}\n", t, 1e3 * amp * std::sin(w * t), 1000 * v + 50 * (v > 0 ? 1 : v < 0 ? -1 : 0));
   }
-  write(p, s);
-}
-
-Loader csv_loader() {
-  return [](const RecordOptions& o) { return load_csv(o.path, CsvOptions{}); };
+  testing::write_text(p, s);
 }
 
 /// The message of parsing `text` as dir/x.toml.
 std::string spec_error(const fs::path& dir, const std::string& text) {
-  write(dir / "x.toml", text);
+  testing::write_text(dir / "x.toml", text);
   return testing::error_of([&] { (void)load_sweep((dir / "x.toml").string()); });
 }
 
@@ -58,7 +48,7 @@ const std::string kData = "[[datasets]]\nname = \"a\"\nfile = \"a.csv\"\n";
 class SpecErrors : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = temp_dir();
+    dir_ = testing::test_temp_dir("spec");
     write_record(dir_ / "a.csv", "I=0");
   }
   void expect(const std::string& text, const std::string& message) {
@@ -131,7 +121,7 @@ TEST_F(SpecErrors, BudgetKindAndCap) {
   expect(kHead + "runs = 1\n" + kData, x() + ":3: key 'runs': the default optimizer (pso with the automatic budget) "
                                            "needs runs >= 2");
   const auto entries = [&](const std::string& optimizers) {
-    write(dir_ / "x.toml", kHead + kData + optimizers);
+    testing::write_text(dir_ / "x.toml", kHead + kData + optimizers);
     return load_sweep(x()).parts.at(0).optimizers;
   };
   const auto e = entries(
@@ -148,7 +138,7 @@ TEST_F(SpecErrors, BudgetKindAndCap) {
   EXPECT_EQ(e[3].max_total_evaluations, 5000);
   EXPECT_EQ(e[3].spec.population, 20);
   EXPECT_FALSE(e[4].auto_budget);
-  write(dir_ / "x.toml", kHead + kData);
+  testing::write_text(dir_ / "x.toml", kHead + kData);
   EXPECT_TRUE(load_sweep(x()).parts.at(0).optimizers.at(0).auto_budget);
 }
 
@@ -158,10 +148,10 @@ TEST_F(SpecErrors, SearchPrecision) {
   expect(kHead + "[optimizer]\nprecision = \"single\"\n" + kData,
          x() + ":4: key 'optimizer.precision': expected \"double\" or \"mixed\" (the population search in float32 "
                "lanes), got 'single'");
-  write(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\n");
+  testing::write_text(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\n");
   const SweepSpec plain = load_sweep(x());
   EXPECT_EQ(plain.parts.at(0).optimizers.at(0).search_precision, Precision::float32);  // the default: mixed
-  write(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\nprecision = \"double\"\n");
+  testing::write_text(dir_ / "x.toml", kHead + kData + "[optimizer]\nname = \"de\"\nprecision = \"double\"\n");
   const SweepSpec dbl = load_sweep(x());
   EXPECT_EQ(dbl.parts.at(0).optimizers.at(0).search_precision, Precision::float64);
   EXPECT_NE(plain.hash, dbl.hash);
@@ -174,10 +164,10 @@ TEST_F(SpecErrors, BoundsAreCheckedBeforeFiles) {
 }
 
 TEST(SweepSpec, ReadsEveryPart) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   for (double I : {0.0, 0.5, 1.0})
     for (double amp : {0.01, 0.02}) write_record(dir / "grid" / fmt::format("I{}_A{}.csv", I, amp), fmt::format("I={},amp={},freq=1", I, amp), amp);
-  write(dir / "x.toml", R"toml(
+  testing::write_text(dir / "x.toml", R"toml(
 name = "x"
 title = "A sweep"
 seed = 7
@@ -239,7 +229,7 @@ paper = "Table 4"
   EXPECT_EQ(p.datasets[0].collection, "grid");
   EXPECT_EQ(p.tables[0].splits, (std::vector<std::string>{"by-I", "joint"}));
 
-  const Plan plan(load_sweep((dir / "x.toml").string()), csv_loader());
+  const Plan plan(load_sweep((dir / "x.toml").string()), testing::csv_loader());
   const auto& pp = plan.parts()[0];
   // each: 3 datasets at amp 0.01 × 2 optimizers (bingham has no restriction) × 2 metrics.
   EXPECT_EQ(pp.splits[0].fitsets.size(), 3u);
@@ -280,19 +270,19 @@ paper = "Table 4"
 }
 
 TEST(SweepSpec, EmptySelectionIsAnErrorBeforeAnythingRuns) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "a.csv", "I=0");
-  write(dir / "x.toml", kHead + kData + "[[splits]]\nname = \"s\"\nfit = { I = 9 }\n");
-  EXPECT_NE(testing::error_of([&] { Plan(load_sweep((dir / "x.toml").string()), csv_loader()); })
+  testing::write_text(dir / "x.toml", kHead + kData + "[[splits]]\nname = \"s\"\nfit = { I = 9 }\n");
+  EXPECT_NE(testing::error_of([&] { Plan(load_sweep((dir / "x.toml").string()), testing::csv_loader()); })
                 .find("split 's': 'fit' selects no dataset (of 1 candidates)"),
             std::string::npos);
 }
 
 TEST(SweepSpec, HashIgnoresTitlesLabelsAndTablesOnly) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "a.csv", "I=0");
   auto hash = [&](const std::string& text) {
-    write(dir / "x.toml", text);
+    testing::write_text(dir / "x.toml", text);
     return load_sweep((dir / "x.toml").string()).hash;
   };
   const std::string base = kHead + "runs = 2\n" + kData;
@@ -306,38 +296,38 @@ TEST(SweepSpec, HashIgnoresTitlesLabelsAndTablesOnly) {
 }
 
 TEST(SweepSpec, IncludedFilesAreParts) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "a.csv", "I=0");
-  write(dir / "p1.toml", "name = \"p1\"\nmodels = [\"mrd.bingham\"]\n" + kData);
-  write(dir / "p2.toml", "name = \"p2\"\nmodels = [\"fvd.linear_viscous\"]\n" + kData);
-  write(dir / "all.toml", "name = \"all\"\ninclude = [\"p1.toml\", \"p2.toml\"]\n");
+  testing::write_text(dir / "p1.toml", "name = \"p1\"\nmodels = [\"mrd.bingham\"]\n" + kData);
+  testing::write_text(dir / "p2.toml", "name = \"p2\"\nmodels = [\"fvd.linear_viscous\"]\n" + kData);
+  testing::write_text(dir / "all.toml", "name = \"all\"\ninclude = [\"p1.toml\", \"p2.toml\"]\n");
   const SweepSpec all = load_sweep((dir / "all.toml").string());
   ASSERT_EQ(all.parts.size(), 2u);
   EXPECT_EQ(all.parts[1].name, "p2");
   EXPECT_EQ(all.parts[1].models[0].model, "fvd.linear_viscous");
   EXPECT_NE(all.hash, load_sweep((dir / "p1.toml").string()).hash);
   // The same part gives the same task keys alone and inside all.toml: results are shared bit for bit.
-  const Plan alone(load_sweep((dir / "p1.toml").string()), csv_loader());
-  const Plan both(load_sweep((dir / "all.toml").string()), csv_loader());
+  const Plan alone(load_sweep((dir / "p1.toml").string()), testing::csv_loader());
+  const Plan both(load_sweep((dir / "all.toml").string()), testing::csv_loader());
   EXPECT_EQ(alone.group(0).task_key, both.group(0).task_key);
-  write(dir / "dup.toml", "name = \"all\"\ninclude = [\"p1.toml\", \"p1.toml\"]\n");
+  testing::write_text(dir / "dup.toml", "name = \"all\"\ninclude = [\"p1.toml\", \"p1.toml\"]\n");
   EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "dup.toml").string()); }).find("two included files are named 'p1'"),
             std::string::npos);
 }
 
 TEST(SweepSpec, OptionalDatasetsAreSkippedWithANote) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "a.csv", "I=0");
-  write(dir / "x.toml", kHead + kData + "[[datasets]]\nname = \"real\"\nglob = \"missing/*.txt\"\nrequired = false\n");
+  testing::write_text(dir / "x.toml", kHead + kData + "[[datasets]]\nname = \"real\"\nglob = \"missing/*.txt\"\nrequired = false\n");
   const SweepSpec spec = load_sweep((dir / "x.toml").string());
   EXPECT_EQ(spec.parts[0].datasets.size(), 1u);
   ASSERT_EQ(spec.notes.size(), 1u);
   EXPECT_NE(spec.notes[0].find("skipped (optional)"), std::string::npos);
   // A part included as optional loses its missing datasets and contributes no task; the others run.
-  write(dir / "p1.toml", kHead + kData);
-  write(dir / "p2.toml", "name = \"p2\"\nmodels = [\"mrd.bingham\"]\n[[datasets]]\nname = \"r\"\nglob = \"gone/*.txt\"\n");
-  write(dir / "all.toml", "name = \"all\"\ninclude = [\"p1.toml\"]\ninclude_optional = [\"p2.toml\"]\n");
-  const Plan plan(load_sweep((dir / "all.toml").string()), csv_loader());
+  testing::write_text(dir / "p1.toml", kHead + kData);
+  testing::write_text(dir / "p2.toml", "name = \"p2\"\nmodels = [\"mrd.bingham\"]\n[[datasets]]\nname = \"r\"\nglob = \"gone/*.txt\"\n");
+  testing::write_text(dir / "all.toml", "name = \"all\"\ninclude = [\"p1.toml\"]\ninclude_optional = [\"p2.toml\"]\n");
+  const Plan plan(load_sweep((dir / "all.toml").string()), testing::csv_loader());
   EXPECT_EQ(plan.parts().size(), 2u);
   EXPECT_EQ(plan.groups(), 1);
   EXPECT_EQ(plan.group(0).part, 0);
@@ -346,10 +336,10 @@ TEST(SweepSpec, OptionalDatasetsAreSkippedWithANote) {
 
 TEST(SweepSpec, GlobOfASweepFileInTheCurrentFolder) {
   // `dampbench run sweep.toml` from the sweep's folder: its glob has no folder part and means this folder.
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "r1.csv", "I=0");
   write_record(dir / "r2.csv", "I=1");
-  write(dir / "sweep.toml", kHead + "[[datasets]]\nname = \"r\"\nglob = \"r*.csv\"\n");
+  testing::write_text(dir / "sweep.toml", kHead + "[[datasets]]\nname = \"r\"\nglob = \"r*.csv\"\n");
   const auto previous = fs::current_path();
   fs::current_path(dir);
   std::string error;

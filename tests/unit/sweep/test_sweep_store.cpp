@@ -20,8 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir() { return dampbench::testing::test_temp_dir("store"); }
-
 StoreHeader header() {
   StoreHeader h;
   h.name = "s";
@@ -85,7 +83,7 @@ void sql(const fs::path& path, const std::string& statement) {
 }
 
 TEST(Store, RoundTripIsBitExact) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = (dir / "s.sqlite").string();
   {
     Store store = Store::create_or_resume(path, header());
@@ -137,7 +135,7 @@ TEST(Store, RoundTripIsBitExact) {
 }
 
 TEST(Store, UsesWriteAheadLogging) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = (dir / "s.sqlite").string();
   { Store store = Store::create_or_resume(path, header()); }
   sqlite3* db = nullptr;
@@ -151,7 +149,7 @@ TEST(Store, UsesWriteAheadLogging) {
 }
 
 TEST(Store, RewritingAGroupReplacesIt) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = (dir / "s.sqlite").string();
   Store store = Store::create_or_resume(path, header());
   store.write(record(1));
@@ -163,7 +161,7 @@ TEST(Store, RewritingAGroupReplacesIt) {
 }
 
 TEST(Store, ResumeRefusesAnotherSweep) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = (dir / "s.sqlite").string();
   { Store store = Store::create_or_resume(path, header()); }
   EXPECT_EQ(testing::error_of([&] { (void)Store::create_or_resume(path, header()); }), "no error");
@@ -193,7 +191,7 @@ TEST(Store, ResumeRefusesAnotherSweep) {
 }
 
 TEST(Store, RefusesOtherFormatsAndFiles) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = dir / "s.sqlite";
   { Store store = Store::create_or_resume(path.string(), header()); }
   sql(path, "PRAGMA user_version = 99");
@@ -218,7 +216,7 @@ TEST(Store, RefusesOtherFormatsAndFiles) {
 
 // Format 3 added the groups' chosen laws; a format-2 store opens as one whose groups chose none, and stays readable.
 TEST(Store, AFormatTwoStoreOpensWithoutChosenLaws) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = dir / "s.sqlite";
   {
     Store store = Store::create_or_resume(path.string(), header());
@@ -238,7 +236,7 @@ TEST(Store, AFormatTwoStoreOpensWithoutChosenLaws) {
 }
 
 TEST(Store, AStoreKilledBeforeItsFirstCommitStartsAgain) {
-  const auto dir = temp_dir();
+  const auto dir = testing::test_temp_dir("store");
   const auto path = dir / "s.sqlite";
   std::ofstream(path).close();  // an empty file, as a creation killed at once leaves
   EXPECT_EQ(testing::error_of([&] { (void)Store::create_or_resume(path.string(), header()); }), "no error");
