@@ -22,6 +22,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 stage_rows=()
+builds=()
 cpu_ticks() {  # user + system clock ticks of this shell's waited-for children (fields 16 and 17 of /proc/PID/stat)
   local stat
   stat=$(< "/proc/$$/stat")
@@ -51,16 +52,22 @@ print_stages() {
   printf '| %-26s | %8s | %8s |\n|%s|%s|%s|\n' stage "wall s" "CPU s" "$(printf -- '-%.0s' {1..28})" "---------:" "---------:"
   printf '%s\n' "${stage_rows[@]}"
   echo "total wall: $((SECONDS / 60)) min $((SECONDS % 60)) s"
+  local build
+  for build in "${builds[@]}"; do  # the heaviest compile steps and slowest tests of each build this run made
+    [ -f "$build/.ninja_log" ] && /usr/bin/python3 scripts/build_times.py "$build" --top 5 || true
+  done
 }
 trap print_stages EXIT
 
 stage "install dependencies" bash scripts/install-deps.sh
+builds+=(build)
 stage "release build" bash -c 'cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null &&
                                cmake --build build --parallel "$(nproc)"'
 stage "release ctest" ctest --test-dir build --output-on-failure --timeout 900 -j "$(nproc)"
 [ "${DAMPBENCH_QUICK:-0}" = 1 ] && exit 0
 
 SANITIZER_SKIP="${SANITIZER_SKIP:-store_soak|RealData|Utfsm|ModelRecovery|StandardFunctions|Conformance|bouc_wen_ga_lm|FitDefaultsRecover|OnLargerRows|^mpi$|^bouc_wen_benchmark$}"
+builds+=(build-asan)
 stage "sanitizer build" bash -c 'cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDAMPBENCH_SANITIZE=ON \
                                    -DDAMPBENCH_BUILD_BENCH=OFF -DDAMPBENCH_ISA_DISPATCH=OFF > /dev/null &&
                                  cmake --build build-asan --parallel "$(nproc)"'

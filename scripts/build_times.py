@@ -1,0 +1,96 @@
+#!/usr/bin/python3
+"""Where a build's time went: its heaviest compile steps (ninja's log) and its slowest tests (ctest's timings).
+
+usage: scripts/build_times.py BUILD_DIR [--top N] [--format text|md]
+
+Reads BUILD_DIR/.ninja_log (the newest entry of each output; wall seconds of the step, which on a loaded machine
+include waiting for a core) and BUILD_DIR/Testing/Temporary/CTestCostData.txt (ctest's average time per test over
+its runs in this build folder). Prints the N heaviest steps, each target's share of the summed step time, and the
+N slowest tests. scripts/test.sh prints it after each test stage; docs/performance.md keeps a measured table.
+"""
+import argparse
+import collections
+import os
+import re
+import sys
+
+
+def ninja_steps(build):
+    """{output: seconds} from .ninja_log, newest entry per output."""
+    path = os.path.join(build, ".ninja_log")
+    steps = {}
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                continue
+            fields = line.rstrip("\n").split("\t")
+            if len(fields) < 4:
+                continue
+            start, end, output = int(fields[0]), int(fields[1]), fields[3]
+            steps[output] = (end - start) / 1000.0
+    return steps
+
+
+def target_of(output):
+    """The target a step belongs to: the X of .../CMakeFiles/X.dir/..., or the output itself (links)."""
+    m = re.search(r"CMakeFiles/([^/]+)\.dir/", output)
+    return m.group(1) if m else "links and other steps"
+
+
+def test_times(build):
+    """{test: seconds} from ctest's cost data (absent before a first ctest run)."""
+    path = os.path.join(build, "Testing", "Temporary", "CTestCostData.txt")
+    times = {}
+    if not os.path.exists(path):
+        return times
+    with open(path) as f:
+        for line in f:
+            if line.startswith("---"):
+                break
+            parts = line.rsplit(" ", 2)
+            if len(parts) == 3:
+                try:
+                    times[parts[0].split("  # GetParam")[0]] = float(parts[2])
+                except ValueError:
+                    pass
+    return times
+
+
+def table(title, header, rows, fmt):
+    if fmt == "md":
+        print(f"\n{title}\n\n| {header[0]} | {header[1]} |\n|---|---:|")
+        for name, value in rows:
+            print(f"| `{name}` | {value} |")
+    else:
+        print(f"\n{title}")
+        for name, value in rows:
+            print(f"  {value:>10}  {name}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("build")
+    parser.add_argument("--top", type=int, default=8)
+    parser.add_argument("--format", choices=["text", "md"], default="text")
+    args = parser.parse_args()
+    if not os.path.exists(os.path.join(args.build, ".ninja_log")):
+        sys.exit(f"build_times: {args.build}/.ninja_log not found (a Ninja build folder is expected)")
+    steps = ninja_steps(args.build)
+    total = sum(steps.values())
+    print(f"{args.build}: {len(steps)} build steps, {total:.0f} s summed")
+    heaviest = sorted(steps.items(), key=lambda kv: -kv[1])[: args.top]
+    table("heaviest steps (s)", ("step", "s"), [(o, f"{s:.1f}") for o, s in heaviest], args.format)
+    by_target = collections.Counter()
+    for output, seconds in steps.items():
+        by_target[target_of(output)] += seconds
+    table("steps summed per target (s)", ("target", "s"),
+          [(t, f"{s:.0f}") for t, s in by_target.most_common(args.top)], args.format)
+    tests = test_times(args.build)
+    if tests:
+        slowest = sorted(tests.items(), key=lambda kv: -kv[1])[: args.top]
+        table(f"slowest tests (s; {len(tests)} tests, {sum(tests.values()):.0f} s summed)", ("test", "s"),
+              [(t, f"{s:.1f}") for t, s in slowest], args.format)
+
+
+if __name__ == "__main__":
+    main()
