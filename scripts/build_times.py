@@ -1,12 +1,12 @@
 #!/usr/bin/python3
 """Where a build's time went: its heaviest compile steps (ninja's log) and its slowest tests (ctest's timings).
 
-usage: scripts/build_times.py BUILD_DIR [--top N] [--format text|md]
+usage: scripts/build_times.py BUILD_DIR [--top N]
 
 Reads BUILD_DIR/.ninja_log (the newest entry of each output; wall seconds of the step, which on a loaded machine
 include waiting for a core) and BUILD_DIR/Testing/Temporary/CTestCostData.txt (ctest's average time per test over
 its runs in this build folder). Prints the N heaviest steps, each target's share of the summed step time, and the
-N slowest tests. scripts/test.sh prints it after each test stage; docs/performance.md keeps a measured table.
+N slowest tests. scripts/test.sh prints it for each of its builds after its stage table.
 """
 import argparse
 import collections
@@ -56,22 +56,16 @@ def test_times(build):
     return times
 
 
-def table(title, header, rows, fmt):
-    if fmt == "md":
-        print(f"\n{title}\n\n| {header[0]} | {header[1]} |\n|---|---:|")
-        for name, value in rows:
-            print(f"| `{name}` | {value} |")
-    else:
-        print(f"\n{title}")
-        for name, value in rows:
-            print(f"  {value:>10}  {name}")
+def table(title, rows):
+    print(f"\n{title}")
+    for name, value in rows:
+        print(f"  {value:>10}  {name}")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("build")
     parser.add_argument("--top", type=int, default=8)
-    parser.add_argument("--format", choices=["text", "md"], default="text")
     args = parser.parse_args()
     if not os.path.exists(os.path.join(args.build, ".ninja_log")):
         sys.exit(f"build_times: {args.build}/.ninja_log not found (a Ninja build folder is expected)")
@@ -79,17 +73,16 @@ def main():
     total = sum(steps.values())
     print(f"{args.build}: {len(steps)} build steps, {total:.0f} s summed")
     heaviest = sorted(steps.items(), key=lambda kv: -kv[1])[: args.top]
-    table("heaviest steps (s)", ("step", "s"), [(o, f"{s:.1f}") for o, s in heaviest], args.format)
+    table("heaviest steps (s)", [(o, f"{s:.1f}") for o, s in heaviest])
     by_target = collections.Counter()
     for output, seconds in steps.items():
         by_target[target_of(output)] += seconds
-    table("steps summed per target (s)", ("target", "s"),
-          [(t, f"{s:.0f}") for t, s in by_target.most_common(args.top)], args.format)
+    table("steps summed per target (s)", [(t, f"{s:.0f}") for t, s in by_target.most_common(args.top)])
     tests = test_times(args.build)
     if tests:
         slowest = sorted(tests.items(), key=lambda kv: -kv[1])[: args.top]
-        table(f"slowest tests (s; {len(tests)} tests, {sum(tests.values()):.0f} s summed)", ("test", "s"),
-              [(t, f"{s:.1f}") for t, s in slowest], args.format)
+        table(f"slowest tests (s; {len(tests)} tests, {sum(tests.values()):.0f} s summed)",
+              [(t, f"{s:.1f}") for t, s in slowest])
 
 
 if __name__ == "__main__":
