@@ -1,25 +1,23 @@
 #!/usr/bin/env bash
-# Fuzzing: builds the libFuzzer targets of tests/fuzz with clang (AddressSanitizer and UBSan on all of
-# dampbench's code they reach) and runs each for FUZZ_SECONDS (default 60) from seed corpora made of the
-# repository's records, sweep files, law strings, a real store and its groups as MPI messages. Fails on the first
-# crash, sanitizer finding, timeout (10 s per input) or out-of-memory; the input that did it is kept in
-# build-fuzz/findings/<target>/ (copy it to tests/fuzz/regressions/<target>/ and it is replayed by every later run).
-# Usage: bash scripts/fuzz.sh [target ...]   (default: every target; FUZZ_BUILD_ONLY=1 builds them and stops)
+# Fuzzing: builds the libFuzzer targets of tests/fuzz in the sanitizer build (scripts/sanitizer-build.sh: clang,
+# AddressSanitizer and UBSan on all of dampbench's code they reach) and runs each for FUZZ_SECONDS (default 60) from
+# seed corpora made of the repository's records, sweep files, law strings, a real store and its groups as MPI
+# messages. Fails on the first crash, sanitizer finding, timeout (10 s per input) or out-of-memory; the input that did
+# it is kept in build-asan/fuzz/findings/<target>/ (copy it to tests/fuzz/regressions/<target>/ and it is replayed by
+# every later run).
+# Usage: bash scripts/fuzz.sh [target ...]   (default: every target)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 seconds="${FUZZ_SECONDS:-60}"
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(fuzz_record fuzz_sweep_spec fuzz_laws fuzz_key_values fuzz_store fuzz_group_message)
-# The kernels once, at the baseline level (DAMPBENCH_ISA_DISPATCH=OFF), as in the sanitizer suite: a fuzz target
-# runs one level anyway, and one copy of each kernel compiles faster than three.
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DDAMPBENCH_FUZZ=ON \
-  -DDAMPBENCH_BUILD_TESTS=OFF -DDAMPBENCH_BUILD_BENCH=OFF -DDAMPBENCH_ISA_DISPATCH=OFF > /dev/null
-cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]}"
-[ "${FUZZ_BUILD_ONLY:-0}" = 1 ] && exit 0
+# The sanitizer build (scripts/sanitizer-build.sh) holds the targets: the test suite's build, where scripts/test.sh has
+# already built them.
+bash scripts/sanitizer-build.sh "${targets[@]}"
 
 # Seed corpora: what the tests and presets read.
-corpus=build-fuzz/corpus
+corpus=build-asan/fuzz/corpus
 rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fuzz_key_values,fuzz_store,fuzz_group_message}
 for f in datasets/fvd/*.csv docs/examples/*.txt; do  # the first byte picks the loader options
   for option in 0 1 3; do { printf "\\$(printf %03o $option)"; head -c 20000 "$f"; } > "$corpus/fuzz_record/$option-$(basename "$f")"; done
@@ -34,7 +32,7 @@ for kv in "m=300,C=8.2e5,alpha=0.3,K1=4e6" "pc=0.6,pm=0.03" "t,x,v,F" "x=mm,v=mm
           "amp=0.02,vpeak=0.46,cycles=3,fs=1000"; do
   printf '%s' "$kv" > "$corpus/fuzz_key_values/$((i++))"
 done
-store_seed=build-fuzz/seed-store
+store_seed=build-asan/fuzz/seed-store
 rm -rf "$store_seed"
 "${DAMPBENCH:-./build/dampbench}" run docs/examples/quick.toml -o "$store_seed" --quiet --no-report > /dev/null
 cp "$store_seed/store.sqlite" "$corpus/fuzz_store/quick.sqlite"
@@ -45,12 +43,12 @@ export DAMPBENCH_FUZZ_SEED_STORE="$PWD/$store_seed/store.sqlite" DAMPBENCH_FUZZ_
 # instead of queueing, and each still gets its full FUZZ_SECONDS.
 fuzz_one() {
   local t="$1"
-  mkdir -p "build-fuzz/findings/$t"
+  mkdir -p "build-asan/fuzz/findings/$t"
   local dirs=("$corpus/$t")
   [ -d "tests/fuzz/regressions/$t" ] && dirs+=("tests/fuzz/regressions/$t")
-  ASAN_OPTIONS=detect_leaks=1 "./build-fuzz/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$t/" "${dirs[@]}" \
-    > "build-fuzz/findings/$t.log" 2>&1
+  ASAN_OPTIONS=detect_leaks=1 "./build-asan/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$t/" "${dirs[@]}" \
+    > "build-asan/fuzz/findings/$t.log" 2>&1
 }
 jobs="${FUZZ_JOBS:-$(nproc)}"
 failed=0
@@ -65,12 +63,12 @@ for ((first = 0; first < ${#targets[@]}; first += jobs)); do
     t="${batch[$i]}"
     status=0
     wait "${pids[$i]}" || status=$?
-    log="build-fuzz/findings/$t.log"
+    log="build-asan/fuzz/findings/$t.log"
     echo "-- $t"
     grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss_mb)" "$log" || true
     if [ "$status" -ne 0 ]; then
       tail -40 "$log" >&2
-      echo "fuzz: $t failed (exit $status); the input is in build-fuzz/findings/$t/" >&2
+      echo "fuzz: $t failed (exit $status); the input is in build-asan/fuzz/findings/$t/" >&2
       failed=1
     fi
   done

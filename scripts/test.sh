@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
 # The test command (CI runs it through .ci/run): installs dependencies, builds everything (library, command
 # line, tests, benchmarks) and runs the whole test suite through ctest; then the hardening stages:
-#   - the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan), without the tests
+#   - the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan, clang), without the tests
 #     listed in SANITIZER_SKIP below: they check what an optimization reaches at full budget (recovery of known
 #     parameters, standard functions, the fit's defaults on a Spencer record) or repeat a check at a larger size
 #     (LS-SVM tuning on larger rows), which the release run covers, while shorter tests run the same code under
 #     the sanitizers; mpi runs OpenMPI, whose own allocations LeakSanitizer would report; bouc_wen_benchmark fits
 #     twice. readme_examples skips the README's real-data fits there (DAMPBENCH_README_SKIP_REAL_DATA);
 #   - every libFuzzer target for FUZZ_SECONDS (default 30 here, 60 when scripts/fuzz.sh runs alone) each, one
-#     target per core at a time (scripts/fuzz.sh, build-fuzz).
-# Every build compiles its targets' files in unity batches (DAMPBENCH_UNITY_BUILD). The sanitizer and fuzz builds
-# compile the lane kernels once, at the baseline vector level (DAMPBENCH_ISA_DISPATCH OFF; the release suite runs
-# every level the CPU has), with line tables only (-g1), and the sanitizer build compiles the test and command
-# files at -O1: compiling is where most of this command's time goes. Tests that compare two levels skip under the
-# sanitizers, as in a native build.
+#     target per core at a time (scripts/fuzz.sh). The fuzz targets are part of the sanitizer build
+#     (scripts/sanitizer-build.sh): the library is compiled once for the sanitizer suite and the fuzzers.
+# Every build compiles its targets' files in unity batches (DAMPBENCH_UNITY_BUILD). The sanitizer build compiles
+# the lane kernels once, at the baseline vector level (DAMPBENCH_ISA_DISPATCH OFF; the release suite runs every
+# level the CPU has), with line tables only (-g1), and compiles the test and command files at -O1: compiling is
+# where most of this command's time goes. Tests that compare two levels skip under the sanitizers, as in a native
+# build.
 # At the end (and when a stage fails) it prints each stage's wall time and CPU time (user + system of the stage's
 # processes), so a change that adds minutes shows in CI's log; docs/performance.md keeps the measured table.
 # DAMPBENCH_QUICK=1 stops after the release test suite. Tests that need ../shared/data skip with a message when
@@ -66,14 +67,11 @@ stage "release build" bash -c 'cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=R
 stage "release ctest" ctest --test-dir build --output-on-failure --timeout 900 -j "$(nproc)"
 [ "${DAMPBENCH_QUICK:-0}" = 1 ] && exit 0
 
-SANITIZER_SKIP="${SANITIZER_SKIP:-store_soak|RealData|Utfsm|ModelRecovery|StandardFunctions|Conformance|bouc_wen_ga_lm|FitDefaultsRecover|OnLargerRows|^mpi$|^bouc_wen_benchmark$}"
+SANITIZER_SKIP="${SANITIZER_SKIP:-store_soak|RealData|Utfsm|ModelRecovery|StandardFunctions|Conformance|bouc_wen_ga_lm|FitDefaultsRecover|OnLargerRows|^mpi$|^bouc_wen_benchmark_}"
 builds+=(build-asan)
-stage "sanitizer build" bash -c 'cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDAMPBENCH_SANITIZE=ON \
-                                   -DDAMPBENCH_BUILD_BENCH=OFF -DDAMPBENCH_ISA_DISPATCH=OFF > /dev/null &&
-                                 cmake --build build-asan --parallel "$(nproc)"'
+stage "sanitizer build" bash scripts/sanitizer-build.sh
 stage "sanitizer ctest" env ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   DAMPBENCH_README_SKIP_REAL_DATA=1 \
   ctest --test-dir build-asan --output-on-failure --timeout 900 -j "$(nproc)" -E "$SANITIZER_SKIP"
 
-stage "fuzz build" env FUZZ_BUILD_ONLY=1 bash scripts/fuzz.sh
 stage "fuzzing" env FUZZ_SECONDS="${FUZZ_SECONDS:-30}" bash scripts/fuzz.sh

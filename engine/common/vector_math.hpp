@@ -4,9 +4,12 @@
 // loop that calls std::exp vectorizes instead of calling the scalar function lane by lane. glibc's own
 // math.h only does this under -ffast-math, which we refuse (it would hide NaN and Inf, and a blown-up
 // candidate must be detected). Needs -fno-math-errno (set on dampbench_flags) and -lmvec.
+// Clang has no `simd` attribute: its builds (the sanitizer and fuzz builds) call the scalar functions in every lane,
+// so a lane's bits there never depend on which lanes share its vector either.
 #include <algorithm>
 #include <cmath>
 
+#if defined(__GNUC__) && !defined(__clang__)
 extern "C" {
 __attribute__((simd("notinbranch"))) double exp(double) noexcept;
 __attribute__((simd("notinbranch"))) double log(double) noexcept;
@@ -18,6 +21,7 @@ __attribute__((simd("notinbranch"))) double atan(double) noexcept;
 __attribute__((simd("notinbranch"))) float expf(float) noexcept;
 __attribute__((simd("notinbranch"))) float logf(float) noexcept;
 }
+#endif
 
 namespace dampbench {
 

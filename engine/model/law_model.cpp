@@ -11,6 +11,8 @@
 namespace dampbench {
 namespace {
 
+using Family = LawFactor::Family;
+
 /// Typical magnitude of each operating variable, to scale default bounds of higher-order coefficients.
 double variable_scale(const std::string& v) {
   if (v == "I") return 3.0;      // A
@@ -57,7 +59,6 @@ struct Level {
 /// bend positions and widths carry the variable's unit, hill's exponent is a pure number.
 template <class Add>
 void factor_bounds(const LawFactor& f, const Level& L, const ParameterInfo& p, Add add) {
-  using Family = LawFactor::Family;
   const double s = variable_scale(f.variable), span = bend_span(f.variable);
   auto same = [&](double lo, double hi) { add(lo, hi, p.unit, p.paper_unit); };
   auto value = [&](double lo, double hi) { L.first ? same(lo, hi) : add(lo, hi, "1", "1"); };
