@@ -46,8 +46,11 @@ fuzz_one() {
   mkdir -p "build-asan/fuzz/findings/$t"
   local dirs=("$corpus/$t")
   [ -d "tests/fuzz/regressions/$t" ] && dirs+=("tests/fuzz/regressions/$t")
+  # A store's seed is a whole SQLite file (about 150 kB): cut at 64 kB it would only ever be a damaged one.
+  local max_len=65536
+  [ "$t" = fuzz_store ] && max_len=262144
   ASAN_OPTIONS=detect_leaks=1 "./build-asan/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$t/" "${dirs[@]}" \
+    -max_len="$max_len" -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$t/" "${dirs[@]}" \
     > "build-asan/fuzz/findings/$t.log" 2>&1
 }
 jobs="${FUZZ_JOBS:-$(nproc)}"

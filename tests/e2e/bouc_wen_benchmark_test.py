@@ -4,10 +4,12 @@
 - System records at the command line: a record mixing x and u is refused (exit 3), a rig model on a t,y,u record
   is refused naming both kinds (exit 2); `evaluate --periodic` scores the official test set as one steady period,
   far closer than the same record simulated from rest; `simulate` writes a record that loads again and scores 0.
-- The preset datasets/presets/bouc_wen_benchmark.toml with a small budget (population 8, 2 iterations, 3 runs):
+- The preset datasets/presets/bouc_wen_benchmark.toml with a small budget (population 8, 2 iterations, 2 runs):
   run with --threads 1 and with --threads 2, its model files are identical byte for byte; the fit read the
   generated training record alone (never the test set); the saved model simulates the official multisine test set
   and the tool's own sine sweep to e_RMS <= 1e-6 m, with every parameter within 1 % of the benchmark's Table 1.
+  Two runs are the fewest that get there with seed 1: one run ends in a local minimum (e_RMS 6.3e-4 m), two end at
+  the best three find, bit for bit, and two runs still step in lockstep across the threads.
 
 usage: bouc_wen_benchmark_test.py DAMPBENCH SOURCE_DIR WORK_DIR SHARED_DATA_DIR [records|preset]
 The two parts (default: both) run as two ctest tests, so that ctest runs them side by side.
@@ -80,7 +82,7 @@ def preset():
     with open(os.path.join(SOURCE, "datasets", "presets", "bouc_wen_benchmark.toml")) as f:
         text = f.read()
     text = text.replace("@shared/", SHARED + "/")
-    text = re.sub(r"(?m)^seed = 1$", "seed = 1\npopulation = 8\niterations = 2\nruns = 3", text)
+    text = re.sub(r"(?m)^seed = 1$", "seed = 1\npopulation = 8\niterations = 2\nruns = 2", text)
     with open("small.toml", "w") as f:
         f.write(text)
     run("--threads", "1", "run", "small.toml", "-o", "out")

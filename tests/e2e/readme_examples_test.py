@@ -18,9 +18,7 @@ Every command in a fenced code block of README.md is run, in the order shown, ag
 
 `../shared/data` in a command is the real data beside the repository: WORK_DIR/shared/data links to DATA_DIR
 ($DAMPBENCH_SHARED_DATA_DIR, else the argument, else REPO/../shared/data, as the binary finds it). When DATA_DIR is absent, commands that
-read it are skipped with a message and the others still run. DAMPBENCH_README_SKIP_REAL_DATA=1 skips them too:
-scripts/test.sh sets it for the sanitizer run, which leaves real-data fits to the release run (as it leaves the
-RealData and Utfsm tests).
+read it are skipped with a message and the others still run.
 
 A command fails the test when it exits non-zero, or when a file it names with -o/--report is missing or empty
 afterwards. The test also fails when README.md is over 200 lines, when it shows a command outside a fenced
@@ -219,7 +217,6 @@ def main():
     root = prepare(work, dampbench, repo, data_dir)
     env = dict(os.environ, DAMPBENCH_GENERATED_DIR=os.path.join(work, "generated"))
     have_data = os.path.isdir(data_dir)
-    skip_real_data = os.environ.get("DAMPBENCH_README_SKIP_REAL_DATA") == "1"
     if not have_data:
         print(f"SKIP note: no real data at {data_dir}: the commands that read {SHARED_DATA} are skipped")
     ran = 0
@@ -238,9 +235,6 @@ def main():
                 uses_data = SHARED_DATA in command or any(SHARED_DATA in v for v in variables)
                 if uses_data and not have_data:
                     print(f"SKIP (real data absent at {data_dir}): {command}")
-                    continue
-                if uses_data and skip_real_data:
-                    print(f"SKIP (DAMPBENCH_README_SKIP_REAL_DATA=1: real-data fits run in the release suite): {command}")
                     continue
                 run_command(command, variables, root, env)
                 ran += 1
