@@ -208,7 +208,7 @@ void Store::write(const GroupRecord& g) {
 }
 
 std::vector<char> Store::finished() const {
-  std::vector<char> done(static_cast<std::size_t>(count(meta("groups"))), 0);
+  std::vector<char> done(static_cast<std::size_t>(count(meta("groups"), "meta groups")), 0);
   Stmt s(db_, "SELECT grp FROM groups");
   while (s.step()) {
     const long long i = s.integer(0);

@@ -12,6 +12,7 @@ namespace dampbench::sweep {
 
 using json = nlohmann::json;
 using store_db::count;
+using store_db::json_column;
 using store_db::metric_list;
 using store_db::now_utc;
 using store_db::Stmt;
@@ -119,8 +120,8 @@ StoreHeader Store::header() const {
   h.dampbench_version = meta("dampbench_version");
   h.build_flags = meta("build_flags");
   h.shard = meta("shard");
-  h.groups = count(meta("groups"));
-  h.tasks = count(meta("tasks"));
+  h.groups = count(meta("groups"), "meta groups");
+  h.tasks = count(meta("tasks"), "meta tasks");
   {
     Stmt s(db_, "SELECT name, title, path, source, seed, runs FROM parts ORDER BY part");
     while (s.step())
@@ -131,14 +132,14 @@ StoreHeader Store::header() const {
     Stmt s(db_, "SELECT part, name, model_id, fixture, laws, bounds, params FROM models ORDER BY part, model");
     while (s.step())
       h.models.push_back({static_cast<int>(s.integer(0)), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5),
-                          json::parse(s.text(6)).get<std::vector<std::string>>()});
+                          json_column<std::vector<std::string>>(s, 6, "models.params")});
   }
   {
     Stmt s(db_, "SELECT part, label, name, population, iterations, settings FROM optimizers ORDER BY part, optimizer");
     while (s.step())
       h.optimizers.push_back({static_cast<int>(s.integer(0)), s.text(1), s.text(2), static_cast<int>(s.integer(3)),
                               static_cast<int>(s.integer(4)),
-                              json::parse(s.text(5)).get<std::map<std::string, std::string>>()});
+                              json_column<std::map<std::string, std::string>>(s, 5, "optimizers.settings")});
   }
   {
     Stmt s(db_, "SELECT part, name FROM splits ORDER BY part, split");
@@ -150,7 +151,7 @@ StoreHeader Store::header() const {
     while (s.step()) {
       StoreDataset d{static_cast<int>(s.integer(0)), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5), s.text(6),
                      s.integer(7), {}};
-      const json vars = json::parse(s.text(8));
+      const json vars = json_column<json>(s, 8, "datasets.variables");
       for (const auto& [k, v] : vars.items())
         if (v.is_number()) d.variables[k] = v.get<double>();
       h.datasets.push_back(std::move(d));
@@ -160,7 +161,7 @@ StoreHeader Store::header() const {
     Stmt s(db_, "SELECT part, split, label, fit, predict FROM fitsets ORDER BY part, split, fitset");
     while (s.step())
       h.fitsets.push_back({static_cast<int>(s.integer(0)), static_cast<int>(s.integer(1)), s.text(2),
-                           json::parse(s.text(3)).get<std::vector<int>>(), json::parse(s.text(4)).get<std::vector<int>>()});
+                           json_column<std::vector<int>>(s, 3, "fitsets.fit"), json_column<std::vector<int>>(s, 4, "fitsets.predict")});
   }
   return h;
 }

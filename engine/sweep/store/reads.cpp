@@ -12,6 +12,7 @@
 namespace dampbench::sweep {
 
 using json = nlohmann::json;
+using store_db::json_column;
 using store_db::kGroupColumns;
 using store_db::Stmt;
 using store_db::trace_points;
@@ -28,7 +29,7 @@ GroupRecord read_group_row(const Stmt& s) {
   g.optimizer = static_cast<int>(s.integer(5));
   g.metric = parse_metric(s.text(6));
   g.runs = static_cast<int>(s.integer(7));
-  g.task_key = std::stoull(s.text(8), nullptr, 16);
+  g.task_key = store_db::stored_integer(s.text(8), 16, "groups.task_key");
   g.failed = s.text(9) == "failed";
   g.message = s.text(10);
   g.wall_time_s = s.real(11);
@@ -94,7 +95,7 @@ void read_details(sqlite3* db, const std::string& where, long long grp, bool run
         for (std::size_t r = 0; r < p && (r + 1) * p <= correlation.size(); ++r)
           id.correlation.emplace_back(correlation.begin() + static_cast<std::ptrdiff_t>(r * p),
                                       correlation.begin() + static_cast<std::ptrdiff_t>((r + 1) * p));
-        id.flags = json::parse(i->text(5)).template get<std::vector<std::vector<std::string>>>();
+        id.flags = json_column<std::vector<std::vector<std::string>>>(*i, 5, "identifiability.flags");
         g->identifiability = std::move(id);
       }
   }

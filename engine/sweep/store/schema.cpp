@@ -1,10 +1,14 @@
 #include "engine/sweep/store/schema.hpp"
 
 #include <bit>
+#include <charconv>
 #include <chrono>
 #include <ctime>
 #include <string>
 
+#include <fmt/format.h>
+
+#include "engine/common/error.hpp"
 #include "engine/model/metrics.hpp"
 
 namespace dampbench::sweep::store_db {
@@ -59,7 +63,23 @@ std::string now_utc() {
   return buf;
 }
 
-long long count(const std::string& text) { return text.empty() ? 0 : std::stoll(text); }
+long long count(const std::string& text, std::string_view key) {
+  if (text.empty()) return 0;
+  // Readers size arrays by these counts; 10^8 groups would be a store of about 100 GB.
+  constexpr std::uint64_t kMaxCount = 100'000'000;
+  const std::uint64_t n = stored_integer(text, 10, key);
+  if (n > kMaxCount)
+    throw StoreError(fmt::format("store: {} holds {}, more than any store holds (10^8; a damaged store?)", key, n));
+  return static_cast<long long>(n);
+}
+
+std::uint64_t stored_integer(const std::string& text, int base, std::string_view what) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value, base);
+  if (error != std::errc{} || end != text.data() + text.size() || text.empty())
+    throw StoreError(fmt::format("store: {} holds '{}', not a base-{} integer (a damaged store?)", what, text, base));
+  return value;
+}
 
 std::vector<double> trace_blob(const std::vector<TracePoint>& trace) {
   std::vector<double> v;

@@ -4,6 +4,7 @@
 // Internal to engine/sweep/store.
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/identification/convergence.hpp"
@@ -21,8 +22,11 @@ extern const char* const kGroupColumns;
 std::string metric_list();
 /// The current UTC time, ISO 8601 to the second.
 std::string now_utc();
-/// A count kept as text in `meta` ("" reads 0).
-long long count(const std::string& text);
+/// A count kept as text in `meta` under `key` ("" reads 0); anything but digits, or above 10^8, is a StoreError.
+long long count(const std::string& text, std::string_view key);
+/// An unsigned integer kept as text in the given base (a group's task key in hex); anything else is a StoreError
+/// naming `what`.
+std::uint64_t stored_integer(const std::string& text, int base, std::string_view what);
 
 /// A best-so-far trace as a blob of (evaluations as the bits of a double, value) pairs, and back.
 std::vector<double> trace_blob(const std::vector<TracePoint>& trace);

@@ -8,8 +8,11 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <sqlite3.h>
 
+#include "engine/common/error.hpp"
 #include "engine/model/metrics.hpp"
 
 namespace dampbench::sweep::store_db {
@@ -68,9 +71,11 @@ class Stmt {
     return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s_, c))) : "";
   }
   std::vector<double> doubles(int c) const {
-    const int bytes = sqlite3_column_bytes(s_, c);
-    std::vector<double> v(static_cast<std::size_t>(bytes) / sizeof(double));
-    if (bytes) std::memcpy(v.data(), sqlite3_column_blob(s_, c), v.size() * sizeof(double));
+    // The blob first, then its size (SQLite's documented order). A damaged blob of fewer than 8 bytes gives no
+    // double, and memcpy must not see the empty vector's null data then.
+    const void* blob = sqlite3_column_blob(s_, c);
+    std::vector<double> v(static_cast<std::size_t>(sqlite3_column_bytes(s_, c)) / sizeof(double));
+    if (!v.empty()) std::memcpy(v.data(), blob, v.size() * sizeof(double));
     return v;
   }
   std::array<double, kMetricCount> metric_row(int c) const {
@@ -88,6 +93,17 @@ class Stmt {
   sqlite3* db_;
   sqlite3_stmt* s_ = nullptr;
 };
+
+/// Column c of the row as the JSON of a T (the store writes lists and maps as JSON text); a value that is not
+/// (a damaged store) is a StoreError naming the table and column, like every other damage a store can have.
+template <class T>
+T json_column(const Stmt& row, int c, std::string_view table_column) {
+  try {
+    return nlohmann::json::parse(row.text(c)).get<T>();
+  } catch (const nlohmann::json::exception& e) {
+    throw StoreError(fmt::format("store: {} holds no valid JSON of its kind (a damaged store?): {}", table_column, e.what()));
+  }
+}
 
 /// Opens a SQLite file with a busy timeout; StoreError naming the path when it cannot.
 sqlite3* open_db(const std::string& path, int flags);

@@ -214,6 +214,44 @@ TEST(Store, RefusesOtherFormatsAndFiles) {
             "no store at '" + (dir / "none.sqlite").string() + "'");
 }
 
+// The store keeps lists and maps as JSON text; a damaged one (fuzz_store found the truncated identifiability flags)
+// is a StoreError naming its table and column, as any other damage, not an exception of the JSON library.
+TEST(Store, DamagedJsonColumnsAreStoreErrorsNamingTheColumn) {
+  const auto dir = testing::test_temp_dir("store");
+  const auto path = dir / "s.sqlite";
+  {
+    Store store = Store::create_or_resume(path.string(), header());
+    store.write(record(2));
+  }
+  sql(path, "INSERT INTO identifiability (grp, samples, std_error, relative_error, correlation, flags) "
+            "VALUES (2, 10, x'', x'', x'', '[[\"rank\"')");
+  GroupQuery query;
+  query.traces = true;
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).groups(query); }),
+                               "store: identifiability.flags holds no valid JSON of its kind"));
+  sql(path, "UPDATE identifiability SET flags = '{\"rank\": 1}'");  // valid JSON, not a list of lists
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).groups(query); }),
+                               "identifiability.flags holds no valid JSON of its kind"));
+  sql(path, "UPDATE identifiability SET flags = '[[\"rank\"]]'");
+  EXPECT_EQ(testing::error_of([&] { (void)Store::open(path.string()).groups(query); }), "no error");
+
+  // Integers kept as text: a group's task key (hex) and the counts in meta.
+  sql(path, "UPDATE groups SET task_key = 'fedcba98zz'");
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).groups(query); }),
+                               "store: groups.task_key holds 'fedcba98zz', not a base-16 integer"));
+  sql(path, "UPDATE meta SET value = '99999999999999' WHERE key = 'groups'");
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).finished(); }),
+                               "store: meta groups holds 99999999999999, more than any store holds"));
+  sql(path, "UPDATE meta SET value = '-3' WHERE key = 'groups'");
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).header(); }),
+                               "store: meta groups holds '-3', not a base-10 integer"));
+  sql(path, "UPDATE meta SET value = '' WHERE key = 'groups'");
+
+  sql(path, "UPDATE models SET params = '[\"f_c\", '");
+  EXPECT_TRUE(testing::HasText(testing::error_of([&] { (void)Store::open(path.string()).header(); }),
+                               "store: models.params holds no valid JSON of its kind"));
+}
+
 // Format 3 added the groups' chosen laws; a format-2 store opens as one whose groups chose none, and stays readable.
 TEST(Store, AFormatTwoStoreOpensWithoutChosenLaws) {
   const auto dir = testing::test_temp_dir("store");
