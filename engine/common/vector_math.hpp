@@ -4,7 +4,7 @@
 // loop that calls std::exp vectorizes instead of calling the scalar function lane by lane. glibc's own
 // math.h only does this under -ffast-math, which we refuse (it would hide NaN and Inf, and a blown-up
 // candidate must be detected). Needs -fno-math-errno (set on dampbench_flags) and -lmvec.
-// Clang has no `simd` attribute: its builds (the sanitizer and fuzz builds) call the scalar functions in every lane,
+// Clang has no `simd` attribute: its builds (the sanitizer build) call the scalar functions in every lane,
 // so a lane's bits there never depend on which lanes share its vector either.
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@ constexpr std::array<std::string_view, 5> kNames{"sse2", "avx2", "avx512", "nati
 std::vector<Isa> detect_levels() {
 #if DAMPBENCH_ISA_DISPATCH
   // __builtin_cpu_supports also checks that the OS saves the vector registers (XCR0). GCC knows the levels
-  // by name (every feature of x86-64-v3/v4, LZCNT, MOVBE and F16C included); Clang 14 (the fuzz build) does
+  // by name (every feature of x86-64-v3/v4, LZCNT, MOVBE and F16C included); Clang 14 (the sanitizer build) does
   // not, nor those three features, so it checks the rest.
   __builtin_cpu_init();
   std::vector<Isa> levels{Isa::sse2};

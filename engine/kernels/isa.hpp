@@ -58,8 +58,8 @@ bool isa_chosen_by_user();
 std::string isa_summary();
 
 // A build may set DAMPBENCH_ISA_DISPATCH=0 (CMake option DAMPBENCH_ISA_DISPATCH=OFF): the kernels are then compiled
-// once, for the baseline, as the one level "generic". The sanitizer and fuzz builds do so: they check the kernels'
-// code, which is the same at every level, and one copy of each kernel compiles faster than three.
+// once, for the baseline, as the one level "generic". The sanitizer build (fuzz targets included) does so: it checks
+// the kernels' code, which is the same at every level, and one copy of each kernel compiles faster than three.
 #ifndef DAMPBENCH_ISA_DISPATCH
 #if defined(__x86_64__) && !defined(DAMPBENCH_NATIVE_BUILD)
 #define DAMPBENCH_ISA_DISPATCH 1

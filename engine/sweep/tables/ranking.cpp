@@ -25,7 +25,7 @@ void ranking_tables(const Context& c, std::vector<Table>& out) {
       double sum = 0;
       int n = 0;
       for (const auto& entry : fitsets) {
-        const int f = entry.first;  // (a structured binding cannot be captured by clang 14, the fuzz build's compiler)
+        const int f = entry.first;  // (a structured binding cannot be captured by clang 14, the sanitizer build's compiler)
         const auto it = std::find_if(s.groups.begin(), s.groups.end(), [&](auto* g) { return g->fitset == f; });
         if (it == s.groups.end()) {
           row.push_back(none());
