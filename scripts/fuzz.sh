@@ -46,9 +46,11 @@ fuzz_one() {
   mkdir -p "build-asan/fuzz/findings/$t"
   local dirs=("$corpus/$t")
   [ -d "tests/fuzz/regressions/$t" ] && dirs+=("tests/fuzz/regressions/$t")
-  # A store's seed is a whole SQLite file (about 150 kB): cut at 64 kB it would only ever be a damaged one.
-  local max_len=65536
-  [ "$t" = fuzz_store ] && max_len=262144
+  # Inputs up to 64 kB, or the largest seed's size: a seed cut short (a whole store is about 150 kB) would only ever
+  # reach the fuzzer damaged.
+  local max_len largest
+  largest=$(find "${dirs[@]}" -type f -printf '%s\n' | sort -n | tail -1)
+  max_len=$((largest > 65536 ? largest : 65536))
   ASAN_OPTIONS=detect_leaks=1 "./build-asan/tests/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -max_len="$max_len" -print_final_stats=1 -artifact_prefix="build-asan/fuzz/findings/$t/" "${dirs[@]}" \
     > "build-asan/fuzz/findings/$t.log" 2>&1

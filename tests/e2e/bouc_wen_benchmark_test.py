@@ -11,8 +11,7 @@
   Two runs are the fewest that get there with seed 1: one run ends in a local minimum (e_RMS 6.3e-4 m), two end at
   the best three find, bit for bit, and two runs still step in lockstep across the threads.
 
-usage: bouc_wen_benchmark_test.py DAMPBENCH SOURCE_DIR WORK_DIR SHARED_DATA_DIR [records|preset]
-The two parts (default: both) run as two ctest tests, so that ctest runs them side by side.
+usage: bouc_wen_benchmark_test.py DAMPBENCH SOURCE_DIR WORK_DIR SHARED_DATA_DIR
 Exit 77 (ctest: skipped) when the shared data (the official test set) are absent.
 """
 import filecmp
@@ -24,7 +23,6 @@ import subprocess
 import sys
 
 DAMPBENCH, SOURCE, WORK, SHARED = (os.path.abspath(a) for a in sys.argv[1:5])
-PARTS = sys.argv[5:6] or ["records", "preset"]
 TEST_SET = os.path.join(SHARED, "bouc-wen-benchmark", "validation_multisine.csv")
 TRUTH = "m=2,c=10,k=5e4,alpha=5e4,beta_gamma=800,beta_delta=-1100,nu=1"
 TABLE1 = {"m": 2, "c": 10, "k": 5e4, "alpha": 5e4, "beta_gamma": 800, "beta_delta": -1100, "nu": 1}
@@ -110,11 +108,9 @@ def main():
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
     os.chdir(WORK)
-    if "records" in PARTS:
-        datasets()
-        system_records()
-    if "preset" in PARTS:
-        preset()
+    datasets()
+    system_records()
+    preset()
     if failures:
         sys.exit(f"{len(failures)} failure(s)")
     print("ok")
