@@ -97,12 +97,14 @@ std::vector<RecordBoundsRule> bouc_wen_rules(const char* k0) {
 /// The gauge of the Bouc–Wen state z (engine/model/model.hpp, StateGauge): A = β + γ.
 /// With |z| ≤ 1, α·z ≤ 2F bounds α by twice the peak force, and z has no unit. β and γ are then in 1/m:
 /// 1/(β + γ) is the displacement over which z saturates, a fraction of the stroke whatever the stroke, so their
-/// bounds scale with 1/X (saturation within X/4000 at the widest) instead of the ungauged X^−1.5.
+/// bounds scale with 1/X (saturation within X/4000 at the widest) instead of the ungauged X^−1.5. They set how
+/// stiff the ODE is (n(|β| + |γ|)|u| at |z| = 1), so over records of several strokes they take the longest
+/// stroke's box (RecordBoundsRule::stiffening).
 StateGauge bouc_wen_gauge() {
   return {"A",
           {"beta", "gamma"},
           "A = beta + gamma: |z| saturates at 1 and alpha is the hysteretic force [N]",
-          {{"alpha", 0, 2, 1, 0, 0}, {"beta", -2000, 2000, 0, 0, -1}, {"gamma", 0, 2000, 0, 0, -1}},
+          {{"alpha", 0, 2, 1, 0, 0}, {"beta", -2000, 2000, 0, 0, -1, true}, {"gamma", 0, 2000, 0, 0, -1, true}},
           {{"alpha", "N"}, {"beta", "1/m"}, {"gamma", "1/m"}, {"A", "1/m"}}};
 }
 

@@ -12,6 +12,7 @@
 // Ratios: scalar_ratio = 1-thread lanes / scalar; limit_ratio = 1-thread candidate-samples/s ÷ exp/s
 // (a model with one exp per candidate-sample and nothing else would reach 1).
 #include "engine/cli/bench_command.hpp"
+#include "engine/cli/bench_real_records.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -123,12 +124,19 @@ void add_bench_options(CLI::App* cmd, BenchOptions& o) {
   cmd->add_option("--lanes", o.lanes,
                   "float64 (default) or float32: the single-precision lanes the global search of --precision mixed uses "
                   "(models without them run float64; the table says which)");
+  cmd->add_option("--workload", o.workload,
+                  "sine (default): every model on a synthetic record; real-records: the hysteretic MR models on two "
+                  "measured UTFSM records, candidates from the whole fit box (docs/performance.md)");
+  cmd->add_option("--data-dir", o.data_dir,
+                  "real-records: folder of the UTFSM records (default: $DAMPBENCH_SHARED_DATA_DIR/utfsm-mr-damper)");
 }
 
 int bench_command(const BenchOptions& o) {
   if (o.format != "md" && o.format != "json") throw InputError(fmt::format("--format: expected md or json, got '{}'", o.format));
   if (o.lanes != "float64" && o.lanes != "float32")
     throw InputError(fmt::format("--lanes: expected float64 or float32, got '{}'", o.lanes));
+  if (o.workload == "real-records") return bench_real_records(o);
+  if (o.workload != "sine") throw InputError(fmt::format("--workload: expected sine or real-records, got '{}'", o.workload));
   const Precision precision = o.lanes == "float32" ? Precision::float32 : Precision::float64;
   std::vector<const Model*> models;
   if (o.models.empty()) models.assign(all_models().begin(), all_models().end());

@@ -30,6 +30,7 @@ FitOutcome run_fit(const FitRequest& request) {
     if (static_cast<int>(request.start.size()) != model.dim())
       throw InputError(fmt::format("fit: a start point of {} values for {} parameters", request.start.size(), model.dim()));
     out.bounds.start = request.start;
+    clamp_into_box(model, out.bounds, out.bounds.start);
   }
   if (request.auto_budget) {
     out.auto_budget.emplace();

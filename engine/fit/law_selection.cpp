@@ -49,12 +49,13 @@ ChoiceFolds choice_folds(const std::vector<const Signals*>& records, const std::
   return out;
 }
 
-/// The box of a fit of `training`'s records together, which is the smallest holding each one's own box.
+/// The smallest box holding the box of a fit of each of `training`'s records alone (their joint fit's box is
+/// narrower in the stiffening parameters: RecordBoundsRule::stiffening).
 Bounds training_hull(const ResolvedModel& gauged, const std::vector<const Signals*>& records,
                      const std::vector<int>& training) {
   std::vector<const Signals*> kept;
   for (int r : training) kept.push_back(records[r]);
-  return gauged.bounds_for(kept);
+  return gauged.bounds_for(kept, RecordBox::hull);
 }
 
 /// What scoring needs, fixed for one selection.

@@ -55,8 +55,8 @@ ResolvedModel resolve_model(const ModelChoice& choice) {
   return r;
 }
 
-Bounds ResolvedModel::bounds_for(std::span<const Signals* const> records) const {
-  Bounds b = default_bounds(*model, records);
+Bounds ResolvedModel::bounds_for(std::span<const Signals* const> records, RecordBox box) const {
+  Bounds b = default_bounds(*model, records, box);
   if (!bounds_override.empty()) override_bounds(b, *model, bounds_override, bounds_option);
   return b;
 }

@@ -36,7 +36,7 @@ struct ResolvedModel {
 
   /// The box for fitting these records: the record-scaled defaults (Model::record_bounds_rules) with the
   /// overrides.
-  [[nodiscard]] Bounds bounds_for(std::span<const Signals* const> records) const;
+  [[nodiscard]] Bounds bounds_for(std::span<const Signals* const> records, RecordBox box = RecordBox::joint) const;
 };
 
 /// `laws = "auto"` (`fit --laws auto`, a sweep's `laws = "auto"`): each fit chooses its own laws

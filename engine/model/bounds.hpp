@@ -20,9 +20,19 @@ struct Bounds {
 /// The model's fixed default bounds.
 Bounds default_bounds(const Model& model);
 
+/// Which box over several records: that of their joint fit (each rule's hull of the records' own ranges, a
+/// stiffening rule's intersection), or the hull of the boxes of a fit of each record alone.
+enum class RecordBox { joint, hull };
+
 /// The default bounds for fitting these records: the fixed ones, with the model's record rules
 /// (Model::record_bounds_rules) applied with the records' scales. Records without force keep the fixed bounds.
-Bounds default_bounds(const Model& model, std::span<const Signals* const> records);
+Bounds default_bounds(const Model& model, std::span<const Signals* const> records, RecordBox box = RecordBox::joint);
+
+/// `point` (a start) moved into `box`: coordinate by coordinate, except the free parameters a law model's state
+/// gauge sums (β and γ of Bouc–Wen, A = β + γ), which are first scaled together by the largest factor in (0, 1]
+/// that brings each inside its bounds: clamped one by one, β = −1.2e5 and γ = 1.2e5 into ±8e4 would give A = 0 and
+/// a state that never moves, where scaled they keep the loop's shape with a longer yield displacement.
+void clamp_into_box(const Model& model, const Bounds& box, std::span<double> point);
 
 /// Overrides bounds from "name=lo:hi,name=lo:hi" (SI). Throws InputError naming `option` for an unknown
 /// parameter, a malformed range, or lower > upper ("--bounds C: lower bound 5 is greater than upper bound 1").

@@ -31,7 +31,8 @@ std::string RecordBoundsRule::describe() const {
   factor("F", force);
   factor("V", velocity);
   factor("X", amplitude);
-  return fmt::format("{}..{} x {}", lower, upper, scale.empty() ? "1" : scale);
+  return fmt::format("{}..{} x {}{}", lower, upper, scale.empty() ? "1" : scale,
+                     stiffening ? " (several records: inside each one's)" : "");
 }
 
 void Model::simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const {

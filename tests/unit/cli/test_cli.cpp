@@ -422,6 +422,9 @@ TEST(Cli, BenchRejectsBadValues) {
   expect_error("bench --models fvd.nope", "fvd.nope");
   expect_error("bench --trials 0", "--trials");
   expect_error("bench --format xml", "--format: expected md or json, got 'xml'");
+  expect_error("bench --workload square", "--workload: expected sine or real-records, got 'square'");
+  const auto empty = testing::test_temp_dir("bench_real_records");  // a data folder without the UTFSM records
+  expect_error("bench --workload real-records --data-dir " + empty.string(), (empty / "10mm1Hz1A.txt").string());
 }
 
 }  // namespace dampbench
