@@ -8,6 +8,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
+#include "engine/sweep/reproduction.hpp"
 
 namespace dampbench::cli {
 namespace {
@@ -102,6 +103,15 @@ std::vector<std::string> write_sweep_outputs(const sweep::StoreResults& results,
     }
     write_output(sub / "tables.md", md);
     write_output(sub / "summary.md", part_summary(results, p, tables, info));
+    if (const auto& reproduction = results.parts[static_cast<std::size_t>(p)].reproduction) {
+      // After the tables, so that a malformed paper file loses none of them.
+      const sweep::Reproduction r = sweep::reproduce(*reproduction, tables);
+      std::vector<std::string> records;
+      for (const auto& d : results.header.datasets)
+        if (d.part == p) records.push_back(d.name);
+      write_output(sub / "reproduction.md", sweep::reproduction_markdown(r));
+      write_output(sub / "reproduction.json", sweep::reproduction_json(r, records));
+    }
     if (parts > 1) {
       const PartFigures f = figures(results, p);
       top += fmt::format("| {} | {}/ | {} | {} | {} | {:.4g} | {:.1f} |\n", part.title, part.name, f.groups, f.tasks,

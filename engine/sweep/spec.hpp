@@ -151,6 +151,15 @@ struct RegressionSpec {
   Selection where;
 };
 
+/// `[reproduction]`: the published numbers a part's tables stand beside (engine/sweep/reproduction.hpp), and what
+/// its records are, which decides what a verdict on them shows.
+struct ReproductionSpec {
+  std::string published;  ///< the paper's numbers as printed (datasets/papers/*.toml), resolved
+  std::string data;       ///< "real" or "synthetic"
+  std::string truth;      ///< synthetic: what made the records (a model, a documented generator)
+  bool truth_is_compared_model = false;  ///< the truth is one of the models compared: verdicts are recovery checks
+};
+
 struct PartSpec {
   std::string path;    ///< file the part came from
   std::string source;  ///< its text (stored with the results; tables are re-read from it)
@@ -165,6 +174,7 @@ struct PartSpec {
   std::vector<SplitSpec> splits;         ///< at least one (default: every dataset, by = "each")
   std::vector<TableSpec> tables;
   std::vector<RegressionSpec> regressions;
+  std::optional<ReproductionSpec> reproduction;
   std::string canonical;  ///< canonical JSON of what determines results (hashed)
 
   [[nodiscard]] int model_index(std::string_view name) const;      ///< -1 if absent

@@ -35,6 +35,14 @@ DAMPBENCH, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 MPIRUN = shutil.which("mpirun")
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_btl_vader_single_copy_mechanism="none")
 FVD = os.path.join(support.ROOT, "datasets", "presets", "fvd.toml")
+
+
+def relocated(preset_text):
+    """The fvd preset's text with its relative paths (records, the paper's numbers) made absolute, for a copy."""
+    return (preset_text.replace('file = "../fvd/', f'file = "{support.ROOT}/datasets/fvd/')
+            .replace('published = "../papers/', f'published = "{support.ROOT}/datasets/papers/'))
+
+
 failures = []
 
 
@@ -196,7 +204,7 @@ def main():
     # Ranks that would not compute the same thing (here: another sweep file on rank 1) are refused.
     other = os.path.join(WORK, "fvd-other-seed.toml")
     with open(FVD) as f, open(other, "w") as g:
-        g.write(f.read().replace("seed = 1", "seed = 2").replace('file = "../fvd/', f'file = "{support.ROOT}/datasets/fvd/'))
+        g.write(relocated(f.read().replace("seed = 1", "seed = 2")))
     cmd = [MPIRUN, "--oversubscribe", "-np", "1", DAMPBENCH, "run", FVD, "-o", "mixed-ranks", "--quiet", ":",
            "-np", "1", DAMPBENCH, "run", other, "-o", "mixed-ranks", "--quiet"]
     p = subprocess.run(cmd, cwd=WORK, capture_output=True, text=True, env=ENV, timeout=300)
@@ -209,8 +217,7 @@ def main():
     with open(FVD) as f, open(slow, "w") as g:
         text = f.read()
         check("iterations = 100" in text, "the fvd preset no longer sets iterations = 100 (the kill tests slow it down)")
-        g.write(text.replace("iterations = 100", "iterations = 400")
-                .replace('file = "../fvd/', f'file = "{support.ROOT}/datasets/fvd/'))
+        g.write(relocated(text.replace("iterations = 100", "iterations = 400")))
     run(["run", slow, "-o", "fvd-slow-single", "--quiet", "--no-report"])
     single_store = os.path.join(WORK, "fvd-slow-single", "store.sqlite")
     store = os.path.join(WORK, "killed", "store.sqlite")

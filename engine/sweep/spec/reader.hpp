@@ -151,6 +151,9 @@ void read_splits(const Reader& r, const toml::table& root, PartSpec& part);
 void check_auto_laws(const Reader& r, const toml::table& root, const PartSpec& part);
 void read_tables(const Reader& r, const toml::table& root, PartSpec& part);
 void read_regressions(const Reader& r, const toml::table& root, PartSpec& part);
+/// `[reproduction]` (published, data, truth, truth_is_compared_model); the published file must exist when
+/// `check_files`.
+void read_reproduction(const Reader& r, const toml::table& root, PartSpec& part, bool check_files);
 /// Datasets, with their files checked and globs expanded when options.check_files; optional entries whose
 /// files are missing are skipped with a line in `notes`.
 void read_datasets(const Reader& r, const toml::table& root, const SpecOptions& options, PartSpec& part,

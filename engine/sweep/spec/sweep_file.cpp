@@ -13,10 +13,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Canonical JSON of the keys that decide results (not titles, labels, tables or regressions).
+/// Canonical JSON of the keys that decide results (not titles, labels, tables, regressions or the published numbers).
 std::string canonical(const toml::table& root) {
   toml::table copy = root;
-  for (const char* k : {"title", "tables", "regressions"}) copy.erase(k);
+  for (const char* k : {"title", "tables", "regressions", "reproduction"}) copy.erase(k);
   if (auto* d = copy.get("datasets"); d && d->is_array()) {
     for (auto& e : *d->as_array())
       if (e.is_table()) e.as_table()->erase("label");
@@ -30,7 +30,7 @@ PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOpt
                          std::vector<std::string>& notes) {
   PartSpec part;
   r.only_keys(root, "", {"name", "title", "seed", "runs", "metric", "metrics", "models", "bounds", "optimizer",
-                         "optimizers", "datasets", "splits", "tables", "regressions"});
+                         "optimizers", "datasets", "splits", "tables", "regressions", "reproduction"});
   part.path = r.path();
   part.name = r.required_string(root, "name", "");
   part.title = r.string(root, "title", "").value_or(part.name);
@@ -52,6 +52,7 @@ PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOpt
   check_auto_laws(r, root, part);
   read_tables(r, root, part);
   read_regressions(r, root, part);
+  read_reproduction(r, root, part, options.check_files);
   part.collections.clear();
   read_datasets(r, root, options, part, notes);
   part.canonical = canonical(root);

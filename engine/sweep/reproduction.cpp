@@ -1,0 +1,274 @@
+#include "engine/sweep/reproduction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/sweep/spec/reader.hpp"
+
+namespace dampbench::sweep {
+namespace {
+
+using spec_file::Reader;
+
+/// One [[tables]] entry of a paper file.
+struct PublishedTable {
+  std::string table, ours, label;
+  std::vector<std::string> columns, compare;
+  std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column
+};
+
+struct PublishedClaim {
+  std::string text, column;
+  std::vector<std::string> order;  ///< tables, best (lowest) first
+  std::string note;                ///< what a verdict on it can mean (e.g. nested models)
+};
+
+/// Relative difference of ours from the paper's (0 when equal, +inf against a published 0).
+double relative(double ours, double paper) {
+  if (ours == paper) return 0.0;
+  return paper == 0 ? std::numeric_limits<double>::infinity() : (ours - paper) / std::fabs(paper);
+}
+
+std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column) {
+  const auto c = std::find(t.columns.begin(), t.columns.end(), column);
+  if (c == t.columns.end()) return std::nullopt;
+  const auto j = static_cast<std::size_t>(c - t.columns.begin());
+  for (const auto& r : t.rows)
+    if (!r.empty() && r[0].text == row && j < r.size()) return r[j].value;
+  return std::nullopt;
+}
+
+const Table* find_table(const std::vector<Table>& ours, const std::string& id) {
+  const auto it = std::find_if(ours.begin(), ours.end(), [&](const Table& t) { return t.id == id; });
+  return it == ours.end() ? nullptr : &*it;
+}
+
+/// "holds" or "differs" by the tolerance, with the largest difference as the detail.
+void judge_numbers(ReproductionItem& item, double tolerance) {
+  double worst = 0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < item.values.size(); ++i) {
+    const double d = std::fabs(relative(item.values[i].second, item.paper_values[i].second));
+    if (!(d <= worst)) worst = d, at = i;
+  }
+  if (item.verdict.empty()) item.verdict = worst <= tolerance ? "holds" : "differs";
+  if (!item.values.empty()) {
+    const std::string words = fmt::format("largest difference {}: ours {:.6g}, paper {:.6g} ({:+.1f} %)", item.values[at].first,
+                                          item.values[at].second, item.paper_values[at].second,
+                                          100 * relative(item.values[at].second, item.paper_values[at].second));
+    item.detail = item.detail.empty() ? words : item.detail + "; " + words;
+  }
+}
+
+std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root) {
+  std::vector<PublishedTable> out;
+  const toml::node* node = root.get("tables");
+  if (!node || !node->is_array_of_tables()) r.fail(node, "tables", "expected one or more [[tables]]");
+  int i = 0;
+  for (const toml::node& n : *node->as_array()) {
+    const std::string key = fmt::format("tables[{}]", i++);
+    const toml::table& t = *n.as_table();
+    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare"});
+    PublishedTable p;
+    p.table = r.required_string(t, "table", key);
+    p.ours = r.required_string(t, "ours", key);
+    p.label = r.string(t, "label", key).value_or(p.table);
+    p.columns = r.strings(t, "columns", key);
+    if (p.columns.empty()) r.fail(&t, key + ".columns", "expected the table's column names");
+    p.compare = r.strings(t, "compare", key);
+    if (p.compare.empty()) p.compare = p.columns;
+    for (const auto& c : p.compare)
+      if (std::find(p.columns.begin(), p.columns.end(), c) == p.columns.end())
+        r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
+    const toml::node* rows = t.get("rows");
+    if (!rows || !rows->is_array()) r.fail(rows, key + ".rows", "expected rows = [[\"row label\", number, ...], ...]");
+    for (const toml::node& row : *rows->as_array()) {
+      const toml::array* a = row.as_array();
+      if (!a || a->size() != p.columns.size() + 1 || !(*a)[0].is_string())
+        r.fail(&row, key + ".rows",
+               fmt::format("expected a row label and {} numbers (one per column)", p.columns.size()));
+      std::vector<double> values;
+      for (std::size_t j = 1; j < a->size(); ++j) values.push_back(r.number((*a)[j], key + ".rows"));
+      p.rows.emplace_back(std::string(*(*a)[0].value<std::string>()), std::move(values));
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root, const std::vector<PublishedTable>& tables) {
+  std::vector<PublishedClaim> out;
+  const toml::node* node = root.get("claims");
+  if (!node) return out;
+  if (!node->is_array_of_tables()) r.fail(node, "claims", "expected [[claims]] tables");
+  int i = 0;
+  for (const toml::node& n : *node->as_array()) {
+    const std::string key = fmt::format("claims[{}]", i++);
+    const toml::table& t = *n.as_table();
+    r.only_keys(t, key, {"text", "column", "order", "note"});
+    PublishedClaim c{r.required_string(t, "text", key), r.required_string(t, "column", key), r.strings(t, "order", key),
+                     r.string(t, "note", key).value_or("")};
+    if (c.order.size() < 2) r.fail(&t, key + ".order", "expected two or more tables, best first");
+    for (const auto& name : c.order) {
+      const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });
+      if (it == tables.end()) r.fail(t.get("order"), key + ".order", fmt::format("no [[tables]] entry '{}'", name));
+      if (std::find(it->columns.begin(), it->columns.end(), c.column) == it->columns.end())
+        r.fail(t.get("column"), key + ".column", fmt::format("'{}' has no column '{}'", name, c.column));
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& ours, double tolerance) {
+  ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {}, "", ""};
+  const Table* t = find_table(ours, p.ours);
+  if (!t) {
+    item.verdict = "not-comparable";
+    item.detail = fmt::format("this run wrote no table '{}'", p.ours);
+    return item;
+  }
+  for (const auto& [row, values] : p.rows)
+    for (const auto& column : p.compare) {
+      const auto j = static_cast<std::size_t>(std::find(p.columns.begin(), p.columns.end(), column) - p.columns.begin());
+      const auto v = our_value(*t, row, column);
+      if (!v) {
+        item.verdict = "not-comparable";
+        item.detail = fmt::format("table '{}' has no number at row '{}', column '{}'", p.ours, row, column);
+        continue;
+      }
+      const std::string label = fmt::format("{} {}", row, column);
+      item.paper_values.emplace_back(label, values[j]);
+      item.values.emplace_back(label, *v);
+    }
+  judge_numbers(item, tolerance);
+  return item;
+}
+
+ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std::vector<PublishedTable>& tables,
+                            const std::vector<Table>& ours, double tolerance) {
+  std::vector<const PublishedTable*> order;
+  for (const auto& name : c.order)
+    order.push_back(&*std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; }));
+  ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", ""};
+  std::vector<std::string> reversed;
+  for (const auto& [row, unused] : order.front()->rows) {
+    std::vector<double> paper, here;
+    for (const PublishedTable* p : order) {
+      const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), c.column) - p->columns.begin());
+      const auto prow = std::find_if(p->rows.begin(), p->rows.end(), [&](const auto& x) { return x.first == row; });
+      const Table* t = find_table(ours, p->ours);
+      const auto v = t ? our_value(*t, row, c.column) : std::nullopt;
+      if (prow == p->rows.end() || !v) {
+        item.verdict = "not-comparable";
+        item.detail = fmt::format("row '{}' of {} is missing from the paper file or from our table '{}'", row, p->table, p->ours);
+        return item;
+      }
+      paper.push_back(prow->second[j]);
+      here.push_back(*v);
+      const std::string label = fmt::format("{}: {}", row, p->label);
+      item.paper_values.emplace_back(label, paper.back());
+      item.values.emplace_back(label, here.back());
+    }
+    for (std::size_t a = 0; a < order.size(); ++a)
+      for (std::size_t b = a + 1; b < order.size(); ++b) {
+        if (paper[a] > paper[b])
+          r.fail(nullptr, "claims",
+                 fmt::format("{} of {} ({:g}) is above {}'s ({:g}): `order` lists the tables best (lowest) first", row,
+                             order[a]->table, paper[a], order[b]->table, paper[b]));
+        if (paper[a] < paper[b] && here[a] > here[b])
+          reversed.push_back(fmt::format("{}: {} above {}", row, order[a]->label, order[b]->label));
+      }
+  }
+  if (!reversed.empty()) {
+    item.verdict = "reversed";
+    item.detail = fmt::format("ranked the other way here: {}", fmt::join(reversed, "; "));
+  }
+  judge_numbers(item, tolerance);
+  if (item.verdict != "reversed") item.detail = "same ranking on every row; " + item.detail;
+  if (!c.note.empty()) item.detail += ". " + c.note;
+  return item;
+}
+
+bool recovery_check(const Reproduction& r) { return r.data.data == "synthetic" && r.data.truth_is_compared_model; }
+
+std::string data_sentence(const ReproductionSpec& d) {
+  if (d.data == "real") return "real records";
+  return fmt::format("synthetic records (truth: {}; {})", d.truth,
+                     d.truth_is_compared_model ? "one of the compared models, so every verdict is a recovery check, "
+                                                 "not evidence for the paper's claim"
+                                               : "none of the compared models");
+}
+
+}  // namespace
+
+Reproduction reproduce(const ReproductionSpec& spec, const std::vector<Table>& ours) {
+  const Reader r(spec.published);
+  const toml::table root = spec_file::parse_toml(spec_file::read_text(spec.published, "published numbers file"),
+                                                 spec.published);
+  r.only_keys(root, "", {"paper", "title", "source", "tolerance_rel", "tables", "claims"});
+  Reproduction out;
+  out.paper = r.required_string(root, "paper", "");
+  out.title = r.required_string(root, "title", "");
+  out.source = r.required_string(root, "source", "");
+  out.tolerance_rel = r.number(root, "tolerance_rel", "").value_or(0.1);
+  if (!(out.tolerance_rel >= 0)) r.fail(root.get("tolerance_rel"), "tolerance_rel", "expected a number >= 0");
+  out.data = spec;
+  const auto tables = read_tables(r, root);
+  const auto claims = read_claims(r, root, tables);
+  for (const auto& c : claims) out.items.push_back(claim_item(r, c, tables, ours, out.tolerance_rel));
+  for (const auto& p : tables) out.items.push_back(table_item(p, ours, out.tolerance_rel));
+  return out;
+}
+
+std::string reproduction_markdown(const Reproduction& r) {
+  std::string md = fmt::format("# Reproduction of {}: {}\n\nThe paper's numbers as printed ({}), ours from this run's "
+                               "tables, on {}. Numbers hold within ±{:g} % of the paper's.\n\n",
+                               r.paper, r.title, r.source, data_sentence(r.data), 100 * r.tolerance_rel);
+  md += "| table | claim | verdict | detail |\n|---|---|---|---|\n";
+  for (const auto& i : r.items)
+    md += fmt::format("| {} | {} | **{}**{} | {} |\n", i.table, i.claim, i.verdict, recovery_check(r) ? " (recovery check)" : "",
+                      i.detail);
+  for (const auto& i : r.items) {
+    if (i.values.empty()) continue;
+    md += fmt::format("\n**{}: {}** ({})\n\n| | paper | ours | difference |\n|---|---:|---:|---:|\n", i.table, i.claim, i.verdict);
+    for (std::size_t k = 0; k < i.values.size(); ++k)
+      md += fmt::format("| {} | {} | {} | {:+.1f} % |\n", i.values[k].first, format_number(i.paper_values[k].second),
+                        format_number(i.values[k].second), 100 * relative(i.values[k].second, i.paper_values[k].second));
+  }
+  return md;
+}
+
+std::string reproduction_json(const Reproduction& r, const std::vector<std::string>& records) {
+  nlohmann::ordered_json j;
+  j["paper"] = r.paper;
+  j["title"] = r.title;
+  j["source"] = r.source;
+  j["tolerance_rel"] = r.tolerance_rel;
+  j["data"] = {{"kind", r.data.data},
+               {"truth", r.data.truth},
+               {"truth_is_compared_model", r.data.truth_is_compared_model},
+               {"records", records}};
+  j["items"] = nlohmann::ordered_json::array();
+  for (const auto& i : r.items) {
+    nlohmann::ordered_json paper = nlohmann::ordered_json::object(), ours = nlohmann::ordered_json::object();
+    for (const auto& [label, v] : i.paper_values) paper[label] = v;
+    for (const auto& [label, v] : i.values) ours[label] = v;
+    j["items"].push_back({{"table", i.table},
+                          {"claim", i.claim},
+                          {"paper_values", paper},
+                          {"values", ours},
+                          {"verdict", i.verdict},
+                          {"detail", i.detail},
+                          {"recovery_check", recovery_check(r)}});
+  }
+  return j.dump(2) + "\n";
+}
+
+}  // namespace dampbench::sweep

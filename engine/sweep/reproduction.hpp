@@ -1,0 +1,51 @@
+#pragma once
+// The reproduction report of a preset (`reproduction.md`, `reproduction.json` beside its tables): each published
+// table or claim of a paper beside the same numbers from our tables, the difference, and a verdict.
+//
+// The paper's numbers live in a file of their own (datasets/papers/<paper>.toml, as printed, each table cited):
+//   paper, title, source, tolerance_rel (numbers within it "hold")
+//   [[tables]]  table ("Table 3"), ours (the id of our table with the same rows and columns), label (what the
+//               table is of, e.g. the model), columns, rows = [["Test 1", 0.32, ...], ...], compare (the columns
+//               compared; default all)
+//   [[claims]]  text, column, order = the tables best (lowest) first as the paper's numbers rank them
+// Verdicts (fixed vocabulary):
+//   holds           same ranking (a claim) and every number within tolerance_rel of the paper's
+//   differs         same ranking, some number outside the tolerance
+//   reversed        a pair the paper ranks one way (strictly) ranks the other way here
+//   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not)
+// A verdict on synthetic records whose truth is one of the compared models is a recovery check, never evidence
+// for the paper's claim; the report says so on the item.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/common/table.hpp"
+#include "engine/sweep/spec.hpp"
+
+namespace dampbench::sweep {
+
+struct ReproductionItem {
+  std::string table;  ///< "Table 3", or the claim's tables
+  std::string claim;  ///< the claim's text, or what the table holds
+  std::vector<std::pair<std::string, double>> paper_values, values;  ///< same labels, in the same order
+  std::string verdict;
+  std::string detail;  ///< why: the largest difference, the reversed pairs, the missing table
+};
+
+struct Reproduction {
+  std::string paper, title, source;
+  double tolerance_rel = 0;
+  ReproductionSpec data;
+  std::vector<ReproductionItem> items;
+};
+
+/// The report of the paper file `spec.published` against `ours` (one part's tables). InputError naming the file,
+/// line and key for a malformed paper file.
+Reproduction reproduce(const ReproductionSpec& spec, const std::vector<Table>& ours);
+
+std::string reproduction_markdown(const Reproduction& r);
+/// {"paper", "title", "source", "tolerance_rel", "data": {kind, truth, truth_is_compared_model, records},
+///  "items": [{table, claim, paper_values, values, verdict, detail, recovery_check}]}
+std::string reproduction_json(const Reproduction& r, const std::vector<std::string>& records);
+
+}  // namespace dampbench::sweep

@@ -1,0 +1,29 @@
+// [reproduction] of a sweep file: which published numbers the part's tables stand beside, and what its records are.
+#include <filesystem>
+
+#include "engine/sweep/spec/reader.hpp"
+
+namespace dampbench::sweep::spec_file {
+
+void read_reproduction(const Reader& r, const toml::table& root, PartSpec& part, bool check_files) {
+  const toml::node* node = root.get("reproduction");
+  if (!node) return;
+  const toml::table* t = node->as_table();
+  if (!t) r.fail(node, "reproduction", "expected a table: [reproduction] with published, data and truth");
+  r.only_keys(*t, "reproduction", {"published", "data", "truth", "truth_is_compared_model"});
+  ReproductionSpec spec;
+  const std::string folder = std::filesystem::path(r.path()).parent_path().string();
+  spec.published = resolve_path(r.required_string(*t, "published", "reproduction"), folder);
+  if (check_files && !std::filesystem::exists(spec.published))
+    r.fail(t->get("published"), "reproduction.published", fmt::format("no file '{}'", spec.published));
+  spec.data = r.required_string(*t, "data", "reproduction");
+  if (spec.data != "real" && spec.data != "synthetic")
+    r.fail(t->get("data"), "reproduction.data", fmt::format("expected real or synthetic, got '{}'", spec.data));
+  spec.truth = r.string(*t, "truth", "reproduction").value_or("");
+  if (spec.data == "synthetic" && spec.truth.empty())
+    r.fail(node, "reproduction.truth", "synthetic records need their truth named (what made them)");
+  spec.truth_is_compared_model = r.boolean(*t, "truth_is_compared_model", "reproduction", false);
+  part.reproduction = std::move(spec);
+}
+
+}  // namespace dampbench::sweep::spec_file

@@ -1,0 +1,112 @@
+// The reproduction report (engine/sweep/reproduction.hpp): hand-made tables of ours against a hand-written paper
+// file, one case per verdict, and the messages of a malformed paper file.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/sweep/reproduction.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench::sweep {
+namespace {
+
+/// Our table `id` with rows "Test 1", "Test 2" and columns Min, Mean (an fvd-style OF table).
+Table ours(const std::string& id, double t1, double t2) {
+  Table t{id, id, {"Test", "Mean", "Min"}, {}};
+  t.rows.push_back({"Test 1", number_cell(t1 * 1.01), number_cell(t1)});
+  t.rows.push_back({"Test 2", number_cell(t2 * 1.01), number_cell(t2)});
+  return t;
+}
+
+/// A paper file: model A's table (Min 0.10, 0.20) ranked above model B's (0.30, 0.40), compared on Min.
+ReproductionSpec paper_file(const std::string& extra = "", bool truth_is_compared_model = false) {
+  const auto path = testing::test_temp_dir("reproduction") / "paper.toml";
+  testing::write_text(path, "paper = \"p\"\ntitle = \"A paper\"\nsource = \"seed x, Tables 1-2\"\ntolerance_rel = 0.1\n"
+                            "[[claims]]\ntext = \"A fits better than B\"\ncolumn = \"Min\"\n"
+                            "order = [\"Table 1\", \"Table 2\"]\n"
+                            "[[tables]]\ntable = \"Table 1\"\nlabel = \"A\"\nours = \"a\"\ncolumns = [\"Min\", \"Mean\"]\n"
+                            "compare = [\"Min\"]\nrows = [[\"Test 1\", 0.10, 0.11], [\"Test 2\", 0.20, 0.21]]\n"
+                            "[[tables]]\ntable = \"Table 2\"\nlabel = \"B\"\nours = \"b\"\ncolumns = [\"Min\", \"Mean\"]\n"
+                            "compare = [\"Min\"]\nrows = [[\"Test 1\", 0.30, 0.31], [\"Test 2\", 0.40, 0.41]]\n" +
+                                extra);
+  return {path.string(), "synthetic", "a model", truth_is_compared_model};
+}
+
+TEST(Reproduction, NumbersWithinTheToleranceAndTheSameRankingHold) {
+  // Each of ours within 10 % of the paper's (0.105 is +5 %, 0.38 is −5 %).
+  const Reproduction r = reproduce(paper_file(), {ours("a", 0.105, 0.19), ours("b", 0.31, 0.38)});
+  ASSERT_EQ(r.items.size(), 3u);  // the claim, then each table
+  EXPECT_EQ(r.items[0].verdict, "holds") << r.items[0].detail;
+  EXPECT_EQ(r.items[1].verdict, "holds");
+  EXPECT_EQ(r.items[2].verdict, "holds");
+  // Labels shared between the paper's values and ours, in the same order
+  ASSERT_EQ(r.items[0].values.size(), 4u);
+  EXPECT_EQ(r.items[0].values[1].first, "Test 1: B");
+  EXPECT_EQ(r.items[0].paper_values[1].first, "Test 1: B");
+  EXPECT_DOUBLE_EQ(r.items[0].paper_values[1].second, 0.30);
+  EXPECT_DOUBLE_EQ(r.items[0].values[1].second, 0.31);
+}
+
+TEST(Reproduction, TheSameRankingWithOtherNumbersDiffers) {
+  // Ten times lower, the same order: the claim's ranking stands, its numbers do not.
+  const Reproduction r = reproduce(paper_file(), {ours("a", 0.01, 0.02), ours("b", 0.03, 0.04)});
+  EXPECT_EQ(r.items[0].verdict, "differs");
+  EXPECT_NE(r.items[0].detail.find("same ranking on every row"), std::string::npos) << r.items[0].detail;
+  EXPECT_NE(r.items[0].detail.find("-90.0 %"), std::string::npos) << r.items[0].detail;
+  EXPECT_EQ(r.items[1].verdict, "differs");
+}
+
+TEST(Reproduction, APairRankedTheOtherWayIsReversed) {
+  // On Test 2, B (0.18) is below A (0.20): the claim is reversed there, even with every number within 10 %.
+  const Reproduction r = reproduce(paper_file(), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.18)});
+  EXPECT_EQ(r.items[0].verdict, "reversed");
+  EXPECT_NE(r.items[0].detail.find("Test 2: A above B"), std::string::npos) << r.items[0].detail;
+  EXPECT_EQ(r.items[1].verdict, "holds");
+}
+
+TEST(Reproduction, AMissingTableIsNotComparableWithTheReason) {
+  const Reproduction r = reproduce(paper_file(), {ours("a", 0.10, 0.20)});
+  EXPECT_EQ(r.items[0].verdict, "not-comparable");
+  EXPECT_EQ(r.items[2].verdict, "not-comparable");
+  EXPECT_NE(r.items[2].detail.find("this run wrote no table 'b'"), std::string::npos) << r.items[2].detail;
+}
+
+TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
+  const Reproduction r = reproduce(paper_file("", true), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
+  const auto j = nlohmann::json::parse(reproduction_json(r, {"rec1", "rec2"}));
+  EXPECT_EQ(j.at("paper"), "p");
+  EXPECT_EQ(j.at("data").at("kind"), "synthetic");
+  EXPECT_EQ(j.at("data").at("truth_is_compared_model"), true);
+  EXPECT_EQ(j.at("data").at("records").size(), 2u);
+  const auto& item = j.at("items").at(1);
+  EXPECT_EQ(item.at("table"), "Table 1");
+  EXPECT_DOUBLE_EQ(item.at("paper_values").at("Test 2 Min").get<double>(), 0.20);
+  EXPECT_DOUBLE_EQ(item.at("values").at("Test 2 Min").get<double>(), 0.20);
+  EXPECT_EQ(item.at("recovery_check"), true);
+  EXPECT_NE(reproduction_markdown(r).find("(recovery check)"), std::string::npos);
+}
+
+TEST(Reproduction, AMalformedPaperFileIsReportedWithFileAndKey) {
+  const std::vector<Table> tables{ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)};
+  // order naming a table the file does not have
+  auto bad = paper_file("[[claims]]\ntext = \"x\"\ncolumn = \"Min\"\norder = [\"Table 1\", \"Table 9\"]\n");
+  std::string e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("paper.toml"), std::string::npos) << e;
+  EXPECT_NE(e.find("no [[tables]] entry 'Table 9'"), std::string::npos) << e;
+  // an order the paper's own numbers contradict
+  bad = paper_file("[[claims]]\ntext = \"x\"\ncolumn = \"Min\"\norder = [\"Table 2\", \"Table 1\"]\n");
+  e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("best (lowest) first"), std::string::npos) << e;
+  // a row with one number too few
+  bad = paper_file("[[tables]]\ntable = \"T\"\nours = \"a\"\ncolumns = [\"Min\"]\nrows = [[\"Test 1\"]]\n");
+  e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("expected a row label and 1 numbers"), std::string::npos) << e;
+  // a missing file
+  e = testing::error_of([&] { (void)reproduce({"/nonexistent/paper.toml", "real", "", false}, tables); });
+  EXPECT_NE(e.find("/nonexistent/paper.toml"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace dampbench::sweep
