@@ -20,7 +20,8 @@ using spec_file::Reader;
 struct PublishedTable {
   std::string table, ours, label;
   std::vector<std::string> columns, compare;
-  std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column
+  std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column (in our unit)
+  double scale = 1;  ///< printed value × scale = the value in our table's unit (0.01: the paper prints %)
 };
 
 struct PublishedClaim {
@@ -74,7 +75,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
   for (const toml::node& n : *node->as_array()) {
     const std::string key = fmt::format("tables[{}]", i++);
     const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare"});
+    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale"});
     PublishedTable p;
     p.table = r.required_string(t, "table", key);
     p.ours = r.required_string(t, "ours", key);
@@ -86,6 +87,8 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
     for (const auto& c : p.compare)
       if (std::find(p.columns.begin(), p.columns.end(), c) == p.columns.end())
         r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
+    p.scale = r.number(t, "scale", key).value_or(1.0);
+    if (!(p.scale > 0)) r.fail(t.get("scale"), key + ".scale", "expected a number > 0 (printed value x scale = ours)");
     const toml::node* rows = t.get("rows");
     if (!rows || !rows->is_array()) r.fail(rows, key + ".rows", "expected rows = [[\"row label\", number, ...], ...]");
     for (const toml::node& row : *rows->as_array()) {
@@ -94,7 +97,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
         r.fail(&row, key + ".rows",
                fmt::format("expected a row label and {} numbers (one per column)", p.columns.size()));
       std::vector<double> values;
-      for (std::size_t j = 1; j < a->size(); ++j) values.push_back(r.number((*a)[j], key + ".rows"));
+      for (std::size_t j = 1; j < a->size(); ++j) values.push_back(r.number((*a)[j], key + ".rows") * p.scale);
       p.rows.emplace_back(std::string(*(*a)[0].value<std::string>()), std::move(values));
     }
     out.push_back(std::move(p));
@@ -112,13 +115,16 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
     const std::string key = fmt::format("claims[{}]", i++);
     const toml::table& t = *n.as_table();
     r.only_keys(t, key, {"text", "column", "order", "note"});
-    PublishedClaim c{r.required_string(t, "text", key), r.required_string(t, "column", key), r.strings(t, "order", key),
+    PublishedClaim c{r.required_string(t, "text", key), r.string(t, "column", key).value_or(""), r.strings(t, "order", key),
                      r.string(t, "note", key).value_or("")};
     if (c.order.size() < 2) r.fail(&t, key + ".order", "expected two or more tables, best first");
     for (const auto& name : c.order) {
       const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });
       if (it == tables.end()) r.fail(t.get("order"), key + ".order", fmt::format("no [[tables]] entry '{}'", name));
-      if (std::find(it->columns.begin(), it->columns.end(), c.column) == it->columns.end())
+      if (c.column.empty() && it->compare.size() != 1)
+        r.fail(&t, key + ".column", fmt::format("'{}' compares {} columns: name the one the claim ranks by", name,
+                                                it->compare.size()));
+      if (!c.column.empty() && std::find(it->columns.begin(), it->columns.end(), c.column) == it->columns.end())
         r.fail(t.get("column"), key + ".column", fmt::format("'{}' has no column '{}'", name, c.column));
     }
     out.push_back(std::move(c));
@@ -128,6 +134,7 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
 
 ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& ours, double tolerance) {
   ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {}, "", ""};
+  if (p.scale != 1) item.detail = fmt::format("the paper's printed values x {:g}", p.scale);
   const Table* t = find_table(ours, p.ours);
   if (!t) {
     item.verdict = "not-comparable";
@@ -157,14 +164,15 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
   for (const auto& name : c.order)
     order.push_back(&*std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; }));
   ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", ""};
-  std::vector<std::string> reversed;
+  std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
   for (const auto& [row, unused] : order.front()->rows) {
     std::vector<double> paper, here;
     for (const PublishedTable* p : order) {
-      const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), c.column) - p->columns.begin());
+      const std::string& column = c.column.empty() ? p->compare.front() : c.column;  // one compared column each
+      const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), column) - p->columns.begin());
       const auto prow = std::find_if(p->rows.begin(), p->rows.end(), [&](const auto& x) { return x.first == row; });
       const Table* t = find_table(ours, p->ours);
-      const auto v = t ? our_value(*t, row, c.column) : std::nullopt;
+      const auto v = t ? our_value(*t, row, column) : std::nullopt;
       if (prow == p->rows.end() || !v) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("row '{}' of {} is missing from the paper file or from our table '{}'", row, p->table, p->ours);
@@ -183,12 +191,18 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
                  fmt::format("{} of {} ({:g}) is above {}'s ({:g}): `order` lists the tables best (lowest) first", row,
                              order[a]->table, paper[a], order[b]->table, paper[b]));
         if (paper[a] < paper[b] && here[a] > here[b])
-          reversed.push_back(fmt::format("{}: {} above {}", row, order[a]->label, order[b]->label));
+          reversed[fmt::format("{} above {}", order[a]->label, order[b]->label)].push_back(row);
       }
   }
   if (!reversed.empty()) {
     item.verdict = "reversed";
-    item.detail = fmt::format("ranked the other way here: {}", fmt::join(reversed, "; "));
+    std::vector<std::string> pairs;
+    const std::size_t rows = order.front()->rows.size();
+    for (const auto& [pair, where] : reversed)
+      pairs.push_back(where.size() == rows ? fmt::format("{} on every row ({})", pair, rows)
+                                           : fmt::format("{} on {} of {} rows ({})", pair, where.size(), rows,
+                                                         fmt::join(where, ", ")));
+    item.detail = fmt::format("ranked the other way here: {}", fmt::join(pairs, "; "));
   }
   judge_numbers(item, tolerance);
   if (item.verdict != "reversed") item.detail = "same ranking on every row; " + item.detail;

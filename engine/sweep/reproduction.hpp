@@ -6,8 +6,9 @@
 //   paper, title, source, tolerance_rel (numbers within it "hold")
 //   [[tables]]  table ("Table 3"), ours (the id of our table with the same rows and columns), label (what the
 //               table is of, e.g. the model), columns, rows = [["Test 1", 0.32, ...], ...], compare (the columns
-//               compared; default all)
-//   [[claims]]  text, column, order = the tables best (lowest) first as the paper's numbers rank them
+//               compared; default all), scale (printed value × scale = ours, e.g. 0.01 for a paper's %; default 1)
+//   [[claims]]  text, order = the tables best (lowest) first as the paper's numbers rank them, column (the one
+//               they are ranked by; optional when each table compares one), note (what a verdict can mean)
 // Verdicts (fixed vocabulary):
 //   holds           same ranking (a claim) and every number within tolerance_rel of the paper's
 //   differs         same ranking, some number outside the tolerance

@@ -62,7 +62,7 @@ TEST(Reproduction, APairRankedTheOtherWayIsReversed) {
   // On Test 2, B (0.18) is below A (0.20): the claim is reversed there, even with every number within 10 %.
   const Reproduction r = reproduce(paper_file(), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.18)});
   EXPECT_EQ(r.items[0].verdict, "reversed");
-  EXPECT_NE(r.items[0].detail.find("Test 2: A above B"), std::string::npos) << r.items[0].detail;
+  EXPECT_NE(r.items[0].detail.find("A above B on 1 of 2 rows (Test 2)"), std::string::npos) << r.items[0].detail;
   EXPECT_EQ(r.items[1].verdict, "holds");
 }
 
@@ -86,6 +86,27 @@ TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   EXPECT_DOUBLE_EQ(item.at("values").at("Test 2 Min").get<double>(), 0.20);
   EXPECT_EQ(item.at("recovery_check"), true);
   EXPECT_NE(reproduction_markdown(r).find("(recovery check)"), std::string::npos);
+}
+
+TEST(Reproduction, APaperInPercentComparesAfterItsScaleAndAClaimRanksOneColumnPerTable) {
+  // Two models in one table of ours (a column each), the paper's errors printed in % (mfm Tables 4-5's layout).
+  const auto path = testing::test_temp_dir("reproduction") / "percent.toml";
+  testing::write_text(path, "paper = \"q\"\ntitle = \"Q\"\nsource = \"seed y\"\n"
+                            "[[claims]]\ntext = \"M below P\"\norder = [\"T M\", \"T P\"]\n"
+                            "[[tables]]\ntable = \"T M\"\nlabel = \"M\"\nours = \"errors\"\ncolumns = [\"m\"]\n"
+                            "scale = 0.01\nrows = [[\"r1\", 1.5], [\"r2\", 2.0]]\n"
+                            "[[tables]]\ntable = \"T P\"\nlabel = \"P\"\nours = \"errors\"\ncolumns = [\"p\"]\n"
+                            "scale = 0.01\nrows = [[\"r1\", 4.0], [\"r2\", 5.0]]\n");
+  Table errors{"errors", "errors", {"Dataset", "m", "p"}, {}};
+  errors.rows.push_back({"r1", number_cell(0.14), number_cell(0.041)});
+  errors.rows.push_back({"r2", number_cell(0.15), number_cell(0.05)});
+  const Reproduction r = reproduce({path.string(), "synthetic", "P", true}, {errors});
+  ASSERT_EQ(r.items.size(), 3u);
+  EXPECT_DOUBLE_EQ(r.items[1].paper_values[0].second, 0.015);  // 1.5 % as a fraction
+  EXPECT_NE(r.items[1].detail.find("printed values x 0.01"), std::string::npos) << r.items[1].detail;
+  EXPECT_EQ(r.items[2].verdict, "holds");  // 0.041 and 0.05 against the paper's 4.0 and 5.0 %
+  EXPECT_EQ(r.items[0].verdict, "reversed");  // M above P on both rows here
+  EXPECT_NE(r.items[0].detail.find("M above P on every row (2)"), std::string::npos) << r.items[0].detail;
 }
 
 TEST(Reproduction, AMalformedPaperFileIsReportedWithFileAndKey) {
