@@ -22,10 +22,11 @@ struct PublishedTable {
   std::vector<std::string> columns, compare;
   std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column (in our unit)
   double scale = 1;  ///< printed value × scale = the value in our table's unit (0.01: the paper prints %)
+  std::string not_comparable;  ///< why its numbers cannot be set against ours (then only rankings are judged)
 };
 
 struct PublishedClaim {
-  std::string text, column;
+  std::string id, text, column;
   std::vector<std::string> order;  ///< tables, best (lowest) first
   std::string note;                ///< what a verdict on it can mean (e.g. nested models)
 };
@@ -75,7 +76,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
   for (const toml::node& n : *node->as_array()) {
     const std::string key = fmt::format("tables[{}]", i++);
     const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale"});
+    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable"});
     PublishedTable p;
     p.table = r.required_string(t, "table", key);
     p.ours = r.required_string(t, "ours", key);
@@ -87,6 +88,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
     for (const auto& c : p.compare)
       if (std::find(p.columns.begin(), p.columns.end(), c) == p.columns.end())
         r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
+    p.not_comparable = r.string(t, "numbers_not_comparable", key).value_or("");
     p.scale = r.number(t, "scale", key).value_or(1.0);
     if (!(p.scale > 0)) r.fail(t.get("scale"), key + ".scale", "expected a number > 0 (printed value x scale = ours)");
     const toml::node* rows = t.get("rows");
@@ -114,9 +116,9 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
   for (const toml::node& n : *node->as_array()) {
     const std::string key = fmt::format("claims[{}]", i++);
     const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"text", "column", "order", "note"});
-    PublishedClaim c{r.required_string(t, "text", key), r.string(t, "column", key).value_or(""), r.strings(t, "order", key),
-                     r.string(t, "note", key).value_or("")};
+    r.only_keys(t, key, {"id", "text", "column", "order", "note"});
+    PublishedClaim c{r.string(t, "id", key).value_or(fmt::format("claim {}", i)), r.required_string(t, "text", key),
+                     r.string(t, "column", key).value_or(""), r.strings(t, "order", key), r.string(t, "note", key).value_or("")};
     if (c.order.size() < 2) r.fail(&t, key + ".order", "expected two or more tables, best first");
     for (const auto& name : c.order) {
       const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });
@@ -133,7 +135,7 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
 }
 
 ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& ours, double tolerance) {
-  ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {}, "", ""};
+  ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {}, "", "", p.table};
   if (p.scale != 1) item.detail = fmt::format("the paper's printed values x {:g}", p.scale);
   const Table* t = find_table(ours, p.ours);
   if (!t) {
@@ -154,6 +156,11 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
       item.paper_values.emplace_back(label, values[j]);
       item.values.emplace_back(label, *v);
     }
+  if (!p.not_comparable.empty()) {
+    item.verdict = "not-comparable";
+    item.detail = p.not_comparable;
+    return item;
+  }
   judge_numbers(item, tolerance);
   return item;
 }
@@ -163,7 +170,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
   std::vector<const PublishedTable*> order;
   for (const auto& name : c.order)
     order.push_back(&*std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; }));
-  ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", ""};
+  ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
   std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
   for (const auto& [row, unused] : order.front()->rows) {
     std::vector<double> paper, here;
@@ -204,8 +211,17 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
                                                          fmt::join(where, ", ")));
     item.detail = fmt::format("ranked the other way here: {}", fmt::join(pairs, "; "));
   }
-  judge_numbers(item, tolerance);
-  if (item.verdict != "reversed") item.detail = "same ranking on every row; " + item.detail;
+  std::string reason;  // a table whose numbers cannot be set against ours: the ranking alone is judged
+  for (const PublishedTable* p : order)
+    if (!p->not_comparable.empty()) reason = p->not_comparable;
+  if (!reason.empty()) {
+    if (item.verdict.empty()) item.verdict = "holds";
+    item.detail = (item.verdict == "reversed" ? item.detail : std::string("same ranking on every row")) +
+                  "; ranking only, the numbers are not comparable: " + reason;
+  } else {
+    judge_numbers(item, tolerance);
+    if (item.verdict != "reversed") item.detail = "same ranking on every row; " + item.detail;
+  }
   if (!c.note.empty()) item.detail += ". " + c.note;
   return item;
 }
@@ -223,9 +239,12 @@ std::string data_sentence(const ReproductionSpec& d) {
 }  // namespace
 
 Reproduction reproduce(const ReproductionSpec& spec, const std::vector<Table>& ours) {
+  return reproduce_text(spec, spec_file::read_text(spec.published, "published numbers file"), ours);
+}
+
+Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text, const std::vector<Table>& ours) {
   const Reader r(spec.published);
-  const toml::table root = spec_file::parse_toml(spec_file::read_text(spec.published, "published numbers file"),
-                                                 spec.published);
+  const toml::table root = spec_file::parse_toml(text, spec.published);
   r.only_keys(root, "", {"paper", "title", "source", "tolerance_rel", "tables", "claims"});
   Reproduction out;
   out.paper = r.required_string(root, "paper", "");
@@ -245,13 +264,14 @@ std::string reproduction_markdown(const Reproduction& r) {
   std::string md = fmt::format("# Reproduction of {}: {}\n\nThe paper's numbers as printed ({}), ours from this run's "
                                "tables, on {}. Numbers hold within ±{:g} % of the paper's.\n\n",
                                r.paper, r.title, r.source, data_sentence(r.data), 100 * r.tolerance_rel);
-  md += "| table | claim | verdict | detail |\n|---|---|---|---|\n";
+  md += "| item | claim | verdict | detail |\n|---|---|---|---|\n";
   for (const auto& i : r.items)
-    md += fmt::format("| {} | {} | **{}**{} | {} |\n", i.table, i.claim, i.verdict, recovery_check(r) ? " (recovery check)" : "",
+    md += fmt::format("| {} | {} | **{}**{} | {} |\n", i.id, i.claim, i.verdict, recovery_check(r) ? " (recovery check)" : "",
                       i.detail);
   for (const auto& i : r.items) {
     if (i.values.empty()) continue;
-    md += fmt::format("\n**{}: {}** ({})\n\n| | paper | ours | difference |\n|---|---:|---:|---:|\n", i.table, i.claim, i.verdict);
+    md += fmt::format("\n**{}: {}** ({}; {})\n\n| | paper | ours | difference |\n|---|---:|---:|---:|\n", i.id, i.claim,
+                      i.table, i.verdict);
     for (std::size_t k = 0; k < i.values.size(); ++k)
       md += fmt::format("| {} | {} | {} | {:+.1f} % |\n", i.values[k].first, format_number(i.paper_values[k].second),
                         format_number(i.values[k].second), 100 * relative(i.values[k].second, i.paper_values[k].second));
@@ -274,7 +294,8 @@ std::string reproduction_json(const Reproduction& r, const std::vector<std::stri
     nlohmann::ordered_json paper = nlohmann::ordered_json::object(), ours = nlohmann::ordered_json::object();
     for (const auto& [label, v] : i.paper_values) paper[label] = v;
     for (const auto& [label, v] : i.values) ours[label] = v;
-    j["items"].push_back({{"table", i.table},
+    j["items"].push_back({{"id", i.id},
+                          {"table", i.table},
                           {"claim", i.claim},
                           {"paper_values", paper},
                           {"values", ours},

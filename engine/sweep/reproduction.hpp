@@ -6,17 +6,21 @@
 //   paper, title, source, tolerance_rel (numbers within it "hold")
 //   [[tables]]  table ("Table 3"), ours (the id of our table with the same rows and columns), label (what the
 //               table is of, e.g. the model), columns, rows = [["Test 1", 0.32, ...], ...], compare (the columns
-//               compared; default all), scale (printed value × scale = ours, e.g. 0.01 for a paper's %; default 1)
-//   [[claims]]  text, order = the tables best (lowest) first as the paper's numbers rank them, column (the one
+//               compared; default all), scale (printed value × scale = ours, e.g. 0.01 for a paper's %; default 1),
+//               numbers_not_comparable (the reason, when only rankings can be judged: another metric or unit)
+//   [[claims]]  id (short, for the report's rows), text, order = the tables best (lowest) first as the paper's
+//               numbers rank them, column (the one
 //               they are ranked by; optional when each table compares one), note (what a verdict can mean)
 // Verdicts (fixed vocabulary):
-//   holds           same ranking (a claim) and every number within tolerance_rel of the paper's
+//   holds           same ranking (a claim) and every number within tolerance_rel of the paper's (or the same
+//                   ranking alone, said so, when the numbers are not comparable)
 //   differs         same ranking, some number outside the tolerance
 //   reversed        a pair the paper ranks one way (strictly) ranks the other way here
 //   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not)
 // A verdict on synthetic records whose truth is one of the compared models is a recovery check, never evidence
 // for the paper's claim; the report says so on the item.
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -31,6 +35,7 @@ struct ReproductionItem {
   std::vector<std::pair<std::string, double>> paper_values, values;  ///< same labels, in the same order
   std::string verdict;
   std::string detail;  ///< why: the largest difference, the reversed pairs, the missing table
+  std::string id;      ///< a claim's id (its `id`, else "claim N"), or the table's name
 };
 
 struct Reproduction {
@@ -43,10 +48,12 @@ struct Reproduction {
 /// The report of the paper file `spec.published` against `ours` (one part's tables). InputError naming the file,
 /// line and key for a malformed paper file.
 Reproduction reproduce(const ReproductionSpec& spec, const std::vector<Table>& ours);
+/// The same from the paper file's text (spec.published names it in messages; fuzz_sweep_spec feeds it).
+Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text, const std::vector<Table>& ours);
 
 std::string reproduction_markdown(const Reproduction& r);
 /// {"paper", "title", "source", "tolerance_rel", "data": {kind, truth, truth_is_compared_model, records},
-///  "items": [{table, claim, paper_values, values, verdict, detail, recovery_check}]}
+///  "items": [{id, table, claim, paper_values, values, verdict, detail, recovery_check}]}
 std::string reproduction_json(const Reproduction& r, const std::vector<std::string>& records);
 
 }  // namespace dampbench::sweep

@@ -82,6 +82,8 @@ TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   EXPECT_EQ(j.at("data").at("records").size(), 2u);
   const auto& item = j.at("items").at(1);
   EXPECT_EQ(item.at("table"), "Table 1");
+  EXPECT_EQ(item.at("id"), "Table 1");
+  EXPECT_EQ(j.at("items").at(0).at("id"), "claim 1");  // a claim without an id: its place, from 1
   EXPECT_DOUBLE_EQ(item.at("paper_values").at("Test 2 Min").get<double>(), 0.20);
   EXPECT_DOUBLE_EQ(item.at("values").at("Test 2 Min").get<double>(), 0.20);
   EXPECT_EQ(item.at("recovery_check"), true);
