@@ -172,8 +172,9 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
     order.push_back(&*std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; }));
   ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
   std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
-  for (const auto& [row, unused] : order.front()->rows) {
-    std::vector<double> paper, here;
+  for (const auto& first_table_row : order.front()->rows) {
+    const std::string& row = first_table_row.first;  // a plain reference: lambdas below capture it (clang 14
+    std::vector<double> paper, here;                 // does not capture structured bindings)
     for (const PublishedTable* p : order) {
       const std::string& column = c.column.empty() ? p->compare.front() : c.column;  // one compared column each
       const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), column) - p->columns.begin());
