@@ -22,7 +22,8 @@ rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fu
 for f in datasets/fvd/*.csv docs/examples/*.txt; do  # the first byte picks the loader options
   for option in 0 1 3; do { printf "\\$(printf %03o $option)"; head -c 20000 "$f"; } > "$corpus/fuzz_record/$option-$(basename "$f")"; done
 done
-cp datasets/presets/*.toml docs/examples/*.toml datasets/papers/*.toml "$corpus/fuzz_sweep_spec/"
+cp datasets/presets/*.toml docs/examples/*.toml "$corpus/fuzz_sweep_spec/"
+for f in datasets/papers/*.toml; do cp "$f" "$corpus/fuzz_sweep_spec/paper_$(basename "$f")"; done  # (names as presets')
 i=0
 for law in "c0=poly(I,1);alpha=poly(I,2);k0=poly(I,1)" "A=prod(poly(I,2),poly(amp,1),poly(freq,1))" "c=power(w)" \
            "k=gauss2(w)" "n=0.9929;c_r=poly(phi,3)" "x=free"; do
