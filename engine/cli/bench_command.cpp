@@ -12,10 +12,10 @@
 // Ratios: scalar_ratio = 1-thread lanes / scalar; limit_ratio = 1-thread candidate-samples/s ÷ exp/s
 // (a model with one exp per candidate-sample and nothing else would reach 1).
 #include "engine/cli/bench_command.hpp"
+#include "engine/cli/bench_rate.hpp"
 #include "engine/cli/bench_real_records.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <thread>
@@ -40,21 +40,6 @@ namespace {
 
 constexpr int kCandidates = 4096, kScalarCandidates = 256, kSamplesPerCycle = 1024;
 constexpr std::uint64_t kBenchSeed = 2024;
-
-/// Repeats `work` (which processes `items` items) until min_time_s has passed; items per second.
-template <class Work>
-double rate(double items, double min_time_s, Work&& work) {
-  work();  // warm-up
-  const auto start = std::chrono::steady_clock::now();
-  long long reps = 0;
-  double elapsed = 0;
-  do {
-    work();
-    ++reps;
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  } while (elapsed < min_time_s);
-  return items * static_cast<double>(reps) / elapsed;
-}
 
 /// The vector-exp probe: elements of exp per second on one thread, the best of `trials` measurements (a
 /// single one varied by ±15 % between runs on the shared machine, and every limit ratio divides by it).

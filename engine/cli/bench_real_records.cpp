@@ -1,7 +1,6 @@
 #include "engine/cli/bench_real_records.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
+#include "engine/cli/bench_rate.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/common/random.hpp"
@@ -32,21 +32,6 @@ constexpr int kCandidates = 256;  // the slowest row takes about 3 s per evaluat
 constexpr std::uint64_t kSeed = 2024;
 constexpr const char* kRecords[] = {"10mm1Hz1A", "2mm5Hz1A"};
 constexpr const char* kModels[] = {"mrd.bouc_wen", "mrd.spencer"};
-
-/// Items per second of `work` repeated until min_time_s has passed (after one warm-up call).
-template <class Work>
-double rate(double items, double min_time_s, Work&& work) {
-  work();
-  const auto start = std::chrono::steady_clock::now();
-  long long reps = 0;
-  double elapsed = 0;
-  do {
-    work();
-    ++reps;
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  } while (elapsed < min_time_s);
-  return items * static_cast<double>(reps) / elapsed;
-}
 
 CandidateBatch uniform_in(const Model& model, const Bounds& box, std::uint64_t key) {
   CandidateBatch batch(model.dim(), kCandidates);

@@ -31,6 +31,7 @@ Bounds default_bounds(const Model& model, std::span<const Signals* const> record
     // must reach what a fit of any one of them reaches (a start built from the records' own fits lies inside it,
     // after clamp_into_box). A stiffening rule takes the largest box inside each record's own instead: its hull
     // would try the short stroke's fastest states on the long stroke's many samples.
+    const bool intersect = rule.stiffening && box == RecordBox::joint;
     double lower = std::numeric_limits<double>::infinity(), upper = -lower;
     bool any = false;
     for (const Signals* r : records) {
@@ -38,7 +39,6 @@ Bounds default_bounds(const Model& model, std::span<const Signals* const> record
       if (!(F > 0 && V > 0 && X > 0)) continue;  // a constant record scales nothing
       const double scale = std::pow(F, rule.force) * std::pow(V, rule.velocity) * std::pow(X, rule.amplitude);
       const double lo = rule.lower * scale, hi = rule.upper * scale;
-      const bool intersect = rule.stiffening && box == RecordBox::joint;
       lower = !any ? lo : intersect ? std::max(lower, lo) : std::min(lower, lo);
       upper = !any ? hi : intersect ? std::min(upper, hi) : std::max(upper, hi);
       any = true;

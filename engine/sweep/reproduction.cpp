@@ -29,6 +29,7 @@ struct PublishedClaim {
   std::string id, text, column;
   std::vector<std::string> order;  ///< tables, best (lowest) first
   std::string note;                ///< what a verdict on it can mean (e.g. nested models)
+  std::vector<const PublishedTable*> tables;  ///< the [[tables]] entries `order` names, in its order
 };
 
 /// Relative difference of ours from the paper's (0 when equal, +inf against a published 0).
@@ -123,6 +124,7 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
     for (const auto& name : c.order) {
       const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });
       if (it == tables.end()) r.fail(t.get("order"), key + ".order", fmt::format("no [[tables]] entry '{}'", name));
+      c.tables.push_back(&*it);
       if (c.column.empty() && it->compare.size() != 1)
         r.fail(&t, key + ".column", fmt::format("'{}' compares {} columns: name the one the claim ranks by", name,
                                                 it->compare.size()));
@@ -165,11 +167,8 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
   return item;
 }
 
-ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std::vector<PublishedTable>& tables,
-                            const std::vector<Table>& ours, double tolerance) {
-  std::vector<const PublishedTable*> order;
-  for (const auto& name : c.order)
-    order.push_back(&*std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; }));
+ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std::vector<Table>& ours, double tolerance) {
+  const std::vector<const PublishedTable*>& order = c.tables;
   ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
   std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
   for (const auto& first_table_row : order.front()->rows) {
@@ -256,7 +255,7 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
   out.data = spec;
   const auto tables = read_tables(r, root);
   const auto claims = read_claims(r, root, tables);
-  for (const auto& c : claims) out.items.push_back(claim_item(r, c, tables, ours, out.tolerance_rel));
+  for (const auto& c : claims) out.items.push_back(claim_item(r, c, ours, out.tolerance_rel));
   for (const auto& p : tables) out.items.push_back(table_item(p, ours, out.tolerance_rel));
   return out;
 }
