@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "engine/kernels/cvode_integrator.hpp"
 #include "engine/kernels/isa.hpp"
@@ -26,8 +27,19 @@ constexpr int kSubsteps = 20;
 /// response of a lightly damped structure has died out (the benchmark: ζ = 1.1 %, f₀ = 35.6 Hz, so e^(−ζω₀t) falls
 /// to 1.4e−12 in one 10.9 s period and to 2e−24 by the scored one).
 constexpr int kPeriodicPeriods = 3;
-/// Candidates per lane block.
+/// Candidates per lane block: kLanes, or one vector of doubles at avx512 for a block of at most kNarrowBlock
+/// candidates. A block steps all its lanes, and this model's small batches fill few: a Levenberg–Marquardt trial
+/// step is one candidate, a Jacobian seven, the benchmark preset's GA population eight. A lane gets the same bits
+/// in a block of either width (the same vector functions per lane; SystemModels.SameBitsInBlocksOfEitherWidth).
 constexpr int kBlock = kLanes;
+constexpr int kNarrowBlock = 8;
+
+/// Calls f with std::integral_constant<int, W> for the block width of `count` candidates.
+template <class F>
+void with_block_width(int count, F&& f) {
+  if (count <= kNarrowBlock) f(std::integral_constant<int, kNarrowBlock>{});
+  else f(std::integral_constant<int, kBlock>{});
+}
 
 const ModelInfo& bouc_wen_info() {
   static const ModelInfo i{
@@ -105,7 +117,7 @@ double output_of(const NewmarkLanes<W>& lanes, int lane) {
   return lanes.failed[lane] ? std::numeric_limits<double>::quiet_NaN() : lanes.y[lane];
 }
 
-/// The metric sums of one block of W lanes (W = kBlock: the vector clones; W = 1: the plain scalar loop).
+/// The metric sums of one block of W lanes (W = kNarrowBlock or kBlock: the vector clones; W = 1: the plain scalar loop).
 template <int W>
 void block_sums(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                 MetricSums* out) {
@@ -141,7 +153,7 @@ class BoucWenSystem final : public Model {
 
   void evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data, SumSet wanted,
                       MetricSums* out) const override {
-    block_sums<kBlock>(batch, first, count, data, wanted, out);
+    with_block_width(count, [&](auto width) { block_sums<decltype(width)::value>(batch, first, count, data, wanted, out); });
   }
 
   /// One candidate at a time in a single lane of plain scalar code (the reference of `dampbench bench`).
@@ -162,10 +174,15 @@ class BoucWenSystem final : public Model {
   /// Candidates [first, first + count) in one lane block (count ≤ kBlock): each gets the bits simulate() gives it.
   void simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                       double* out) const override {
-    NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(batch, first, count);
+    with_block_width(count, [&](auto width) { simulate_lanes<decltype(width)::value>(batch, first, count, data, out); });
+  }
+
+  template <int W>
+  static void simulate_lanes(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) {
+    NewmarkLanes<W> lanes = lanes_of<W>(batch, first, count);
     const FineInput in = fine_input(data);
     const std::size_t n = data.size();
-    IsaClones<LaneRun<kBlock>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<kBlock>& at) {
+    IsaClones<LaneRun<W>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<W>& at) {
       for (int l = 0; l < count; ++l) out[static_cast<std::size_t>(l) * n + k] = output_of(at, l);
     });
     for (int l = 0; l < count; ++l)  // a lane that blew up is NaN throughout, as the interface promises
@@ -212,11 +229,11 @@ std::optional<StructureResponse> structure_response(const Model& model, std::spa
   if (dynamic_cast<const BoucWenSystem*>(&model) == nullptr) return std::nullopt;
   CandidateBatch one(model.dim(), 1);
   one.set_candidate(0, params);
-  NewmarkLanes<kBlock> lanes = lanes_of<kBlock>(one, 0, 1);
+  NewmarkLanes<kNarrowBlock> lanes = lanes_of<kNarrowBlock>(one, 0, 1);
   const FineInput in = fine_input(data);
   const std::size_t n = data.size();
   StructureResponse r{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
-  IsaClones<LaneRun<kBlock>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<kBlock>& at) {
+  IsaClones<LaneRun<kNarrowBlock>>::call(&lanes, &in, [&](std::size_t k, const NewmarkLanes<kNarrowBlock>& at) {
     r.y_m[k] = at.y[0];
     r.v_m_s[k] = at.v[0];
     r.a_m_s2[k] = at.a[0];

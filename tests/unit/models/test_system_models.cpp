@@ -1,12 +1,14 @@
 // System models (models/structure.cpp): sys.bouc_wen against its CVODE reference, its response to a periodic input
 // in steady state, and a system record's metrics in metres.
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "engine/kernels/isa.hpp"
 #include "engine/model/model.hpp"
 #include "engine/record/signals.hpp"
 #include "models/registry.hpp"
@@ -81,6 +83,38 @@ TEST(SystemModels, MetricsOfASystemRecordAreInMetres) {
   model.evaluate_block(batch, 0, 1, data, SumSet::every, &sums);
   EXPECT_NEAR(finish_metric(Metric::rmse, sums, data), 1e-6, 1e-15);
   EXPECT_NEAR(finish_metric(Metric::mae, sums, data), 1e-6, 1e-15);
+}
+
+TEST(SystemModels, SameBitsInBlocksOfEitherWidth) {
+  // Five candidates run in a narrow block (≤ 8 lanes), then as the first five of twelve in a kLanes block: the same
+  // displacements and metric sums bit for bit, at every vector level this CPU has. Table 1 and four others around it
+  // (ν ≠ 1 takes the vector exp and log of |z|^ν; the others differ in every parameter).
+  const Model& model = find_model("sys.bouc_wen");
+  Dataset measured = sweep_input(0.5);
+  measured.y_m = model.simulate(kTable1, prepare_signals(measured));
+  const Signals data = prepare_signals(measured);
+  const std::vector<std::vector<double>> five{kTable1,
+                                              {1.5, 20, 8e4, 3e4, 1200, -700, 0.6},
+                                              {3, 5, 4e4, 9e4, 500, -2000, 1.7},
+                                              {2.2, 12, 5.5e4, 4.5e4, 900, -1000, 2.5},
+                                              {0.8, 40, 1.2e5, 1.5e4, 300, -400, 0.3}};
+  CandidateBatch twelve(model.dim(), 12);
+  for (int i = 0; i < 12; ++i) twelve.set_candidate(i, five[i % 5]);
+  const Isa saved = active_isa();
+  for (const Isa isa : supported_isas()) {
+    select_isa(isa);
+    const std::size_t n = data.size();
+    std::vector<double> narrow(5 * n), wide(12 * n);
+    model.simulate_block(twelve, 0, 5, data, narrow.data());
+    model.simulate_block(twelve, 0, 12, data, wide.data());
+    EXPECT_EQ(std::memcmp(narrow.data(), wide.data(), 5 * n * sizeof(double)), 0) << isa_name(isa);
+    std::vector<MetricSums> narrow_sums(5), wide_sums(12);
+    model.evaluate_block(twelve, 0, 5, data, SumSet::every, narrow_sums.data());
+    model.evaluate_block(twelve, 0, 12, data, SumSet::every, wide_sums.data());
+    for (int i = 0; i < 5; ++i)
+      EXPECT_EQ(std::memcmp(&narrow_sums[i], &wide_sums[i], sizeof(MetricSums)), 0) << isa_name(isa) << " candidate " << i;
+  }
+  select_isa(saved);
 }
 
 }  // namespace
