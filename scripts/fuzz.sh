@@ -22,6 +22,10 @@ rm -rf "$corpus" && mkdir -p "$corpus"/{fuzz_record,fuzz_sweep_spec,fuzz_laws,fu
 for f in datasets/fvd/*.csv docs/examples/*.txt; do  # the first byte picks the loader options
   for option in 0 1 3; do { printf "\\$(printf %03o $option)"; head -c 20000 "$f"; } > "$corpus/fuzz_record/$option-$(basename "$f")"; done
 done
+# a rig export read as channels: the mapping, gains and events split (56), with smoothing, mean removal and whole cycles (249)
+for option in 8 56 249; do
+  { printf "\\$(printf %03o $option)"; head -c 20000 docs/examples/rig_export.txt; } > "$corpus/fuzz_record/$option-rig_export.txt"
+done
 cp datasets/presets/*.toml docs/examples/*.toml "$corpus/fuzz_sweep_spec/"
 for f in datasets/papers/*.toml; do cp "$f" "$corpus/fuzz_sweep_spec/paper_$(basename "$f")"; done  # (names as presets')
 i=0

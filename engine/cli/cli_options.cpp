@@ -12,11 +12,25 @@ namespace dampbench::cli {
 
 void add_data_options(CLI::App* cmd, RecordOptions& d) {
   cmd->add_option("--units", d.units, "units of the file's columns, e.g. x=mm,F=kN (default: header, else SI)");
-  cmd->add_option("--columns", d.columns, "column names of a file without header, e.g. t,x,v,F");
+  cmd->add_option("--columns", d.columns,
+                  "column names of a file without header, e.g. t,x,v,F; or the record's columns picked from a .mat "
+                  "file's variables or a rig export's channels, e.g. t=time,x=data[:,0],F=data[:,1:6] (a range: one "
+                  "record per column; indices from 0)");
+  cmd->add_option("--skip-header", d.skip_header,
+                  "lines before a text export's column names (default: a 'Header Size: N' block is detected)");
+  cmd->add_option("--scale", d.scale, "gains from the file's values to SI, before --units, e.g. x=10e-3,F=980.665 (V to m, N)");
+  cmd->add_option("--split", d.split,
+                  "events: one record per test between DAQ Pause/Resume events; nan: between rows of NaN (records "
+                  "<file>#1, #2, ...)");
+  cmd->add_option("--smooth", d.smooth_samples, "centred moving average of x and F over N samples");
+  cmd->add_option("--remove-mean", d.remove_mean, "columns whose mean is removed, e.g. x,F");
+  cmd->add_flag("--whole-cycles", d.whole_cycles, "trim to whole cycles of x (first to last upward mean crossing)");
   cmd->add_option("--transform", d.transform, "slider-crank or slider-crank-printed: crfd rig MTS record to angle and torque");
   cmd->add_option("--average-cycles", d.average, "cycles=N,drop=K: average cycles K+1..N-K into one (crfd: cycles=10,drop=3)");
   cmd->add_option("--conditions", d.conditions, "utfsm: operating variables from the file name (25mm0x25Hz0x75A)");
-  cmd->add_option("--set", d.set, "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws)");
+  cmd->add_option("--set", d.set,
+                  "operating variables, e.g. I=1,amp=0.01,freq=1 (for parameter laws); one per record of a file of "
+                  "several: I=0,0.25,0.5,0.75,1");
   cmd->add_flag("--periodic", d.periodic,
                 "a system record (t,y,u) is one period of a periodic input and y its steady response (default: the "
                 "structure starts from rest)");

@@ -70,16 +70,19 @@ int evaluate_command(const EvaluateOptions& o) {
   std::vector<std::string> cols{"record"};
   for (Metric m : kAllMetrics) cols.emplace_back(metric_name(m));
   Table t{"evaluate", fmt::format("{} at the given parameters", e.model_id), cols, {}};
+  // Keyed by the path given, or by the record's name ("<stem>#k") when a file gave several records.
+  const bool by_path = o.paths.size() == e.metrics.size();
   for (std::size_t r = 0; r < e.metrics.size(); ++r) {
+    const std::string& key = by_path ? o.paths[r] : e.names[r];
     std::vector<Cell> cells{e.names[r]};
     for (int m = 0; m < kMetricCount; ++m) {
-      j[o.paths[r]][std::string(metric_name(kAllMetrics[m]))] = json_number(e.metrics[r][m]);
+      j[key][std::string(metric_name(kAllMetrics[m]))] = json_number(e.metrics[r][m]);
       cells.push_back(format_number(e.metrics[r][m]));
     }
     t.rows.push_back(std::move(cells));
     if (!e.extrapolated.empty()) {
       const std::string& outside = e.extrapolated[r];
-      j[o.paths[r]]["extrapolated"] = outside.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(outside);
+      j[key]["extrapolated"] = outside.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(outside);
       if (!outside.empty())
         t.note += fmt::format("{}{}: {}", t.note.empty() ? "Outside the range the model file was fitted on: " : "; ",
                               e.names[r], outside);

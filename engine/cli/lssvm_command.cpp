@@ -37,12 +37,12 @@ std::vector<std::string> metric_cells(const lssvm::ErrorMetrics& m) {
           format_number(m.nrmse)};
 }
 
-std::vector<Dataset> load_records(const std::vector<std::string>& paths, const RecordOptions& data) {
+std::vector<Dataset> load_files(const std::vector<std::string>& paths, const RecordOptions& data) {
   std::vector<Dataset> records;
   for (const std::string& path : paths) {
     RecordOptions d = data;
     d.path = path;
-    records.push_back(load_record(d, false));
+    for (Dataset& record : load_records(d, false)) records.push_back(std::move(record));
   }
   return records;
 }
@@ -274,8 +274,8 @@ int lssvm_command(const LssvmOptions& o) {
   if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
   if (o.test.empty()) throw InputError("lssvm: no --test records");
 
-  const std::vector<Dataset> train = load_records(o.train, o.data);
-  const std::vector<Dataset> test = load_records(o.test, o.data);
+  const std::vector<Dataset> train = load_files(o.train, o.data);
+  const std::vector<Dataset> test = load_files(o.test, o.data);
   // The current is a regressor input; a record without one is taken as 0 A (lssvm.hpp), and the output says so.
   const std::vector<std::string> without_current = check_records(train, test, lags);
   std::string subsampled;

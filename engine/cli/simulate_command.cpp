@@ -14,6 +14,7 @@
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/record/excitation.hpp"
+#include "engine/record/mat_file.hpp"
 #include "engine/record/record_options.hpp"
 
 namespace dampbench::cli {
@@ -29,7 +30,7 @@ void add_simulate_options(CLI::App* c, SimulateOptions& sim) {
   c->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
   c->add_option("--noise-rel", sim.noise_rel, "Gaussian noise, std = R x RMS(force)");
   c->add_option("--seed", sim.seed, "noise seed");
-  c->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI; t,y,u for a system record); default stdout");
+  c->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI; t,y,u for a system record), or a MATLAB file (.mat: one variable per column); default stdout");
   c->add_flag("--states", sim.states, "a structure model (sys.*): also write its velocity v, acceleration a and hysteretic force z");
 }
 
@@ -87,33 +88,50 @@ Simulation run_simulate(const SimulateOptions& o) {
   return sim;
 }
 
+namespace {
+
+/// The simulated record's columns in SI: t,y,u (and v,a,z with --states) of a structure, t,x,v,a,F of a rig.
+std::vector<std::pair<std::string, std::vector<double>>> simulated_columns(const Simulation& sim, bool states) {
+  const Dataset& data = sim.data;
+  if (data.is_system()) {  // a structure model: its displacement y (with any noise), the input u, and its states
+    std::vector<std::pair<std::string, std::vector<double>>> c{{"t", data.t_s}, {"y", sim.force}, {"u", data.u_N}};
+    if (states && sim.response) {
+      c.emplace_back("v", sim.response->v_m_s);
+      c.emplace_back("a", sim.response->a_m_s2);
+      c.emplace_back("z", sim.response->z_N);
+    }
+    return c;
+  }
+  return {{"t", data.t_s}, {"x", data.x_m}, {"v", data.v_m_s}, {"a", data.a_m_s2}, {"F", sim.force}};
+}
+
+bool ends_with_mat(const std::string& path) {
+  return path.size() > 4 && (path.ends_with(".mat") || path.ends_with(".MAT"));
+}
+
+}  // namespace
+
 int simulate_command(const SimulateOptions& o) {
   const Simulation sim = run_simulate(o);
   if (!sim.extrapolated.empty())
     std::cerr << fmt::format("note: outside the range {} was fitted on: {}\n", o.model_file, sim.extrapolated);
-  const Dataset& data = sim.data;
+  const auto columns = simulated_columns(sim, o.states);
+  if (ends_with_mat(o.output)) {  // one N x 1 variable per column, read back by --data FILE.mat
+    write_mat_file(o.output, columns);
+    return 0;
+  }
   std::ofstream file;
   if (!o.output.empty()) {
     file.open(o.output);
     if (!file) throw StoreError(fmt::format("-o: cannot write '{}'", o.output));
   }
   std::ostream& out = o.output.empty() ? std::cout : file;
-  if (data.is_system()) {  // a structure model: its displacement y (with any noise), the input u, and its states
-    const bool states = o.states && sim.response;
-    out << (states ? "t,y,u,v,a,z\n" : "t,y,u\n");
-    for (std::size_t k = 0; k < sim.force.size(); ++k) {
-      out << fmt::format("{:.17g},{:.17g},{:.17g}", data.t_s[k], sim.force[k], data.u_N[k]);
-      if (states)
-        out << fmt::format(",{:.17g},{:.17g},{:.17g}", sim.response->v_m_s[k], sim.response->a_m_s2[k],
-                           sim.response->z_N[k]);
-      out << "\n";
-    }
-    return 0;
+  for (std::size_t j = 0; j < columns.size(); ++j) out << (j ? "," : "") << columns[j].first;
+  out << "\n";
+  for (std::size_t k = 0; k < columns.front().second.size(); ++k) {
+    for (std::size_t j = 0; j < columns.size(); ++j) out << (j ? "," : "") << fmt::format("{:.17g}", columns[j].second[k]);
+    out << "\n";
   }
-  out << "t,x,v,a,F\n";
-  for (std::size_t k = 0; k < sim.force.size(); ++k)
-    out << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", data.t_s[k], data.x_m[k], data.v_m_s[k],
-                       data.a_m_s2[k], sim.force[k]);
   return 0;
 }
 

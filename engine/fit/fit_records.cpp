@@ -31,13 +31,15 @@ void add_record(const Model& model, const Dataset& record, FitRecords& r) {
 }  // namespace
 
 FitRecords load_fit_records(const Model& model, const std::vector<std::string>& paths, const RecordOptions& data) {
-  FitRecords r;
-  r.signals.reserve(paths.size());  // pointers() point into it
+  std::vector<Dataset> records;
   for (const std::string& path : paths) {
     RecordOptions d = data;
     d.path = path;
-    add_record(model, load_record(d, true), r);
+    for (Dataset& record : load_records(d, true)) records.push_back(std::move(record));
   }
+  FitRecords r;
+  r.signals.reserve(records.size());  // pointers() point into it
+  for (const Dataset& record : records) add_record(model, record, r);
   return r;
 }
 

@@ -90,26 +90,6 @@ void read_operating(const std::vector<Line>& comments, const std::string& source
   }
 }
 
-/// Cells of a line: comma-separated (each trimmed) or separated by runs of whitespace.
-std::vector<std::string_view> split_cells(std::string_view line, bool comma_separated) {
-  std::vector<std::string_view> cells;
-  if (comma_separated) {
-    for (std::size_t start = 0;;) {
-      const std::size_t comma = line.find(',', start);
-      cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
-      if (comma == std::string_view::npos) return cells;
-      start = comma + 1;
-    }
-  }
-  constexpr std::string_view blanks = " \t\r\n\v\f";
-  for (std::size_t start = line.find_first_not_of(blanks); start != std::string_view::npos;) {
-    const std::size_t end = line.find_first_of(blanks, start);
-    cells.push_back(line.substr(start, end == std::string_view::npos ? end : end - start));
-    start = line.find_first_not_of(blanks, end);
-  }
-  return cells;
-}
-
 bool is_header(const std::vector<std::string_view>& cells) {
   return std::any_of(cells.begin(), cells.end(),
                      [](std::string_view cell) { return try_parse_number(cell).status == NumberStatus::not_a_number; });
@@ -304,6 +284,25 @@ Dataset make_dataset(const std::vector<ColumnInfo>& columns, std::vector<std::ve
 }
 
 }  // namespace
+
+std::vector<std::string_view> split_cells(std::string_view line, bool comma_separated) {
+  std::vector<std::string_view> cells;
+  if (comma_separated) {
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = line.find(',', start);
+      cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+      if (comma == std::string_view::npos) return cells;
+      start = comma + 1;
+    }
+  }
+  constexpr std::string_view blanks = " \t\r\n\v\f";
+  for (std::size_t start = line.find_first_not_of(blanks); start != std::string_view::npos;) {
+    const std::size_t end = line.find_first_of(blanks, start);
+    cells.push_back(line.substr(start, end == std::string_view::npos ? end : end - start));
+    start = line.find_first_not_of(blanks, end);
+  }
+  return cells;
+}
 
 std::map<std::string, std::string> parse_units_option(std::string_view text) {
   std::map<std::string, std::string> units;

@@ -19,6 +19,9 @@ struct CsvOptions {
   std::size_t min_samples = 8;       ///< fewer samples is an error (never fewer than 4: derivatives need them)
 };
 
+/// Cells of a line of a record file: comma-separated (each trimmed) or separated by runs of whitespace.
+std::vector<std::string_view> split_cells(std::string_view line, bool comma_separated);
+
 /// Parses --units "x=mm,F=kN" into CsvOptions::units (validating column and unit names).
 std::map<std::string, std::string> parse_units_option(std::string_view text);
 

@@ -8,6 +8,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/record/csv_loader.hpp"
+#include "engine/record/record_files.hpp"
 #include "engine/record/record_transforms.hpp"
 
 namespace dampbench {
@@ -22,14 +23,26 @@ void set_operating(Dataset& data, const std::string& text, std::string_view opti
   }
 }
 
-Dataset load_record(const RecordOptions& options, bool require_force) {
+std::vector<Dataset> load_records(const RecordOptions& options, bool require_force) {
   return as_data_error([&] {
-    CsvOptions csv;
-    csv.require_force = require_force;
-    if (!options.units.empty()) csv.units = parse_units_option(options.units);
-    if (!options.columns.empty()) csv.columns = split_list(options.columns, "--columns");
-    return prepare_record(load_csv(options.path, csv), options);
+    std::vector<Dataset> records = read_record_file(options, require_force);
+    const std::vector<std::string> operating = operating_per_record(options.set, records.size());
+    RecordOptions each = options;
+    for (std::size_t r = 0; r < records.size(); ++r) {
+      each.set = operating[r];
+      records[r] = prepare_record(std::move(records[r]), each);
+    }
+    return records;
   });
+}
+
+Dataset load_record(const RecordOptions& options, bool require_force) {
+  std::vector<Dataset> records = load_records(options, require_force);
+  if (records.size() != 1)
+    throw DataError(fmt::format("{}: gives {} records (a --columns range or --split); this takes one record per file: "
+                                "pick one column (F=data[:,k]) or fit them together with `dampbench fit --data`",
+                                options.path, records.size()));
+  return std::move(records.front());
 }
 
 Dataset prepare_record(Dataset data, const RecordOptions& options) {

@@ -23,6 +23,8 @@ def key_values(value, what):
 
 
 def _text(value):
+    if isinstance(value, (list, tuple, np.ndarray)):  # one value per record of a file of several
+        return ",".join(_text(v) for v in value)
     if isinstance(value, (float, np.floating)):
         return repr(float(value))
     return str(value)
@@ -30,7 +32,9 @@ def _text(value):
 
 def loader_args(units=None, columns=None, transform=None, average_cycles=None, conditions=None, set=None):
     """The loader options as the strings the engine reads, in LOADER_OPTIONS order."""
-    if columns is not None and not isinstance(columns, str):
+    if isinstance(columns, dict):  # {"t": "time", "x": "data[:,0]"}: channels of a .mat file or a rig export
+        columns = ",".join(f"{k}={v}" for k, v in columns.items())
+    elif columns is not None and not isinstance(columns, str):
         columns = ",".join(columns)
     return [key_values(units, "units"), columns or "", transform or "", key_values(average_cycles, "average_cycles"),
             conditions or "", key_values(set, "set")]
@@ -47,6 +51,26 @@ def load_record(path, *, require_force=True, units=None, columns=None, transform
     """
     return _core.load_record(os.fspath(path), require_force,
                              *loader_args(units, columns, transform, average_cycles, conditions, set))
+
+
+def load_records(path, *, require_force=True, units=None, columns=None, transform=None, average_cycles=None,
+                 conditions=None, set=None, skip_header=None, scale=None, split=None, smooth=None, remove_mean=None,
+                 whole_cycles=False):
+    """The records of one file as `dampbench fit --data` reads them: a list, several for a MATLAB matrix with one
+    force column per test (columns={"t": "time", "x": "data[:,0]", "F": "data[:,1:6]"}) or a rig export split into
+    its tests (split="events": between DAQ Pause and Resume; "nan": between rows of NaN), named "<stem>#k".
+
+    The options of load_record, and: skip_header (lines before a text export's column names; default: a
+    "Header Size: N" block is detected), scale ({"x": 10e-3, "F": 980.665}: gains to SI, before units), set with
+    one value per record ({"I": [0, 0.25, 0.5, 0.75, 1]}), smooth (centred moving average of x and F over N
+    samples), remove_mean (["x", "F"]), whole_cycles (trim to whole cycles of x). Raises DataError naming the file.
+    """
+    if remove_mean is not None and not isinstance(remove_mean, str):
+        remove_mean = ",".join(remove_mean)
+    return _core.load_records(os.fspath(path), require_force,
+                              *loader_args(units, columns, transform, average_cycles, conditions, set),
+                              -1 if skip_header is None else int(skip_header), key_values(scale, "scale"), split or "",
+                              int(smooth or 0), remove_mean or "", bool(whole_cycles))
 
 
 def _column(name, values):

@@ -31,7 +31,15 @@ inline py::array_t<double> to_numpy(const std::vector<double>& values) {
 /// The loader options of a record file, from the six strings python/dampbench/records.py's loader_args makes
 /// (units, columns, transform, average_cycles, conditions, set).
 inline RecordOptions loader_options(const std::string& path, const std::vector<std::string>& loader) {
-  return RecordOptions{path, loader.at(0), loader.at(1), loader.at(2), loader.at(3), loader.at(4), loader.at(5)};
+  RecordOptions o;
+  o.path = path;
+  o.units = loader.at(0);
+  o.columns = loader.at(1);
+  o.transform = loader.at(2);
+  o.average = loader.at(3);
+  o.conditions = loader.at(4);
+  o.set = loader.at(5);
+  return o;
 }
 
 /// Where the engine works for one call: at most `threads` worker threads (none: every core) and the vector level

@@ -21,7 +21,7 @@ namespace {
 RecordOptions record_options(const std::string& path, const std::string& units, const std::string& columns,
                              const std::string& transform, const std::string& average_cycles,
                              const std::string& conditions, const std::string& set) {
-  return RecordOptions{path, units, columns, transform, average_cycles, conditions, set};
+  return loader_options(path, {units, columns, transform, average_cycles, conditions, set});
 }
 
 }  // namespace
@@ -55,6 +55,25 @@ void bind_records(py::module_& m) {
       },
       py::arg("path"), py::arg("require_force"), py::arg("units"), py::arg("columns"), py::arg("transform"),
       py::arg("average_cycles"), py::arg("conditions"), py::arg("set"));
+
+  m.def(
+      "load_records",
+      [](const std::string& path, bool require_force, const std::string& units, const std::string& columns,
+         const std::string& transform, const std::string& average_cycles, const std::string& conditions,
+         const std::string& set, int skip_header, const std::string& scale, const std::string& split, int smooth,
+         const std::string& remove_mean, bool whole_cycles) {
+        RecordOptions o = record_options(path, units, columns, transform, average_cycles, conditions, set);
+        o.skip_header = skip_header;
+        o.scale = scale;
+        o.split = split;
+        o.smooth_samples = smooth;
+        o.remove_mean = remove_mean;
+        o.whole_cycles = whole_cycles;
+        return load_records(o, require_force);
+      },
+      py::arg("path"), py::arg("require_force"), py::arg("units"), py::arg("columns"), py::arg("transform"),
+      py::arg("average_cycles"), py::arg("conditions"), py::arg("set"), py::arg("skip_header"), py::arg("scale"),
+      py::arg("split"), py::arg("smooth"), py::arg("remove_mean"), py::arg("whole_cycles"));
 
   m.def(
       "record_from_columns",

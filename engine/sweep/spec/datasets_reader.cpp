@@ -6,6 +6,7 @@
 #include <map>
 
 #include "engine/common/key_values.hpp"
+#include "engine/record/column_map.hpp"
 #include "engine/record/csv_loader.hpp"
 #include "engine/sweep/spec/reader.hpp"
 
@@ -39,7 +40,14 @@ std::vector<std::string> expand_glob(const std::string& pattern) {
 
 void check_load_options(const Reader& r, const toml::table& t, const std::string& key, const RecordOptions& load) {
   if (!load.units.empty()) r.check(t.get("units"), Reader::join(key, "units"), [&] { return parse_units_option(load.units); });
-  if (!load.columns.empty()) r.check(t.get("columns"), Reader::join(key, "columns"), [&] { return split_list(load.columns, "columns"); });
+  if (!load.columns.empty())
+    r.check(t.get("columns"), Reader::join(key, "columns"), [&] {
+      return is_column_map(load.columns) ? parse_column_map(load.columns, "columns").size()
+                                         : split_list(load.columns, "columns").size();
+    });
+  if (!load.scale.empty()) r.check(t.get("scale"), Reader::join(key, "scale"), [&] { return parse_key_values(load.scale, "scale"); });
+  if (!load.remove_mean.empty())
+    r.check(t.get("remove_mean"), Reader::join(key, "remove_mean"), [&] { return split_list(load.remove_mean, "remove_mean"); });
   if (!load.transform.empty() && load.transform != "slider-crank" && load.transform != "slider-crank-printed")
     r.fail(t.get("transform"), Reader::join(key, "transform"),
            fmt::format("expected slider-crank or slider-crank-printed, got '{}'", load.transform));
@@ -75,6 +83,12 @@ RecordOptions read_load_options(const Reader& r, const toml::table& t, const std
   load.average = r.string(t, "average", key).value_or("");
   load.conditions = r.string(t, "conditions", key).value_or("");
   load.set = r.string(t, "set", key).value_or("");
+  // A rig's raw export (engine/record/record_files.hpp); one record per file here: no split, no column range.
+  load.skip_header = static_cast<int>(r.integer(t, "skip_header", key, -1, 0));
+  load.scale = r.string(t, "scale", key).value_or("");
+  load.smooth_samples = static_cast<int>(r.integer(t, "smooth", key, 0, 2));
+  load.remove_mean = r.string(t, "remove_mean", key).value_or("");
+  load.whole_cycles = r.boolean(t, "whole_cycles", key, false);
   check_load_options(r, t, key, load);
   return load;
 }
@@ -133,7 +147,7 @@ void read_datasets(const Reader& r, const toml::table& root, const SpecOptions& 
     const std::string key = fmt::format("datasets[{}]", i);
     const toml::table& t = *a.get(i)->as_table();
     r.only_keys(t, key, {"name", "label", "file", "files", "glob", "units", "columns", "transform", "average",
-                         "conditions", "set", "required"});
+                         "conditions", "set", "required", "skip_header", "scale", "smooth", "remove_mean", "whole_cycles"});
     const std::string name = r.required_string(t, "name", key);
     if (std::find(part.collections.begin(), part.collections.end(), name) != part.collections.end())
       r.fail(t.get("name"), Reader::join(key, "name"), fmt::format("dataset entry name '{}' is used twice", name));

@@ -1,0 +1,329 @@
+// Tests for engine/record/mat_file: columns written and read back bit for bit (v5 and v7.3), matrices of several
+// classes and the variables that are not channels (written here with matio itself, as v4, v5 and v7.3 files),
+// damaged files, and the messages for files that are missing, not .mat files, or cannot be written.
+#include "engine/record/mat_file.hpp"
+
+#include <matio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/common/error.hpp"
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+using testing::error_of;
+using testing::HasText;
+using testing::test_temp_dir;
+using MatColumns = std::vector<std::pair<std::string, std::vector<double>>>;
+
+/// Doubles whose bits a conversion on the way would change: a third, the edges of the exponent range, a negative
+/// zero, the smallest denormal, an infinity and a NaN.
+std::vector<double> awkward_doubles() {
+  return {1.0 / 3.0, 1e-300, -0.0, 1e300, 5e-324, -std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::quiet_NaN(), -2.5, 0.1};
+}
+
+bool same_double_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void expect_round_trip_bit_exact(MatVersion version) {
+  const auto path = (test_temp_dir("mat_file") / "columns.mat").string();
+  std::vector<double> t(9);
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = 0.001 * static_cast<double>(i);
+  write_mat_file(path, {{"t", t}, {"F", awkward_doubles()}}, version);
+
+  const ChannelTable table = read_mat_file(path);
+  EXPECT_EQ(table.source, path);
+  // v5 keeps the order of writing; a v7.3 file lists its variables by name (HDF5 keeps no creation order).
+  EXPECT_EQ(table.names, (version == MatVersion::v5 ? std::vector<std::string>{"t", "F"}
+                                                    : std::vector<std::string>{"F", "t"}));
+  EXPECT_TRUE(table.skipped.empty());
+  const Channel& F = table.channels.at("F");
+  EXPECT_EQ(F.rows, awkward_doubles().size());
+  EXPECT_EQ(F.cols, 1u);
+  EXPECT_TRUE(same_double_bits(F.values, awkward_doubles()));
+  EXPECT_TRUE(same_double_bits(table.channels.at("t").values, t));
+}
+
+TEST(MatFile, V5RoundTripIsBitExact) { expect_round_trip_bit_exact(MatVersion::v5); }
+
+TEST(MatFile, V73RoundTripIsBitExact) { expect_round_trip_bit_exact(MatVersion::v73); }
+
+TEST(MatFile, WrittenFilesAreCompressedAndV5FilesReproducible) {
+  const auto dir = test_temp_dir("mat_file");
+  const MatColumns zeros = {{"x", std::vector<double>(10000, 0.0)}};
+  write_mat_file((dir / "a.mat").string(), zeros);
+  write_mat_file((dir / "b.mat").string(), zeros);
+  write_mat_file((dir / "c.mat").string(), zeros, MatVersion::v73);
+  EXPECT_LT(std::filesystem::file_size(dir / "a.mat"), 1000u);  // 80 000 bytes of data
+  EXPECT_LT(std::filesystem::file_size(dir / "c.mat"), 20000u);
+  EXPECT_EQ(file_bytes(dir / "a.mat"), file_bytes(dir / "b.mat"));  // no time of writing in the header
+}
+
+// ---- variables of other classes, written with matio itself ------------------------------------------------
+
+struct MatioFileCloser {
+  void operator()(mat_t* file) const { Mat_Close(file); }
+};
+
+/// Writes `variable` (then frees it) into `file`.
+void put_variable(mat_t* file, matvar_t* variable, matio_compression compression) {
+  ASSERT_NE(variable, nullptr);
+  EXPECT_EQ(Mat_VarWrite(file, variable, compression), MATIO_E_NO_ERROR) << variable->name;
+  Mat_VarFree(variable);
+}
+
+matvar_t* double_matrix(const char* name, std::vector<std::size_t> dims, std::vector<double> values) {
+  return Mat_VarCreate(name, MAT_C_DOUBLE, MAT_T_DOUBLE, static_cast<int>(dims.size()), dims.data(), values.data(), 0);
+}
+
+/// A 1 × 1 struct s with the field gain = 2.5.
+matvar_t* struct_with_gain() {
+  std::size_t one[2] = {1, 1};
+  const char* fields[] = {"gain", nullptr};
+  matvar_t* s = Mat_VarCreateStruct2("s", 2, one, fields);
+  double gain = 2.5;
+  Mat_VarSetStructFieldByName(s, "gain", 0, Mat_VarCreate("gain", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, one, &gain, 0));
+  return s;
+}
+
+matvar_t* char_variable(const char* name, std::string text) {
+  std::size_t dims[2] = {1, text.size()};
+  return Mat_VarCreate(name, MAT_C_CHAR, MAT_T_UTF8, 2, dims, text.data(), 0);
+}
+
+/// A file with, in this order: A (3 × 4 double, A(r, c) = 1 + r + 3c), label (char), v (1 × 5 int16), s (struct),
+/// z (complex), cube (2 × 2 × 2), flag (1 × 3 logical), f32 (2 × 1 single).
+void write_mixed_file(const std::string& path, mat_ft version, matio_compression compression) {
+  const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, version));
+  ASSERT_NE(file, nullptr);
+  std::vector<double> a(12);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 1.0 + static_cast<double>(i);
+  put_variable(file.get(), double_matrix("A", {3, 4}, a), compression);
+  put_variable(file.get(), char_variable("label", "damper"), compression);
+  std::int16_t v[5] = {-32768, -1, 0, 1, 32767};
+  std::size_t row5[2] = {1, 5};
+  put_variable(file.get(), Mat_VarCreate("v", MAT_C_INT16, MAT_T_INT16, 2, row5, v, 0), compression);
+  put_variable(file.get(), struct_with_gain(), compression);
+  double re[2] = {1, 2}, im[2] = {3, 4};
+  mat_complex_split_t z = {re, im};
+  std::size_t col2[2] = {2, 1};
+  put_variable(file.get(), Mat_VarCreate("z", MAT_C_DOUBLE, MAT_T_DOUBLE, 2, col2, &z, MAT_F_COMPLEX), compression);
+  put_variable(file.get(), double_matrix("cube", {2, 2, 2}, std::vector<double>(8, 1.0)), compression);
+  std::uint8_t flag[3] = {1, 0, 1};
+  std::size_t row3[2] = {1, 3};
+  put_variable(file.get(), Mat_VarCreate("flag", MAT_C_UINT8, MAT_T_UINT8, 2, row3, flag, MAT_F_LOGICAL), compression);
+  float f32[2] = {0.1f, -3.5f};
+  put_variable(file.get(), Mat_VarCreate("f32", MAT_C_SINGLE, MAT_T_SINGLE, 2, col2, f32, 0), compression);
+}
+
+void expect_mixed_file_read(mat_ft version, matio_compression compression) {
+  const auto path = (test_temp_dir("mat_file") / "mixed.mat").string();
+  write_mixed_file(path, version, compression);
+  const ChannelTable table = read_mat_file(path);
+
+  // v5 keeps the order of writing; a v7.3 file lists its variables by name.
+  const std::vector<std::string> expected = version == MAT_FT_MAT73 ? std::vector<std::string>{"A", "f32", "flag", "v"}
+                                                                    : std::vector<std::string>{"A", "v", "flag", "f32"};
+  EXPECT_EQ(table.names, expected);
+  const std::vector<std::string> skipped_expected = {"label (char)", "s (struct)", "z (complex)", "cube (3-D)"};
+  for (const auto& entry : skipped_expected)
+    EXPECT_NE(std::find(table.skipped.begin(), table.skipped.end(), entry), table.skipped.end()) << entry;
+  EXPECT_EQ(table.skipped.size(), skipped_expected.size());
+
+  const Channel& A = table.channels.at("A");
+  ASSERT_EQ(A.rows, 3u);
+  ASSERT_EQ(A.cols, 4u);
+  for (std::size_t i = 0; i < A.values.size(); ++i) EXPECT_EQ(A.values[i], 1.0 + static_cast<double>(i));
+  EXPECT_EQ(A.at(2, 0), 3.0);
+  EXPECT_EQ(A.at(0, 1), 4.0);
+  EXPECT_EQ(A.at(2, 3), 12.0);
+
+  const Channel& v = table.channels.at("v");
+  EXPECT_EQ(v.rows, 1u);
+  EXPECT_EQ(v.cols, 5u);
+  EXPECT_EQ(v.values, (std::vector<double>{-32768, -1, 0, 1, 32767}));
+  EXPECT_EQ(table.channels.at("flag").values, (std::vector<double>{1, 0, 1}));
+  EXPECT_EQ(table.channels.at("f32").values, (std::vector<double>{0.1f, -3.5f}));
+}
+
+TEST(MatFile, V5MatricesOfEachKindAndSkippedVariables) { expect_mixed_file_read(MAT_FT_MAT5, MAT_COMPRESSION_NONE); }
+
+TEST(MatFile, V5CompressedMatricesOfEachKindAndSkippedVariables) {
+  expect_mixed_file_read(MAT_FT_MAT5, MAT_COMPRESSION_ZLIB);
+}
+
+TEST(MatFile, V73MatricesOfEachKindAndSkippedVariables) { expect_mixed_file_read(MAT_FT_MAT73, MAT_COMPRESSION_ZLIB); }
+
+TEST(MatFile, V4Matrix) {
+  const auto path = (test_temp_dir("mat_file") / "old.mat").string();
+  {
+    const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT4));
+    ASSERT_NE(file, nullptr);
+    put_variable(file.get(), double_matrix("B", {2, 3}, {1, 2, 3, 4, 5, 6}), MAT_COMPRESSION_NONE);
+  }
+  const ChannelTable table = read_mat_file(path);
+  ASSERT_EQ(table.names, std::vector<std::string>{"B"});
+  EXPECT_EQ(table.channels.at("B").rows, 2u);
+  EXPECT_EQ(table.channels.at("B").at(1, 2), 6.0);
+}
+
+// ---- damaged files and messages ---------------------------------------------------------------------------
+
+TEST(MatFile, TruncatedVariableIsSkippedAsUnreadable) {
+  for (const matio_compression compression : {MAT_COMPRESSION_NONE, MAT_COMPRESSION_ZLIB}) {
+    const auto path = (test_temp_dir("mat_file") / "cut.mat").string();
+    {
+      const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+      ASSERT_NE(file, nullptr);
+      std::vector<double> ramp(1000);
+      for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = std::sin(static_cast<double>(i));
+      put_variable(file.get(), double_matrix("a", {1000, 1}, ramp), compression);
+      put_variable(file.get(), double_matrix("b", {1000, 1}, ramp), compression);
+    }
+    const auto size = std::filesystem::file_size(path);
+    std::filesystem::resize_file(path, size - (size - 128) / 4);  // into b's data
+    const ChannelTable table = read_mat_file(path);
+    EXPECT_EQ(table.names, std::vector<std::string>{"a"}) << compression;
+    EXPECT_EQ(table.skipped, std::vector<std::string>{"b (unreadable)"}) << compression;
+  }
+}
+
+/// The byte count in the tag of the top-level element that starts at `offset` of a v5 file.
+std::uint32_t element_bytes_at(const std::string& path, std::streamoff offset) {
+  std::uint32_t bytes = 0;
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(offset + 4);
+  in.read(reinterpret_cast<char*>(&bytes), sizeof bytes);
+  return bytes;
+}
+
+TEST(MatFile, CutZlibStreamIsUnreadable) {
+  // What a full disk leaves of matio's compressed write: b's tag counts only the bytes that reached the disk, and
+  // its zlib stream stops short; matio reads it without an error.
+  const auto path = (test_temp_dir("mat_file") / "cut_stream.mat").string();
+  std::vector<double> noise(2000);
+  for (std::size_t i = 0; i < noise.size(); ++i) noise[i] = std::sin(1e3 * static_cast<double>(i));
+  write_mat_file(path, {{"a", noise}, {"b", noise}});
+  const std::streamoff b_offset = 128 + 8 + element_bytes_at(path, 128);
+  const auto b_bytes = static_cast<std::uint32_t>(element_bytes_at(path, b_offset) / 2);
+  std::filesystem::resize_file(path, static_cast<std::uintmax_t>(b_offset) + 8 + b_bytes);
+  std::fstream io(path, std::ios::binary | std::ios::in | std::ios::out);
+  io.seekp(b_offset + 4);
+  io.write(reinterpret_cast<const char*>(&b_bytes), sizeof b_bytes);
+  io.close();
+  const ChannelTable table = read_mat_file(path);
+  EXPECT_EQ(table.names, std::vector<std::string>{"a"});
+  EXPECT_EQ(table.skipped, std::vector<std::string>{"b (unreadable)"});
+}
+
+TEST(MatFile, VariablesAfterADamagedHeaderAreCounted) {
+  const auto path = (test_temp_dir("mat_file") / "cut_header.mat").string();
+  {
+    const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+    ASSERT_NE(file, nullptr);
+    put_variable(file.get(), double_matrix("a", {3, 1}, {1, 2, 3}), MAT_COMPRESSION_NONE);
+    put_variable(file.get(), double_matrix("b", {3, 1}, {4, 5, 6}), MAT_COMPRESSION_NONE);
+  }
+  // The file's header is 128 bytes; a's element (an 8-byte tag, then its bytes) follows; b's header is cut 12 bytes
+  // into it, before its dimensions.
+  std::filesystem::resize_file(path, 128 + 8 + element_bytes_at(path, 128) + 12);
+  const ChannelTable table = read_mat_file(path);
+  EXPECT_EQ(table.names, std::vector<std::string>{"a"});
+  EXPECT_EQ(table.skipped, std::vector<std::string>{"1 unlisted variable (unreadable)"});
+}
+
+TEST(MatFile, TruncatedV73FileIsDamaged) {
+  const auto path = (test_temp_dir("mat_file") / "cut73.mat").string();
+  write_mat_file(path, {{"t", std::vector<double>(1000, 1.0)}}, MatVersion::v73);
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 200);
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file(path); }), path + ": a damaged .mat file"));
+}
+
+TEST(MatFile, SizeBeyondTheFileIsUnreadableNotAllocated) {
+  const auto path = (test_temp_dir("mat_file") / "huge.mat").string();
+  {
+    const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+    ASSERT_NE(file, nullptr);
+    put_variable(file.get(), double_matrix("a", {3, 1}, {1, 2, 3}), MAT_COMPRESSION_NONE);
+  }
+  // An uncompressed v5 variable's dimensions are two int32 at bytes 160..167 (after the file header, the variable's
+  // tag, its flags); 100 000 × 100 000 doubles would be 80 GB.
+  std::fstream io(path, std::ios::binary | std::ios::in | std::ios::out);
+  const std::int32_t huge[2] = {100000, 100000};
+  io.seekp(160);
+  io.write(reinterpret_cast<const char*>(huge), sizeof huge);
+  io.close();
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file(path); }), "found: a (unreadable)"));
+}
+
+TEST(MatFile, MissingFileNamesThePath) {
+  const auto path = (test_temp_dir("mat_file") / "missing.mat").string();
+  EXPECT_THROW(read_mat_file(path), InputError);
+  const std::string message = error_of([&] { read_mat_file(path); });
+  EXPECT_TRUE(HasText(message, path + ": no such file"));
+}
+
+TEST(MatFile, TextFileRenamedMatIsNotAMatFile) {
+  const auto path = test_temp_dir("mat_file") / "record.mat";
+  testing::write_text(path, "t,x,F\n0,0.001,12.5\n0.001,0.002,13.0\n");
+  EXPECT_THROW(read_mat_file(path.string()), InputError);
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file(path.string()); }), path.string() + ": not a MATLAB .mat file"));
+}
+
+TEST(MatFile, EmptyFileAndFolderAreNotMatFiles) {
+  const auto dir = test_temp_dir("mat_file");
+  testing::write_text(dir / "empty.mat", "");
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file((dir / "empty.mat").string()); }), "empty.mat: empty file"));
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file(dir.string()); }), dir.string() + ": not a file"));
+}
+
+TEST(MatFile, FileWithoutNumericMatrixListsWhatItHas) {
+  const auto path = (test_temp_dir("mat_file") / "text.mat").string();
+  {
+    const std::unique_ptr<mat_t, MatioFileCloser> file(Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT5));
+    ASSERT_NE(file, nullptr);
+    put_variable(file.get(), char_variable("label", "damper"), MAT_COMPRESSION_NONE);
+    put_variable(file.get(), struct_with_gain(), MAT_COMPRESSION_NONE);
+  }
+  EXPECT_TRUE(HasText(error_of([&] { read_mat_file(path); }),
+                      path + ": no numeric matrix in the file (found: label (char), s (struct))"));
+}
+
+TEST(MatFile, WriteErrorsNameThePath) {
+  const auto dir = test_temp_dir("mat_file");
+  const std::string nowhere = (dir / "no_such_folder" / "out.mat").string();
+  EXPECT_TRUE(HasText(error_of([&] { write_mat_file(nowhere, {{"x", {1.0}}}); }), "cannot write " + nowhere + ": "));
+  EXPECT_TRUE(HasText(error_of([&] { write_mat_file(nowhere, {{"x", {1.0}}}, MatVersion::v73); }),
+                      "cannot write " + nowhere + ": "));
+
+  const std::string out = (dir / "out.mat").string();
+  EXPECT_TRUE(HasText(error_of([&] { write_mat_file(out, {{"x[mm]", {1.0}}}); }),
+                      "cannot write " + out + ": 'x[mm]' is not a MATLAB variable name"));
+  EXPECT_TRUE(HasText(error_of([&] { write_mat_file(out, {{"x", {1.0}}, {"x", {2.0}}}); }),
+                      "cannot write " + out + ": column 'x' given twice"));
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace dampbench
