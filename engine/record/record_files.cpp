@@ -5,10 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <ranges>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
@@ -64,9 +62,11 @@ std::map<std::string, double> factors_of(const RecordOptions& o, const std::vect
   std::map<std::string, double> factor;
   for (const auto& p : picks) factor[p.column] = 1.0;
   for (const auto& [column, value] : parse_key_values(o.scale, "--scale")) {
-    if (!factor.count(column))
-      throw InputError(fmt::format("--scale {}: the record has no column '{}' (its columns: {})", column, column,
-                                   fmt::join(std::views::keys(factor), ", ")));
+    if (!factor.count(column)) {
+      std::string columns;
+      for (const auto& [name, f] : factor) columns += (columns.empty() ? "" : ", ") + name;
+      throw InputError(fmt::format("--scale {}: the record has no column '{}' (its columns: {})", column, column, columns));
+    }
     factor[column] *= parse_number(value, "--scale " + column);
   }
   if (!o.units.empty())
@@ -197,6 +197,7 @@ std::vector<Dataset> records_from_channels(const ChannelTable& table, const Reco
   for (std::size_t r = 0; r < records.size(); ++r) {
     const std::string name = records.size() == 1 ? stem : fmt::format("{}#{}", stem, r + 1);
     preprocess(records[r], o, fmt::format("{} ({})", table.source, name), cut);
+    if (wants_preprocessing(o)) records[r].erase("v"), records[r].erase("a");  // differentiated from the new x
     if (sampled_time) {
       std::vector<double> t(records[r].begin()->second.size());
       for (std::size_t k = 0; k < t.size(); ++k) t[k] = static_cast<double>(k) * *table.sampling_interval_s;
