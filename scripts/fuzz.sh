@@ -26,6 +26,12 @@ done
 for option in 8 56 249; do
   { printf "\\$(printf %03o $option)"; head -c 20000 docs/examples/rig_export.txt; } > "$corpus/fuzz_record/$option-rig_export.txt"
 done
+# a MATLAB v5 file of a simulated record (t, x, v, a, F), read with its own names (0) and with a matrix mapping (16)
+"${DAMPBENCH:-./build/dampbench}" simulate --model mrd.bingham --params f_c=500,c0=2000,f0=0 \
+  --sine amp=0.01,freq=1,cycles=1,fs=100 -o build-asan/fuzz/seed.mat
+for option in 0 16; do
+  { printf "\\$(printf %03o $option)"; cat build-asan/fuzz/seed.mat; } > "$corpus/fuzz_record/$option-seed.mat"
+done
 cp datasets/presets/*.toml docs/examples/*.toml "$corpus/fuzz_sweep_spec/"
 for f in datasets/papers/*.toml; do cp "$f" "$corpus/fuzz_sweep_spec/paper_$(basename "$f")"; done  # (names as presets')
 i=0
