@@ -1,7 +1,7 @@
 #pragma once
 // The --columns mapping of a record file whose channels are not named t, x, F, ...: "t=time,x=data[:,0],F=data[:,3]"
 // picks each record column from a channel of the file (a MATLAB variable, a text column by header name or by number
-// "#2"), a matrix's column or row, or a range of them ("F=data[:,1:6]": one record per column, Python's slices:
+// "#k", k from 0), a matrix's column or row, or a range of them ("F=data[:,1:6]": one record per column, Python's slices:
 // 0-based, end excluded).
 #include <cstddef>
 #include <string>
