@@ -1,5 +1,8 @@
 #include "engine/record/column_map.hpp"
 
+#include <algorithm>
+#include <map>
+
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
@@ -110,8 +113,51 @@ std::vector<ColumnPick> parse_column_map(std::string_view text, std::string_view
   return picks;
 }
 
-std::vector<std::vector<double>> pick_vectors(const ChannelTable& table, const ColumnPick& pick) {
-  std::string name = pick.channel;
+namespace {
+
+/// The element k of "s(k)<suffix>" that `channel` names, or 0.
+std::size_t element_of(std::string_view channel, std::string_view prefix, std::string_view suffix) {
+  if (!channel.starts_with(prefix) || channel.size() <= prefix.size() + 2 || channel[prefix.size()] != '(') return 0;
+  const std::size_t close = channel.find(')', prefix.size());
+  if (close == std::string_view::npos || channel.substr(close + 1, suffix.size()) != suffix) return 0;
+  const std::string_view rest = channel.substr(close + 1 + suffix.size());
+  if (!rest.empty() && !rest.starts_with(" (")) return 0;  // a skipped entry: "s(2).x (empty)"
+  const ParsedNumber k = try_parse_number(channel.substr(prefix.size() + 1, close - prefix.size() - 1));
+  return k.status == NumberStatus::ok && k.value >= 1 && k.value == static_cast<double>(static_cast<std::size_t>(k.value))
+             ? static_cast<std::size_t>(k.value)
+             : 0;
+}
+
+/// "s(:).x": the channels s(1).x, s(2).x, ... of every element (one element: "s.x", as mat_file.hpp names it). An
+/// element without that numeric field is an error naming it, never a record silently left out.
+std::vector<std::string> element_names(const ChannelTable& table, const ColumnPick& pick, std::size_t all) {
+  const std::string prefix = pick.channel.substr(0, all), suffix = pick.channel.substr(all + 3);
+  std::map<std::size_t, std::string> present;
+  std::size_t last = 0;
+  for (const auto& name : table.names)
+    if (const std::size_t k = element_of(name, prefix, suffix)) present[k] = name, last = std::max(last, k);
+  std::map<std::size_t, std::string> skipped;
+  for (const auto& entry : table.skipped)
+    if (const std::size_t k = element_of(entry, prefix, suffix)) skipped[k] = entry, last = std::max(last, k);
+  if (last == 0) {
+    if (table.channels.count(prefix + suffix)) return {prefix + suffix};
+    throw InputError(fmt::format("{}: --columns '{}': no channel '{}(k){}' for k = 1, 2, ... in the file (it holds: {})",
+                                 table.source, pick.text, prefix, suffix, channel_list(table)));
+  }
+  std::vector<std::string> names;
+  for (std::size_t k = 1; k <= last; ++k) {
+    if (!present.count(k))
+      throw InputError(fmt::format("{}: --columns '{}': element {} has no numeric '{}({}){}'{}", table.source, pick.text,
+                                   k, prefix, k, suffix, skipped.count(k) ? fmt::format(" ({})", skipped[k]) : ""));
+    names.push_back(present[k]);
+  }
+  return names;
+}
+
+/// The channel names a pick's source stands for: "#k" → the file's k-th numeric channel; "s(:).x" → "s(1).x",
+/// "s(2).x", ... as far as they go (a struct array's elements: engine/record/mat_file.hpp); else the name itself.
+std::vector<std::string> channel_names(const ChannelTable& table, const ColumnPick& pick) {
+  const std::string& name = pick.channel;
   if (name.starts_with('#')) {  // the file's k-th column, counted from 0
     const ParsedNumber k = try_parse_number(name.substr(1));
     if (k.status != NumberStatus::ok || k.value < 0 || k.value != static_cast<double>(static_cast<std::size_t>(k.value)))
@@ -119,37 +165,49 @@ std::vector<std::vector<double>> pick_vectors(const ChannelTable& table, const C
     if (static_cast<std::size_t>(k.value) >= table.names.size())
       throw InputError(fmt::format("{}: --columns '{}': the file has {} numeric columns ({})", table.source, pick.text,
                                    table.names.size(), channel_list(table)));
-    name = table.names[static_cast<std::size_t>(k.value)];
+    return {table.names[static_cast<std::size_t>(k.value)]};
   }
-  const auto found = table.channels.find(name);
-  if (found == table.channels.end())
+  if (const std::size_t all = name.find("(:)"); all != std::string::npos) return element_names(table, pick, all);
+  if (!table.channels.count(name))
     throw InputError(fmt::format("{}: --columns '{}': no channel '{}' in the file (it holds: {})", table.source,
                                  pick.text, name, channel_list(table)));
-  const Channel& c = found->second;
+  return {name};
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> pick_vectors(const ChannelTable& table, const ColumnPick& pick) {
+  const std::vector<std::string> names = channel_names(table, pick);
+  if (names.size() > 1 && pick.range)
+    throw InputError(fmt::format("{}: --columns '{}': an index range and (:) both make several records; use one",
+                                 table.source, pick.text));
   std::vector<std::vector<double>> out;
-  if (pick.axis == ColumnPick::Axis::whole) {
-    if (c.rows != 1 && c.cols != 1)
-      throw InputError(fmt::format("{}: --columns '{}': '{}' is a {}x{} matrix; pick a column ({}[:,k]) or a row ({}[k,:])",
-                                   table.source, pick.text, name, c.rows, c.cols, name, name));
-    out.push_back(c.values);
-    return out;
-  }
-  const bool by_column = pick.axis == ColumnPick::Axis::column;
-  const std::size_t count = by_column ? c.cols : c.rows;
-  if (pick.last > count)
-    throw InputError(fmt::format("{}: --columns '{}': {} {} out of range: '{}' is {}x{} ({} counted from 0)",
-                                 table.source, pick.text, by_column ? "column" : "row", pick.last - 1, name, c.rows,
-                                 c.cols, by_column ? "columns" : "rows"));
-  for (std::size_t k = pick.first; k < pick.last; ++k) {
-    std::vector<double> v;
-    if (by_column) {
-      v.assign(c.values.begin() + static_cast<std::ptrdiff_t>(k * c.rows),
-               c.values.begin() + static_cast<std::ptrdiff_t>((k + 1) * c.rows));
-    } else {
-      v.reserve(c.cols);
-      for (std::size_t j = 0; j < c.cols; ++j) v.push_back(c.at(k, j));
+  for (const std::string& name : names) {
+    const Channel& c = table.channels.at(name);
+    if (pick.axis == ColumnPick::Axis::whole) {
+      if (c.rows != 1 && c.cols != 1)
+        throw InputError(fmt::format("{}: --columns '{}': '{}' is a {}x{} matrix; pick a column ({}[:,k]) or a row ({}[k,:])",
+                                     table.source, pick.text, name, c.rows, c.cols, name, name));
+      out.push_back(c.values);
+      continue;
     }
-    out.push_back(std::move(v));
+    const bool by_column = pick.axis == ColumnPick::Axis::column;
+    const std::size_t count = by_column ? c.cols : c.rows;
+    if (pick.last > count)
+      throw InputError(fmt::format("{}: --columns '{}': {} {} out of range: '{}' is {}x{} ({} counted from 0)",
+                                   table.source, pick.text, by_column ? "column" : "row", pick.last - 1, name, c.rows,
+                                   c.cols, by_column ? "columns" : "rows"));
+    for (std::size_t k = pick.first; k < pick.last; ++k) {
+      std::vector<double> v;
+      if (by_column) {
+        v.assign(c.values.begin() + static_cast<std::ptrdiff_t>(k * c.rows),
+                 c.values.begin() + static_cast<std::ptrdiff_t>((k + 1) * c.rows));
+      } else {
+        v.reserve(c.cols);
+        for (std::size_t j = 0; j < c.cols; ++j) v.push_back(c.at(k, j));
+      }
+      out.push_back(std::move(v));
+    }
   }
   return out;
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -210,15 +211,19 @@ struct FileLimits {
   std::optional<std::vector<V5Element>> v5;  ///< set for a v5 file
 };
 
-/// Reads the data of the `index`-th variable, a numeric 2-D one whose header matio listed; nullopt when the file
-/// cannot hold it or matio cannot read it.
-std::optional<Channel> read_channel(mat_t& file, matvar_t& variable, std::size_t index, const FileLimits& limits) {
-  const std::size_t rows = variable.dims[0], cols = variable.dims[1];
-  if (limits.v5 && (index >= limits.v5->size() || !v5_element_intact(limits.path, (*limits.v5)[index], limits.bytes)))
+/// True unless the file is a v5 file whose `index`-th element is cut short or missing.
+bool v5_variable_intact(std::size_t index, const FileLimits& limits) {
+  return !limits.v5 ||
+         (index < limits.v5->size() && v5_element_intact(limits.path, (*limits.v5)[index], limits.bytes));
+}
+
+/// Reads the data of `matrix`, a numeric 2-D variable or struct field whose header matio listed; nullopt when the
+/// file cannot hold it or matio cannot read it.
+std::optional<Channel> read_matrix(mat_t& file, matvar_t& matrix, const FileLimits& limits) {
+  const std::size_t rows = matrix.dims[0], cols = matrix.dims[1];
+  if (!fits_in_file(rows, cols, limits.bytes) || Mat_VarReadDataAll(&file, &matrix) != MATIO_E_NO_ERROR)
     return std::nullopt;
-  if (!fits_in_file(rows, cols, limits.bytes) || Mat_VarReadDataAll(&file, &variable) != MATIO_E_NO_ERROR)
-    return std::nullopt;
-  auto values = values_as_double(variable, rows * cols);
+  auto values = values_as_double(matrix, rows * cols);
   if (!values) return std::nullopt;
   return Channel{rows, cols, std::move(*values)};
 }
@@ -261,24 +266,135 @@ std::string listed_or_nothing(const std::vector<std::string>& entries) {
   return entries.empty() ? std::string("no variables") : fmt::format("{}", fmt::join(entries, ", "));
 }
 
-/// Adds the `index`-th variable of the file to `table`: a channel when it is a numeric matrix matio reads,
-/// "name (why not)" in `skipped` otherwise.
+/// Adds `name` to `table`: the channel when there is one, "name (why not)" in `skipped` otherwise.
+void add_entry(ChannelTable& table, std::string name, const std::optional<std::string>& why_not,
+               std::optional<Channel> channel) {
+  if (why_not || !channel) {
+    table.skipped.push_back(fmt::format("{} ({})", name, why_not.value_or("unreadable")));
+    return;
+  }
+  table.names.push_back(name);
+  table.channels.emplace(std::move(name), std::move(*channel));
+}
+
+/// The number of elements of `variable`, the product of its dimensions; nullopt when it has none or the product
+/// overflows (a damaged header).
+std::optional<std::size_t> element_count(const matvar_t& variable) {
+  if (variable.rank <= 0 || variable.dims == nullptr) return std::nullopt;
+  std::size_t count = 1;
+  for (int d = 0; d < variable.rank; ++d)
+    if (__builtin_mul_overflow(count, variable.dims[d], &count)) return std::nullopt;
+  return count;
+}
+
+/// True when matio holds a field pointer for each of the `elements` × `fields` slots of the struct `variable` and
+/// a name for each field: Mat_VarGetStructFieldByIndex checks neither, and a damaged header leaves them short.
+bool holds_all_fields(const matvar_t& variable, std::size_t elements, std::size_t fields) {
+  std::size_t slots = 0;
+  if (__builtin_mul_overflow(elements, fields, &slots)) return false;
+  if (variable.data == nullptr || variable.data_size != static_cast<int>(sizeof(matvar_t*)) ||
+      variable.nbytes / sizeof(matvar_t*) < slots)
+    return false;
+  char* const* names = Mat_VarGetStructFieldnames(&variable);
+  return names != nullptr && std::all_of(names, names + fields, [](const char* name) { return name != nullptr; });
+}
+
+/// The channel name of field `field` of element `element` (0-based, in MATLAB's linear order) of the struct
+/// `name` that has `elements` elements: "name.field" for a single struct, "name(k).field" for a struct array, k
+/// being MATLAB's 1-based linear index (the same for a 1 × K, a K × 1 or any other shape).
+std::string struct_field_name(std::string_view name, std::size_t element, std::size_t elements,
+                              std::string_view field) {
+  if (elements == 1) return fmt::format("{}.{}", name, field);
+  return fmt::format("{}({}).{}", name, element + 1, field);
+}
+
+/// Why a struct field (its header) is not a channel: why_not_a_channel, except that a field without class or rank
+/// is "empty": a v5 file may store an unset field ([]) as an element of no bytes, which matio lists so.
+std::optional<std::string> why_field_not_a_channel(const matvar_t& field) {
+  if (field.class_type == MAT_C_EMPTY && field.rank == 0) return "empty";
+  return why_not_a_channel(field);
+}
+
+/// Frees the data matio read into `field` once its values are copied, so that a struct array of long records
+/// holds one field's buffer at a time beside its channels rather than all of them until the struct is freed.
+void release_field_data(matvar_t& field) {
+  if (field.mem_conserve || field.isComplex) return;
+  std::free(field.data);
+  field.data = nullptr;
+}
+
+/// Adds the fields of the struct `variable`, the `index`-th variable of the file, to `table`: element by element in
+/// MATLAB's linear order and, in each, field by field in the struct's order; a real numeric 2-D field is a channel
+/// named as struct_field_name says, any other field is "that name (why not)" in `skipped`. Fields of a struct in a
+/// field are not followed: that field is skipped as "(struct)". A struct without elements, without fields or
+/// without a numeric field anywhere is one entry, "name (struct with no numeric field)".
+void add_struct(mat_t& file, matvar_t& variable, std::size_t index, const FileLimits& limits, ChannelTable& table) {
+  const std::string name = variable.name;
+  const std::size_t fields = Mat_VarGetNumberOfFields(&variable);
+  const std::optional<std::size_t> elements = element_count(variable);
+  if (!elements) {
+    add_entry(table, name, "unreadable", std::nullopt);
+    return;
+  }
+  if (*elements == 0 || fields == 0) {
+    add_entry(table, name, "struct with no numeric field", std::nullopt);
+    return;
+  }
+  // A cut v5 struct is unreadable as a whole: the field headers matio listed may come from the cut part.
+  if (!holds_all_fields(variable, *elements, fields) || !v5_variable_intact(index, limits)) {
+    add_entry(table, name, "unreadable", std::nullopt);
+    return;
+  }
+  char* const* field_names = Mat_VarGetStructFieldnames(&variable);
+  struct Entry {
+    std::string name;
+    matvar_t* field;
+    std::optional<std::string> why_not;
+  };
+  std::vector<Entry> entries;
+  bool any_candidate = false;  // a numeric field, or one matio could not list that may have been one
+  for (std::size_t element = 0; element < *elements; ++element) {
+    for (std::size_t f = 0; f < fields; ++f) {
+      matvar_t* field = Mat_VarGetStructFieldByIndex(&variable, f, element);
+      std::optional<std::string> why_not = field != nullptr ? why_field_not_a_channel(*field) : "unreadable";
+      any_candidate = any_candidate || field == nullptr || !why_not;
+      entries.push_back({struct_field_name(name, element, *elements, field_names[f]), field, std::move(why_not)});
+    }
+  }
+  if (!any_candidate) {
+    add_entry(table, name, "struct with no numeric field", std::nullopt);
+    return;
+  }
+  for (Entry& entry : entries) {
+    if (!entry.why_not && table.channels.contains(entry.name)) entry.why_not = "named twice";
+    std::optional<Channel> channel;
+    if (!entry.why_not) {
+      channel = read_matrix(file, *entry.field, limits);
+      release_field_data(*entry.field);
+    }
+    add_entry(table, std::move(entry.name), entry.why_not, std::move(channel));
+  }
+}
+
+/// Adds the `index`-th variable of the file to `table`: a channel when it is a numeric matrix matio reads, its
+/// fields when it is a struct, "name (why not)" in `skipped` otherwise.
 void add_variable(mat_t& file, matvar_t& variable, std::size_t index, const FileLimits& limits, ChannelTable& table) {
+  if (variable.class_type == MAT_C_STRUCT) {
+    add_struct(file, variable, index, limits, table);
+    return;
+  }
   const std::string name = variable.name;
   std::optional<std::string> why_not = why_not_a_channel(variable);
   if (!why_not && table.channels.contains(name)) why_not = "named twice";
   std::optional<Channel> channel;
-  if (!why_not && !(channel = read_channel(file, variable, index, limits))) why_not = "unreadable";
-  if (why_not) {
-    table.skipped.push_back(fmt::format("{} ({})", name, *why_not));
-    return;
-  }
-  table.names.push_back(name);
-  table.channels.emplace(name, std::move(*channel));
+  if (!why_not && v5_variable_intact(index, limits)) channel = read_matrix(file, variable, limits);
+  add_entry(table, name, why_not, std::move(channel));
 }
 
-/// Adds every variable of an open file to `table`. Headers come one after the other (of a compressed v5 variable
-/// matio inflates only the start), data only for the numeric matrices: a large cell or struct is never read.
+/// Adds every variable of an open file to `table`. Headers come one after the other, data only for the numeric
+/// matrices and the numeric fields of structs: a cell's data is never read. Of a compressed v5 variable matio
+/// inflates only the start, except of a struct or a cell: to list their fields it inflates all of it, and keeps the
+/// data of each field or cell smaller than its inflate window (32 KiB).
 void add_variables(mat_t& file, const FileLimits& limits, ChannelTable& table) {
   std::size_t index = 0;
   for (;; ++index) {

@@ -94,6 +94,22 @@ def test_mat_files_load_as_the_same_records_as_csv(exe, tmp_path, version):
     assert list(from_mat) == [f"validation#{k}" for k in range(1, 6)]
 
 
+def test_a_struct_array_gives_one_record_per_element(tmp_path):
+    tests = five_tests_in_si()
+    array = np.zeros((1, len(tests)), dtype=[("t", object), ("x", object), ("F", object), ("label", object)])
+    csv = []
+    for k, (t, x, F) in enumerate(tests):
+        n = t.size - 37 * k  # elements of different lengths
+        array[0, k] = (t[:n].reshape(-1, 1), x[:n].reshape(-1, 1), F[:n].reshape(-1, 1), f"test {k}")
+        csv.append(tmp_path / f"hand{k + 1}.csv")
+        write_csv(csv[-1], t[:n], x[:n], F[:n])
+    path = tmp_path / "tests.mat"
+    scipy_io.savemat(path, {"tests": array})
+    records = dampbench.load_records(path, columns="t=tests(:).t,x=tests(:).x,F=tests(:).F", set={"I": CURRENTS})
+    assert [r.name for r in records] == [f"tests#{k}" for k in range(1, 6)]
+    assert_same_records(records, [dampbench.load_record(p, set={"I": c}) for p, c in zip(csv, CURRENTS)])
+
+
 def test_mat_file_errors_name_what_is_there(exe, tmp_path):
     path = tmp_path / "v.mat"
     scipy_io.savemat(path, {"time": np.arange(10.0).reshape(-1, 1), "data": np.ones((10, 3))})

@@ -71,6 +71,32 @@ TEST(ColumnMap, PicksColumnsRowsAndRanges) {
             std::string::npos);
 }
 
+TEST(ColumnMap, AStructArraysFieldGivesOneVectorPerElement) {
+  ChannelTable t;
+  t.source = "s.mat";
+  t.names = {"tests(1).x", "tests(2).x", "tests(3).x", "tests(1).F"};
+  t.channels["tests(1).x"] = {2, 1, {1, 2}};
+  t.channels["tests(2).x"] = {1, 3, {3, 4, 5}};
+  t.channels["tests(3).x"] = {1, 1, {6}};
+  t.channels["tests(1).F"] = {2, 1, {7, 8}};
+  EXPECT_EQ(pick_vectors(t, parse_column_map("x=tests(:).x")[0]),
+            (std::vector<std::vector<double>>{{1, 2}, {3, 4, 5}, {6}}));
+  EXPECT_EQ(pick_vectors(t, parse_column_map("F=tests(:).F")[0]), (std::vector<std::vector<double>>{{7, 8}}));
+  EXPECT_EQ(pick_vectors(t, parse_column_map("x=tests(2).x")[0]), (std::vector<std::vector<double>>{{3, 4, 5}}));
+  const std::string missing = testing::error_of([&] { pick_vectors(t, parse_column_map("x=runs(:).x")[0]); });
+  EXPECT_NE(missing.find("no channel 'runs(k).x' for k = 1, 2, ..."), std::string::npos) << missing;
+  t.skipped = {"tests(4).x (empty)"};
+  t.names.push_back("tests(5).x");
+  t.channels["tests(5).x"] = {1, 1, {9}};
+  const std::string gap = testing::error_of([&] { pick_vectors(t, parse_column_map("x=tests(:).x")[0]); });
+  EXPECT_NE(gap.find("element 4 has no numeric 'tests(4).x' (tests(4).x (empty))"), std::string::npos) << gap;
+  ChannelTable one;  // a struct array of one element is named as a struct
+  one.source = "one.mat";
+  one.names = {"tests.x"};
+  one.channels["tests.x"] = {2, 1, {1, 2}};
+  EXPECT_EQ(pick_vectors(one, parse_column_map("x=tests(:).x")[0]), (std::vector<std::vector<double>>{{1, 2}}));
+}
+
 /// A rig export: a 7-line header block, three tests of 8 samples (CHANNEL1 = 1, 2, ..., 24 V; CHANNEL0 a tenth of
 /// it) between DAQ Pause and Resume events.
 std::string rig_export() {
