@@ -3,7 +3,6 @@
 #include "engine/record/mat_file.hpp"
 
 #include <matio.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -22,6 +21,7 @@
 #include <fmt/ranges.h>
 
 #include "engine/common/error.hpp"
+#include "engine/record/mat_v5_scan.hpp"
 
 namespace dampbench {
 namespace {
@@ -138,70 +138,6 @@ std::optional<std::vector<double>> values_as_double(const matvar_t& variable, st
     case MAT_T_UINT64: return widened<std::uint64_t>(variable.data, count);
     default: return std::nullopt;
   }
-}
-
-/// A top-level element of a v5 file (one variable): where its bytes start after its tag, how many its tag claims,
-/// whether they are a zlib stream.
-struct V5Element {
-  std::uintmax_t offset = 0;
-  std::uint32_t bytes = 0;
-  bool compressed = false;
-};
-
-/// The top-level elements of the v5 file `path`, from their tags, in the order matio lists the variables.
-std::vector<V5Element> v5_elements(const std::string& path, std::uintmax_t file_bytes) {
-  constexpr std::uintmax_t kHeaderBytes = 128, kTagBytes = 8;
-  constexpr std::uint32_t kCompressedType = 15;  // miCOMPRESSED
-  std::ifstream in(path, std::ios::binary);
-  char header[kHeaderBytes];
-  if (!in.read(header, sizeof header)) return {};
-  std::uint16_t endian_mark;  // 'M' 'I' as one number: 0x4d49 when the file has this machine's byte order
-  std::memcpy(&endian_mark, header + 126, sizeof endian_mark);
-  const bool swapped = endian_mark != 0x4d49;
-  std::vector<V5Element> elements;
-  for (std::uintmax_t at = kHeaderBytes; at + kTagBytes <= file_bytes;) {
-    std::uint32_t tag[2];
-    if (!in.seekg(static_cast<std::streamoff>(at)) || !in.read(reinterpret_cast<char*>(tag), sizeof tag)) break;
-    if (swapped) {
-      tag[0] = __builtin_bswap32(tag[0]);
-      tag[1] = __builtin_bswap32(tag[1]);
-    }
-    elements.push_back({at + kTagBytes, tag[1], tag[0] == kCompressedType});
-    at += kTagBytes + tag[1];
-  }
-  return elements;
-}
-
-/// True when the next `bytes` bytes of `in` are a zlib stream that inflates to its end, its checksum right.
-bool zlib_stream_complete(std::istream& in, std::uint32_t bytes) {
-  z_stream stream{};
-  if (inflateInit(&stream) != Z_OK) return false;
-  std::vector<unsigned char> input(std::size_t{1} << 16), output(std::size_t{1} << 16);
-  int status = Z_OK;
-  for (std::uint32_t left = bytes; left > 0 && status != Z_STREAM_END;) {
-    const std::uint32_t chunk = std::min<std::uint32_t>(left, static_cast<std::uint32_t>(input.size()));
-    if (!in.read(reinterpret_cast<char*>(input.data()), chunk)) break;
-    left -= chunk;
-    stream.next_in = input.data();
-    stream.avail_in = chunk;
-    do {
-      stream.next_out = output.data();
-      stream.avail_out = static_cast<uInt>(output.size());
-      status = inflate(&stream, Z_NO_FLUSH);
-    } while (status == Z_OK && stream.avail_out == 0);
-    if (status != Z_OK && status != Z_STREAM_END && status != Z_BUF_ERROR) break;
-  }
-  inflateEnd(&stream);
-  return status == Z_STREAM_END;
-}
-
-/// True when all of `element` is in the file and, if compressed, its zlib stream is whole. matio checks neither: a
-/// variable cut short by a truncated file or a full disk comes back with uninitialised or zero values and no error.
-bool v5_element_intact(const std::string& path, const V5Element& element, std::uintmax_t file_bytes) {
-  if (element.offset + element.bytes > file_bytes) return false;
-  if (!element.compressed) return true;
-  std::ifstream in(path, std::ios::binary);
-  return in.seekg(static_cast<std::streamoff>(element.offset)) && zlib_stream_complete(in, element.bytes);
 }
 
 /// What the reader checks before it lets matio read a variable's data.
@@ -398,10 +334,20 @@ void add_variable(mat_t& file, matvar_t& variable, std::size_t index, const File
 void add_variables(mat_t& file, const FileLimits& limits, ChannelTable& table) {
   std::size_t index = 0;
   for (;; ++index) {
+    // A header whose sizes its bytes cannot back would have matio allocate them (gigabytes for a damaged file of
+    // a few hundred bytes): it is not handed to matio, and listing stops there as at a header matio cannot read.
+    V5Verdict verdict = V5Verdict::listable;
+    if (limits.v5 && index < limits.v5->size())
+      verdict = scan_v5_element(limits.path, (*limits.v5)[index], limits.bytes);
+    if (verdict == V5Verdict::unsafe) break;
     const MatVar variable{Mat_VarReadNextInfo(&file)};
     if (!variable) break;
     // MATLAB keeps the class data of the objects in a file in an unnamed uint8 variable (its "subsystem").
     if (variable->name == nullptr || variable->name[0] == '\0') continue;
+    if (verdict == V5Verdict::unreadable) {
+      add_entry(table, variable->name, "unreadable", std::nullopt);
+      continue;
+    }
     add_variable(file, *variable, index, limits, table);
   }
   // matio stops at the first variable whose header it cannot read; the v5 elements after it are named by count.

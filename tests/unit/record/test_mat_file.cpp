@@ -12,14 +12,18 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "engine/common/error.hpp"
 #include "tests/test_support.hpp"
@@ -493,6 +497,134 @@ TEST(MatFile, SizeBeyondTheFileIsUnreadableNotAllocated) {
   io.write(reinterpret_cast<const char*>(huge), sizeof huge);
   io.close();
   EXPECT_TRUE(HasText(error_of([&] { read_mat_file(path); }), "found: a (unreadable)"));
+}
+
+// ---- v5 files written byte by byte: headers whose sizes their bytes cannot back ----------------------------
+
+/// Appends `words` to `bytes` as 32-bit integers in this machine's byte order (the file header says which).
+void append_words(std::string& bytes, std::initializer_list<std::uint32_t> words) {
+  for (const std::uint32_t word : words) bytes.append(reinterpret_cast<const char*>(&word), sizeof word);
+}
+
+void append_doubles(std::string& bytes, std::initializer_list<double> values) {
+  for (const double value : values) bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+/// The 128-byte header of a v5 file: text, subsystem offset, version 0x0100 and 'IM' in this machine's order.
+std::string v5_file_header() {
+  std::string header = "MATLAB 5.0 MAT-file, written by hand";
+  header.resize(124, ' ');
+  const std::uint16_t version_and_mark[2] = {0x0100, 0x4d49};
+  header.append(reinterpret_cast<const char*>(version_and_mark), sizeof version_and_mark);
+  return header;
+}
+
+/// A top-level v5 element holding the miMATRIX `contents` (what follows its tag); `claimed` replaces the count in
+/// the miMATRIX tag when given. Compressed, the miMATRIX element, tag and all, is a zlib stream in a miCOMPRESSED
+/// element, as MATLAB, scipy and matio write them.
+std::string v5_element(const std::string& contents, bool compressed, std::optional<std::uint32_t> claimed = {}) {
+  std::string matrix;
+  append_words(matrix, {14, claimed.value_or(static_cast<std::uint32_t>(contents.size()))});  // miMATRIX
+  matrix += contents;
+  if (!compressed) return matrix;
+  uLongf packed_bytes = compressBound(static_cast<uLong>(matrix.size()));
+  std::string packed(packed_bytes, '\0');
+  EXPECT_EQ(compress(reinterpret_cast<Bytef*>(packed.data()), &packed_bytes,
+                     reinterpret_cast<const Bytef*>(matrix.data()), static_cast<uLong>(matrix.size())),
+            Z_OK);
+  packed.resize(packed_bytes);
+  std::string element;
+  append_words(element, {15, static_cast<std::uint32_t>(packed.size())});  // miCOMPRESSED
+  return element + packed;
+}
+
+/// The contents of an m × 1 double matrix named with one letter.
+std::string double_column_contents(char name, std::initializer_list<double> values) {
+  std::string contents;
+  append_words(contents, {6, 8, 6, 0});                                    // array flags: mxDOUBLE_CLASS
+  append_words(contents, {5, 8, static_cast<std::uint32_t>(values.size()), 1});  // dimensions: m × 1
+  append_words(contents, {(1u << 16) | 1u, static_cast<std::uint32_t>(name)});   // the name, packed in its tag
+  append_words(contents, {9, static_cast<std::uint32_t>(8 * values.size())});    // miDOUBLE
+  append_doubles(contents, values);
+  return contents;
+}
+
+/// The contents of the struct `tests` of dims[0] × dims[1] elements whose field names are 8 bytes long and
+/// `names_bytes` long together (the tag claims it; "t" and "x" follow). When `fields_follow`, each element (at most
+/// the first two) has t = 1 and x = 2, else the element ends after the names.
+std::string struct_contents(std::uint32_t rows, std::uint32_t cols, std::uint32_t names_bytes, bool fields_follow) {
+  std::string contents;
+  append_words(contents, {6, 8, 2, 0});           // array flags: mxSTRUCT_CLASS
+  append_words(contents, {5, 8, rows, cols});     // dimensions
+  append_words(contents, {1, 5});                 // the name: 5 int8
+  contents.append("tests\0\0\0", 8);
+  append_words(contents, {(4u << 16) | 5u, 8});   // field-name length 8, packed in its tag
+  append_words(contents, {1, names_bytes});       // the field names: int8
+  contents.append("t\0\0\0\0\0\0\0x\0\0\0\0\0\0\0", 16);
+  if (!fields_follow) return contents;
+  for (std::uint64_t k = 0; k < std::min<std::uint64_t>(std::uint64_t{rows} * cols, 2); ++k) {
+    for (const double value : {1.0, 2.0}) {
+      std::string field;
+      append_words(field, {6, 8, 6, 0});
+      append_words(field, {5, 8, 1, 1});
+      append_words(field, {1, 0});  // a field element has no name of its own
+      append_words(field, {9, 8});
+      append_doubles(field, {value});
+      append_words(contents, {14, static_cast<std::uint32_t>(field.size())});
+      contents += field;
+    }
+  }
+  return contents;
+}
+
+/// Writes a v5 file of a = [1; 2; 3], then `middle`, then b = [4; 5], each element compressed or not.
+std::string write_a_then_b(const std::string& file_name, const std::string& middle, bool compressed) {
+  const auto path = (test_temp_dir("mat_file") / file_name).string();
+  std::ofstream out(path, std::ios::binary);
+  out << v5_file_header() << v5_element(double_column_contents('a', {1, 2, 3}), compressed) << middle
+      << v5_element(double_column_contents('b', {4, 5}), compressed);
+  return path;
+}
+
+TEST(MatFile, HandWrittenV5StructIsRead) {
+  // The layout the tests below damage, intact: tests.t and tests.x are channels between a and b.
+  for (const bool compressed : {false, true}) {
+    const std::string path =
+        write_a_then_b("hand_struct.mat", v5_element(struct_contents(1, 1, 16, true), compressed), compressed);
+    const ChannelTable table = read_mat_file(path);
+    EXPECT_EQ(table.names, (std::vector<std::string>{"a", "tests.t", "tests.x", "b"})) << compressed;
+    EXPECT_TRUE(table.skipped.empty()) << compressed;
+    EXPECT_EQ(table.channels.at("tests.x").values, std::vector<double>{2.0}) << compressed;
+  }
+}
+
+TEST(MatFile, StructHeaderClaimingMoreThanItsBytesIsNotHandedToMatio) {
+  // What libFuzzer found: a struct whose field-name tag claims 458 MB (so 229 million 2-byte field names: matio
+  // allocated their 458 MB, then 3.7 GB of field pointers for the 1 × 2 struct) in an element of a few dozen bytes.
+  // A header is damaged just as badly when its dimensions claim more elements × fields than the bytes could hold
+  // (here 1 × 2^31 − 1 elements × 2 fields, 34 GB of pointers). matio is never given such an element: it and the
+  // variables after it are counted as unlisted, the variables before it read as usual.
+  for (const bool compressed : {false, true}) {
+    for (const auto& [what, contents] :
+         {std::pair<std::string, std::string>{"field names", struct_contents(1, 2, 458865152u, false)},
+          {"dimensions", struct_contents(1, 0x7fffffffu, 16, true)}}) {
+      const std::string path = write_a_then_b("claims.mat", v5_element(contents, compressed), compressed);
+      const ChannelTable table = read_mat_file(path);
+      EXPECT_EQ(table.names, std::vector<std::string>{"a"}) << what << compressed;
+      EXPECT_EQ(table.skipped, std::vector<std::string>{"2 unlisted variables (unreadable)"}) << what << compressed;
+    }
+  }
+  // As in the fuzzer's file, the struct is the last element and its tag also claims more bytes than the file has.
+  const auto path = (test_temp_dir("mat_file") / "claims_last.mat").string();
+  {
+    const std::string contents = struct_contents(1, 2, 458865152u, false);
+    std::ofstream out(path, std::ios::binary);
+    out << v5_file_header() << v5_element(double_column_contents('a', {1, 2, 3}), false)
+        << v5_element(contents, false, static_cast<std::uint32_t>(contents.size() + 600));
+  }
+  const ChannelTable table = read_mat_file(path);
+  EXPECT_EQ(table.names, std::vector<std::string>{"a"});
+  EXPECT_EQ(table.skipped, std::vector<std::string>{"1 unlisted variable (unreadable)"});
 }
 
 TEST(MatFile, MissingFileNamesThePath) {
