@@ -86,6 +86,9 @@ ColumnPick parse_pick(std::string_view entry, std::string_view option) {
   return pick;
 }
 
+
+}  // namespace
+
 std::string channel_list(const ChannelTable& table) {
   std::string list;
   for (const auto& name : table.names) {
@@ -95,8 +98,6 @@ std::string channel_list(const ChannelTable& table) {
   for (const auto& name : table.skipped) list += fmt::format("{}{}", list.empty() ? "" : ", ", name);
   return list.empty() ? "nothing" : list;
 }
-
-}  // namespace
 
 bool is_column_map(std::string_view text) { return text.find('=') != std::string_view::npos; }
 

@@ -22,7 +22,11 @@ struct ColumnPick {
   std::size_t first = 0, last = 1;  ///< the columns (Axis::column) or rows (Axis::row) [first, last)
   bool range = false;               ///< written as a:b: gives one record per index
   std::string text;                 ///< as written, for messages
+  std::string unit;                 ///< a header cell's unit ("x[mm]"), which --units overrides
 };
+
+/// "data (10x3), time (10x1), label (char)": what a file holds, for messages.
+std::string channel_list(const ChannelTable& table);
 
 /// True when --columns maps names to channels ("t=time,...") rather than naming the file's columns in order.
 bool is_column_map(std::string_view text);

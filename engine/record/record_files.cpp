@@ -47,13 +47,24 @@ std::vector<ColumnPick> picks_of(const ChannelTable& table, const RecordOptions&
       picks.push_back(parse_column_map(fmt::format("{}=#{}", names[i], i)).front());
     return picks;
   }
-  for (const auto& name : table.names)
-    if (is_known_column(name) && table.channels.at(name).rows * table.channels.at(name).cols > 0)
-      picks.push_back(parse_column_map(fmt::format("{}={}", name, name)).front());
+  for (const auto& name : table.names) {  // "F" or, as a record file's header has it, "F[kN]"
+    std::pair<std::string, std::string> column_unit;
+    try {
+      column_unit = split_name_unit(name);
+    } catch (const InputError&) {
+      continue;  // not a record column's name
+    }
+    if (!is_known_column(column_unit.first) || table.channels.at(name).values.empty()) continue;
+    ColumnPick pick;
+    pick.column = column_unit.first;
+    pick.channel = pick.text = name;
+    pick.unit = column_unit.second;
+    picks.push_back(std::move(pick));
+  }
   if (picks.empty())
-    throw InputError(fmt::format("{}: no channel is named as a record column ({}); map them with --columns, e.g. "
-                                 "t=time,x=data[:,0],F=data[:,1]",
-                                 table.source, known_columns_text()));
+    throw InputError(fmt::format("{}: no channel is named as a record column ({}); the file holds: {}; map them "
+                                 "with --columns, e.g. t=time,x=data[:,0],F=data[:,1]",
+                                 table.source, known_columns_text(), channel_list(table)));
   return picks;
 }
 
@@ -69,9 +80,12 @@ std::map<std::string, double> factors_of(const RecordOptions& o, const std::vect
     }
     factor[column] *= parse_number(value, "--scale " + column);
   }
-  if (!o.units.empty())
-    for (const auto& [column, unit] : parse_units_option(o.units))
-      if (factor.count(column)) factor[column] *= unit_to_si(column, unit);
+  const auto units = parse_units_option(o.units);
+  for (const auto& p : picks) {
+    const auto given = units.find(p.column);
+    const std::string& unit = given != units.end() ? given->second : p.unit;
+    if (!unit.empty()) factor[p.column] *= unit_to_si(p.column, unit);
+  }
   return factor;
 }
 

@@ -56,7 +56,10 @@ ChannelTable parse_text_channels(std::istream& in, const std::string& source, st
   ChannelTable table;
   table.source = source;
   const std::optional<int> block = skip_header ? skip_header : detected_block(lines, source);
-  const std::size_t names_line = static_cast<std::size_t>(block.value_or(0));
+  std::size_t names_line = static_cast<std::size_t>(block.value_or(0));
+  if (!block)  // a plain record file's leading comments and blank lines, as csv_loader.hpp skips them
+    while (names_line < lines.size() && (trim(lines[names_line]).empty() || trim(lines[names_line]).front() == '#'))
+      ++names_line;
   if (skip_header && *skip_header < 0) throw InputError(fmt::format("{}: --skip-header: expected 0 or more lines", source));
   if (names_line >= lines.size())
     throw InputError(fmt::format("{}: the file has {} lines; the column names were expected on line {}", source,

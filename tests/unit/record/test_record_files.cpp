@@ -198,6 +198,21 @@ TEST_F(RecordFiles, RowsOfNaNSeparateTests) {
   EXPECT_EQ(records[1].t_s, (std::vector<double>{0, 1, 2, 3, 4, 5, 6, 7}));
 }
 
+TEST_F(RecordFiles, APlainFileReadAsChannelsKeepsItsCommentsOutAndItsHeaderUnits) {
+  std::string text = "# a comment line\n\nt,x[mm],F[kN]\n";
+  for (int k = 0; k < 10; ++k) text += std::to_string(k * 0.01) + "," + std::to_string(k) + "," + std::to_string(k % 3) + "\n";
+  RecordOptions o;
+  o.path = write("plain.csv", text);
+  const Dataset plain = load_record(o, true);
+  o.split = "nan";  // reads the file as channels: one test, no NaN rows
+  const std::vector<Dataset> channels = load_records(o, true);
+  ASSERT_EQ(channels.size(), 1u);
+  EXPECT_EQ(channels[0].x_m, plain.x_m);  // mm → m from the header, as the plain loader does
+  EXPECT_EQ(channels[0].F_N, plain.F_N);
+  EXPECT_EQ(channels[0].t_s, plain.t_s);
+  EXPECT_EQ(plain.x_m[3], 3e-3);
+}
+
 TEST(Preprocess, CentredMovingAverageByHand) {
   const std::vector<double> v{1, 2, 3, 4, 5};
   EXPECT_EQ(centred_moving_average(v, 3), (std::vector<double>{1.5, 2, 3, 4, 4.5}));
