@@ -105,10 +105,6 @@ std::vector<std::pair<std::string, std::vector<double>>> simulated_columns(const
   return {{"t", data.t_s}, {"x", data.x_m}, {"v", data.v_m_s}, {"a", data.a_m_s2}, {"F", sim.force}};
 }
 
-bool ends_with_mat(const std::string& path) {
-  return path.size() > 4 && (path.ends_with(".mat") || path.ends_with(".MAT"));
-}
-
 }  // namespace
 
 int simulate_command(const SimulateOptions& o) {
@@ -116,7 +112,7 @@ int simulate_command(const SimulateOptions& o) {
   if (!sim.extrapolated.empty())
     std::cerr << fmt::format("note: outside the range {} was fitted on: {}\n", o.model_file, sim.extrapolated);
   const auto columns = simulated_columns(sim, o.states);
-  if (ends_with_mat(o.output)) {  // one N x 1 variable per column, read back by --data FILE.mat
+  if (is_mat_path(o.output)) {  // one N x 1 variable per column, read back by --data FILE.mat
     write_mat_file(o.output, columns);
     return 0;
   }

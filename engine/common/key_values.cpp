@@ -1,5 +1,6 @@
 #include "engine/common/key_values.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <system_error>
@@ -32,6 +33,12 @@ std::string_view trim(std::string_view text) {
   if (first == std::string_view::npos) return {};
   const std::size_t last = text.find_last_not_of(blanks);
   return text.substr(first, last - first + 1);
+}
+
+std::string lowercase(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
 }
 
 ParsedNumber try_parse_number(std::string_view text) {

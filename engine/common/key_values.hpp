@@ -19,6 +19,9 @@ struct ParsedNumber {
 /// Text without leading and trailing whitespace (spaces, tabs, CR, LF).
 std::string_view trim(std::string_view text);
 
+/// `text` in lower case (ASCII letters; other bytes as they are), for names compared without regard to case.
+std::string lowercase(std::string_view text);
+
 /// Parses a whole string as a double with std::from_chars (locale-free). Accepts exponents and one leading
 /// '+'; "nan" and "inf" parse (non-finite value, status ok). No surrounding whitespace is allowed.
 ParsedNumber try_parse_number(std::string_view text);

@@ -1,7 +1,9 @@
 #include "engine/record/column_map.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -11,6 +13,15 @@
 
 namespace dampbench {
 namespace {
+
+/// The whole number ≥ 0 that `text` writes (up to 2^53, where a double still holds every integer); nullopt for
+/// anything else, "inf" and "nan" included.
+std::optional<std::size_t> whole_number(std::string_view text) {
+  const ParsedNumber n = try_parse_number(trim(text));
+  if (n.status != NumberStatus::ok || !(n.value >= 0) || n.value > 9007199254740992.0 || n.value != std::floor(n.value))
+    return std::nullopt;
+  return static_cast<std::size_t>(n.value);
+}
 
 /// Entries of a comma-separated list, a comma inside [...] not separating.
 std::vector<std::string_view> split_outside_brackets(std::string_view text) {
@@ -33,10 +44,9 @@ std::vector<std::string_view> split_outside_brackets(std::string_view text) {
 /// "k" → [k, k+1); "a:b" → [a, b), range. Throws InputError(`what`) when not whole numbers with a < b.
 void parse_index(std::string_view text, ColumnPick& pick, const std::string& what) {
   const auto whole = [&](std::string_view s) {
-    const ParsedNumber n = try_parse_number(trim(s));
-    if (n.status != NumberStatus::ok || n.value < 0 || n.value != static_cast<double>(static_cast<std::size_t>(n.value)))
-      throw InputError(fmt::format("{}: expected an index counted from 0, got '{}'", what, trim(s)));
-    return static_cast<std::size_t>(n.value);
+    const auto k = whole_number(s);
+    if (!k) throw InputError(fmt::format("{}: expected an index counted from 0, got '{}'", what, trim(s)));
+    return *k;
   };
   if (const std::size_t colon = text.find(':'); colon != std::string_view::npos) {
     pick.first = whole(text.substr(0, colon));
@@ -123,10 +133,7 @@ std::size_t element_of(std::string_view channel, std::string_view prefix, std::s
   if (close == std::string_view::npos || channel.substr(close + 1, suffix.size()) != suffix) return 0;
   const std::string_view rest = channel.substr(close + 1 + suffix.size());
   if (!rest.empty() && !rest.starts_with(" (")) return 0;  // a skipped entry: "s(2).x (empty)"
-  const ParsedNumber k = try_parse_number(channel.substr(prefix.size() + 1, close - prefix.size() - 1));
-  return k.status == NumberStatus::ok && k.value >= 1 && k.value == static_cast<double>(static_cast<std::size_t>(k.value))
-             ? static_cast<std::size_t>(k.value)
-             : 0;
+  return whole_number(channel.substr(prefix.size() + 1, close - prefix.size() - 1)).value_or(0);  // 0: not s(k)
 }
 
 /// "s(:).x": the channels s(1).x, s(2).x, ... of every element (one element: "s.x", as mat_file.hpp names it). An
@@ -160,13 +167,12 @@ std::vector<std::string> element_names(const ChannelTable& table, const ColumnPi
 std::vector<std::string> channel_names(const ChannelTable& table, const ColumnPick& pick) {
   const std::string& name = pick.channel;
   if (name.starts_with('#')) {  // the file's k-th column, counted from 0
-    const ParsedNumber k = try_parse_number(name.substr(1));
-    if (k.status != NumberStatus::ok || k.value < 0 || k.value != static_cast<double>(static_cast<std::size_t>(k.value)))
-      throw InputError(fmt::format("{}: --columns '{}': expected #k with k counted from 0", table.source, pick.text));
-    if (static_cast<std::size_t>(k.value) >= table.names.size())
+    const auto k = whole_number(name.substr(1));
+    if (!k) throw InputError(fmt::format("{}: --columns '{}': expected #k with k counted from 0", table.source, pick.text));
+    if (*k >= table.names.size())
       throw InputError(fmt::format("{}: --columns '{}': the file has {} numeric columns ({})", table.source, pick.text,
                                    table.names.size(), channel_list(table)));
-    return {table.names[static_cast<std::size_t>(k.value)]};
+    return {table.names[*k]};
   }
   if (const std::size_t all = name.find("(:)"); all != std::string::npos) return element_names(table, pick, all);
   if (!table.channels.count(name))

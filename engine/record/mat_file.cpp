@@ -21,6 +21,7 @@
 #include <fmt/ranges.h>
 
 #include "engine/common/error.hpp"
+#include "engine/common/key_values.hpp"
 #include "engine/record/mat_v5_scan.hpp"
 
 namespace dampbench {
@@ -358,6 +359,10 @@ void add_variables(mat_t& file, const FileLimits& limits, ChannelTable& table) {
 }
 
 }  // namespace
+
+bool is_mat_path(const std::string& path) {
+  return lowercase(std::filesystem::path(path).extension().string()) == ".mat";
+}
 
 ChannelTable read_mat_file(const std::string& path) {
   FileLimits limits;

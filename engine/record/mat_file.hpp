@@ -13,6 +13,10 @@
 
 namespace dampbench {
 
+/// True when `path` names a MATLAB file: its extension is .mat, in any case. `--data` and `simulate -o` read and
+/// write such a path as a .mat file, any other as text.
+bool is_mat_path(const std::string& path);
+
 /// Reads every variable of `path` that is a real numeric 2-D matrix (double, single, int8 ... uint64, logical) as
 /// a channel of doubles under its variable name, column-major; `names` lists them in the file's order (a v7.3 file
 /// lists its variables by name: HDF5 keeps no order of creation for them). A struct gives its fields that are such

@@ -1,7 +1,6 @@
 #include "engine/record/record_files.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -22,12 +21,6 @@ namespace dampbench {
 namespace {
 
 using Columns = std::map<std::string, std::vector<double>>;
-
-bool is_mat_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".mat";
-}
 
 bool wants_preprocessing(const RecordOptions& o) {
   return o.smooth_samples != 0 || !o.remove_mean.empty() || o.whole_cycles;
@@ -118,9 +111,7 @@ std::vector<std::pair<std::size_t, std::size_t>> segments_of(const ChannelTable&
     if (table.events.empty())
       throw InputError(fmt::format("{}: --split events: the file has no Events column", table.source));
     const auto has = [&](std::size_t k, std::string_view word) {
-      std::string e = table.events[k];
-      std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-      return e.find(word) != std::string::npos;
+      return lowercase(table.events[k]).find(word) != std::string::npos;
     };
     bool running = true;
     std::size_t start = 0;
@@ -250,7 +241,7 @@ Dataset preprocessed_csv(const RecordOptions& o, bool require_force) {
 }  // namespace
 
 std::vector<Dataset> read_record_file(const RecordOptions& o, bool require_force) {
-  if (is_mat_file(o.path)) return records_from_channels(read_mat_file(o.path), o, require_force);
+  if (is_mat_path(o.path)) return records_from_channels(read_mat_file(o.path), o, require_force);
   const bool channels = is_column_map(o.columns) || o.skip_header >= 0 || !o.split.empty() || !o.scale.empty() ||
                         has_header_block(o.path);
   if (channels)

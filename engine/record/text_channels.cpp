@@ -1,7 +1,6 @@
 #include "engine/record/text_channels.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -19,15 +18,9 @@ namespace {
 constexpr std::string_view kHeaderSize = "header size:";
 constexpr std::string_view kSamplingInterval = "sampling interval:";
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
 /// The value after "key:" on a header-block line, when the line starts with that key (case-insensitive).
 std::optional<std::string_view> block_value(std::string_view line, std::string_view key) {
-  if (lower(line.substr(0, key.size())) != key) return std::nullopt;
+  if (lowercase(line.substr(0, key.size())) != key) return std::nullopt;
   return trim(line.substr(key.size()));
 }
 
@@ -100,7 +93,7 @@ ChannelTable parse_text_channels(std::istream& in, const std::string& source, st
   }
   for (std::size_t c = 0; c < names.size(); ++c) {
     const std::string name(names[c]);
-    if (lower(name) == "events" || lower(name) == "event") {
+    if (lowercase(name) == "events" || lowercase(name) == "event") {
       table.events = cells[c];
       continue;
     }
@@ -108,7 +101,7 @@ ChannelTable parse_text_channels(std::istream& in, const std::string& source, st
     bool numeric = true;
     for (const std::string& cell : cells[c]) {
       const ParsedNumber n = try_parse_number(cell);
-      if (cell.empty() || lower(cell) == "nan") channel.values.push_back(std::numeric_limits<double>::quiet_NaN());
+      if (cell.empty() || lowercase(cell) == "nan") channel.values.push_back(std::numeric_limits<double>::quiet_NaN());
       else if (n.status == NumberStatus::ok) channel.values.push_back(n.value);
       else { numeric = false; break; }
     }

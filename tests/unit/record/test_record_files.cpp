@@ -43,6 +43,8 @@ TEST(ColumnMap, MalformedEntriesAreNamed) {
   EXPECT_NE(testing::error_of([] { parse_column_map("x=data[:,3:1]"); }).find("is empty"), std::string::npos);
   EXPECT_NE(testing::error_of([] { parse_column_map("x=a,x=b"); }).find("column 'x' given twice"), std::string::npos);
   EXPECT_NE(testing::error_of([] { parse_column_map("x=data[:,-1]"); }).find("counted from 0"), std::string::npos);
+  EXPECT_NE(testing::error_of([] { parse_column_map("x=data[:,inf]"); }).find("counted from 0"), std::string::npos);
+  EXPECT_NE(testing::error_of([] { parse_column_map("x=data[:,1e300]"); }).find("counted from 0"), std::string::npos);
 }
 
 ChannelTable three_by_four() {
