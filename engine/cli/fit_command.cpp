@@ -295,14 +295,8 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
   if (!p.plan.why.empty()) std::cout << p.plan.why << "\n\n";
   std::cout << t.params.to_markdown() << "\n" << t.metrics.to_markdown() << "\n" << t.runs.to_markdown() << "\n";
   print_operating(p.records);
-  std::cout << fmt::format("{}: the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run "
-                           "improved {:.3g} % over its last {:.0f} % of evaluations{}{}\n",
-                           c.converged ? "Converged" : "NOT CONVERGED (" + c.verdict() + ")",
-                           // the trace is the search's (float32 lanes under --precision mixed) and the best is
-                           // re-evaluated in double, so a run that did not improve can show a gain of -1e-8: none
-                           100 * c.median_above_best_rel, 100 * c.worst_above_best_rel,
-                           std::max(0.0, 100 * c.late_gain_rel),
-                           100 * rule.late_fraction,
+  std::cout << fmt::format("{}: {}{}{}\n", c.converged ? "Converged" : "NOT CONVERGED (" + c.verdict() + ")",
+                           c.spread_text(rule),
                            c.best_at_local_optimum ? ", in its local stage, which ended at its optimum" : "",
                            c.converged ? ""
                                        : not_converged_advice(fit, p.plan.optimizer,

@@ -1,5 +1,7 @@
 #include "engine/identification/convergence.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,6 +30,21 @@ std::string Convergence::verdict() const {
   if (!runs_agree && !stalled) return "runs disagree, still improving";
   if (runs_agree && stalled) return "not confirmed by a restart";
   return runs_agree ? "still improving" : "runs disagree";
+}
+
+std::string Convergence::spread_text(const ConvergenceRule& rule) const {
+  // the trace is the search's (float32 lanes under --precision mixed) and the best is re-evaluated in double, so a
+  // run that did not improve can show a gain of -1e-8: none
+  if (relative_figures)
+    return fmt::format("the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run improved {:.3g} % "
+                       "over its last {:.0f} % of evaluations",
+                       100 * median_above_best_rel, 100 * worst_above_best_rel, std::max(0.0, 100 * late_gain_rel),
+                       100 * rule.late_fraction);
+  return fmt::format("the best is {:.3g}, within {:.3g} of 0, so the differences are in the metric's units: the median "
+                     "run ends {:.3g} above the best, the worst {:.3g}; the best run improved {:.3g} over its last "
+                     "{:.0f} % of evaluations",
+                     best_value, rule.abs_tol, median_above_best, worst_above_best, std::max(0.0, late_gain),
+                     100 * rule.late_fraction);
 }
 
 namespace {
@@ -62,8 +79,12 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   // The median of an even count is the upper middle value: half of the runs must be within the tolerance.
   const double median = values[values.size() / 2], worst = values.back();
   const auto rel = [&](double above) { return scale > 0 ? above / scale : (above > 0 ? HUGE_VAL : 0.0); };
+  c.best_value = b;
+  c.relative_figures = scale > rule.abs_tol;
   c.median_above_best_rel = rel(median - b);
   c.worst_above_best_rel = rel(worst - b);
+  c.median_above_best = median - b;
+  c.worst_above_best = worst - b;
   c.single_run = runs.size() == 1;
   c.runs_agree = !c.single_run && median - b <= rule.agree_rel * scale + rule.abs_tol;
 
@@ -71,6 +92,7 @@ Convergence assess_convergence(std::span<const RunHistory> runs, const Convergen
   const double earlier = value_at(best->trace, total * (1 - rule.late_fraction));
   const double gain = earlier - best->best_value;
   c.late_gain_rel = rel(gain);
+  c.late_gain = gain;
   c.no_history = best->trace.empty();
   c.best_at_local_optimum = best->at_local_optimum;
   c.stalled = !c.no_history && (best->at_local_optimum || gain <= rule.late_gain_rel * scale + rule.abs_tol);

@@ -45,6 +45,11 @@ struct Convergence {
   double median_above_best_rel = 0;  ///< (median − best)/|best| of the runs' best values
   double worst_above_best_rel = 0;   ///< (worst − best)/|best|
   double late_gain_rel = 0;          ///< the best run's improvement over its last fifth, relative to its best
+  /// The same three in the metric's units: where the best is within abs_tol of 0 (an exact fit), the relative
+  /// figures are infinite or meaningless and the text prints these instead (above_best_text).
+  double median_above_best = 0, worst_above_best = 0, late_gain = 0;
+  bool relative_figures = true;  ///< |best| > abs_tol: the relative figures mean something
+  double best_value = 0;         ///< the best run's best value
   bool runs_agree = false, stalled = false, converged = false;
   bool all_failed = false;   ///< no run has a finite best value
   bool no_history = false;   ///< the best run has no best-so-far history (a store written without traces)
@@ -58,6 +63,9 @@ struct Convergence {
   /// "no history" (stalling cannot be judged), "runs disagree, no history", "every run failed", and for a
   /// single run "one run" or "one run, still improving".
   [[nodiscard]] std::string verdict() const;
+  /// "the median run ends 3.2 % above the best, the worst 8.1 %; the best run improved 0.4 % over its last
+  /// 20 % of evaluations", with the differences in the metric's units where the best is 0 (relative_figures).
+  [[nodiscard]] std::string spread_text(const ConvergenceRule& rule) const;
 };
 
 /// One run as the assessment sees it: its best value and its best-so-far history.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "engine/identification/convergence.hpp"
@@ -86,6 +87,26 @@ TEST(Convergence, NoiseFreeFitsAgreeWithinTheAbsoluteTolerance) {
   const Convergence c = assess_convergence(runs);
   EXPECT_TRUE(c.runs_agree);  // 1e-11 − 1e-12 is far below abs_tol = 1e-9
   EXPECT_TRUE(c.converged);
+}
+
+// A best of exactly 0 (an exact fit) or within abs_tol of it has no relative figure: the text gives the differences in
+// the metric's units, never "inf %" or 5e+298 %; away from 0 it gives percentages.
+TEST(Convergence, AnExactFitIsDescribedInTheMetricsUnits) {
+  const ConvergenceRule rule;
+  const std::vector<RunHistory> exact{run(0.0), run(2e-12), run(4e-12)};
+  const Convergence c = assess_convergence(exact);
+  EXPECT_FALSE(c.relative_figures);
+  EXPECT_EQ(c.median_above_best, 2e-12);
+  EXPECT_EQ(c.worst_above_best, 4e-12);
+  const std::string text = c.spread_text(rule);
+  EXPECT_EQ(text, "the best is 0, within 1e-09 of 0, so the differences are in the metric's units: the median run ends "
+                  "2e-12 above the best, the worst 4e-12; the best run improved 0 over its last 20 % of evaluations");
+  const std::vector<RunHistory> tiny{run(1e-300), run(2e-12)};  // relative: 2e+288, meaningless
+  EXPECT_NE(assess_convergence(tiny).spread_text(rule).find("metric's units: the median run ends 2e-12 above"), std::string::npos);
+  const std::vector<RunHistory> plain{run(0.5), run(0.51), run(0.6)};  // median 0.51: 2 % above, worst 20 %
+  EXPECT_EQ(assess_convergence(plain).spread_text(rule),
+            "the median run ends 2 % above the best, the worst 20 %; the best run improved 0 % over its last 20 % of "
+            "evaluations");
 }
 
 TEST(Convergence, FailedRunsAndEmptyInput) {
