@@ -181,10 +181,9 @@ bool record_second_opinion(const Pass& opinion, const OptimizerSpec& optimizer, 
 
 /// The progress line of round k: where the chains stand and what is spent.
 std::string round_line(int k, int iterations, double best, const Convergence& verdict, const AutoBudgetReport& report) {
-  const std::string median = verdict.relative_figures ? fmt::format("{:.3g} %", 100 * verdict.median_above_best_rel)
-                                                     : fmt::format("{:.3g}", verdict.median_above_best);
   return fmt::format("automatic budget: round {} ({} iterations): best {:.6g}, median run {} above it; {} of {} evaluations",
-                     k, iterations, best, median, report.evaluations, report.cap);
+                     k, iterations, best, verdict.figure(verdict.median_above_best_rel, verdict.median_above_best),
+                     report.evaluations, report.cap);
 }
 
 }  // namespace

@@ -32,19 +32,20 @@ std::string Convergence::verdict() const {
   return runs_agree ? "still improving" : "runs disagree";
 }
 
+std::string Convergence::figure(double relative, double absolute) const {
+  return relative_figures ? fmt::format("{:.3g} %", 100 * relative) : fmt::format("{:.3g}", absolute);
+}
+
 std::string Convergence::spread_text(const ConvergenceRule& rule) const {
+  const std::string units =
+      relative_figures ? "" : fmt::format("the best is {:.3g}, within {:.3g} of 0, so the differences are in the "
+                                          "metric's units: ", best_value, rule.abs_tol);
   // the trace is the search's (float32 lanes under --precision mixed) and the best is re-evaluated in double, so a
   // run that did not improve can show a gain of -1e-8: none
-  if (relative_figures)
-    return fmt::format("the median run ends {:.3g} % above the best, the worst {:.3g} %; the best run improved {:.3g} % "
-                       "over its last {:.0f} % of evaluations",
-                       100 * median_above_best_rel, 100 * worst_above_best_rel, std::max(0.0, 100 * late_gain_rel),
-                       100 * rule.late_fraction);
-  return fmt::format("the best is {:.3g}, within {:.3g} of 0, so the differences are in the metric's units: the median "
-                     "run ends {:.3g} above the best, the worst {:.3g}; the best run improved {:.3g} over its last "
+  return fmt::format("{}the median run ends {} above the best, the worst {}; the best run improved {} over its last "
                      "{:.0f} % of evaluations",
-                     best_value, rule.abs_tol, median_above_best, worst_above_best, std::max(0.0, late_gain),
-                     100 * rule.late_fraction);
+                     units, figure(median_above_best_rel, median_above_best), figure(worst_above_best_rel, worst_above_best),
+                     figure(std::max(0.0, late_gain_rel), std::max(0.0, late_gain)), 100 * rule.late_fraction);
 }
 
 namespace {

@@ -46,7 +46,7 @@ struct Convergence {
   double worst_above_best_rel = 0;   ///< (worst − best)/|best|
   double late_gain_rel = 0;          ///< the best run's improvement over its last fifth, relative to its best
   /// The same three in the metric's units: where the best is within abs_tol of 0 (an exact fit), the relative
-  /// figures are infinite or meaningless and the text prints these instead (above_best_text).
+  /// figures are infinite or meaningless and the text prints these instead (spread_text, figure).
   double median_above_best = 0, worst_above_best = 0, late_gain = 0;
   bool relative_figures = true;  ///< |best| > abs_tol: the relative figures mean something
   double best_value = 0;         ///< the best run's best value
@@ -66,6 +66,9 @@ struct Convergence {
   /// "the median run ends 3.2 % above the best, the worst 8.1 %; the best run improved 0.4 % over its last
   /// 20 % of evaluations", with the differences in the metric's units where the best is 0 (relative_figures).
   [[nodiscard]] std::string spread_text(const ConvergenceRule& rule) const;
+  /// One of the three figures as printed: "3.2 %" from `relative`, or `absolute` in the metric's units where the
+  /// relative figures mean nothing (relative_figures false).
+  [[nodiscard]] std::string figure(double relative, double absolute) const;
 };
 
 /// One run as the assessment sees it: its best value and its best-so-far history.

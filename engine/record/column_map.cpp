@@ -96,7 +96,6 @@ ColumnPick parse_pick(std::string_view entry, std::string_view option) {
   return pick;
 }
 
-
 }  // namespace
 
 std::string channel_list(const ChannelTable& table) {

@@ -93,7 +93,7 @@ ChannelTable parse_text_channels(std::istream& in, const std::string& source, st
   }
   for (std::size_t c = 0; c < names.size(); ++c) {
     const std::string name(names[c]);
-    if (lowercase(name) == "events" || lowercase(name) == "event") {
+    if (const std::string lower = lowercase(name); lower == "events" || lower == "event") {
       table.events = cells[c];
       continue;
     }
@@ -101,8 +101,8 @@ ChannelTable parse_text_channels(std::istream& in, const std::string& source, st
     bool numeric = true;
     for (const std::string& cell : cells[c]) {
       const ParsedNumber n = try_parse_number(cell);
-      if (cell.empty() || lowercase(cell) == "nan") channel.values.push_back(std::numeric_limits<double>::quiet_NaN());
-      else if (n.status == NumberStatus::ok) channel.values.push_back(n.value);
+      if (n.status == NumberStatus::ok) channel.values.push_back(n.value);  // "nan" included
+      else if (cell.empty() || lowercase(cell) == "nan") channel.values.push_back(std::numeric_limits<double>::quiet_NaN());
       else { numeric = false; break; }
     }
     if (!numeric) {
