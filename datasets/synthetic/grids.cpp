@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include "datasets/synthetic/synthetic.hpp"
@@ -15,16 +16,18 @@ namespace dampbench::synthetic {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& grid_names() {
-  static const std::vector<std::string> names{"fvd", "crfd", "mfm", "fdsp"};
+  static const std::vector<std::string> names{"fvd", "crfd", "crfd-neutral", "mfm", "mfm-neutral", "fdsp"};
   return names;
 }
 
 void write_grid(const std::string& name, const fs::path& dir, std::uint64_t seed) {
   if (name == "fvd") return write_fvd(dir, seed);
   if (name == "crfd") return write_crfd(dir, seed);
+  if (name == "crfd-neutral") return write_crfd_neutral(dir, seed);
   if (name == "mfm") return write_mfm(dir, seed);
+  if (name == "mfm-neutral") return write_mfm_neutral(dir, seed);
   if (name == "fdsp") return write_fdsp(dir, seed);
-  throw InputError(fmt::format("unknown synthetic grid '{}' (known: fvd, crfd, mfm, fdsp)", name));
+  throw InputError(fmt::format("unknown synthetic grid '{}' (known: {})", name, fmt::join(grid_names(), ", ")));
 }
 
 namespace {

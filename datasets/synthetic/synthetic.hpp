@@ -32,7 +32,9 @@ Dataset sine_record(double amp_m, double freq_hz, int cycles, int per_cycle, Rec
 
 void write_fvd(const std::filesystem::path& dir, std::uint64_t seed);
 void write_crfd(const std::filesystem::path& dir, std::uint64_t seed);
+void write_crfd_neutral(const std::filesystem::path& dir, std::uint64_t seed);
 void write_mfm(const std::filesystem::path& dir, std::uint64_t seed);
+void write_mfm_neutral(const std::filesystem::path& dir, std::uint64_t seed);
 void write_fdsp(const std::filesystem::path& dir, std::uint64_t seed);
 
 }  // namespace dampbench::synthetic

@@ -253,7 +253,9 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
   out.tolerance_rel = r.number(root, "tolerance_rel", "").value_or(0.1);
   if (!(out.tolerance_rel >= 0)) r.fail(root.get("tolerance_rel"), "tolerance_rel", "expected a number >= 0");
   out.data = spec;
-  const auto tables = read_tables(r, root);
+  auto tables = read_tables(r, root);
+  for (auto& p : tables)
+    if (p.not_comparable.empty()) p.not_comparable = spec.numbers_not_comparable;
   const auto claims = read_claims(r, root, tables);
   for (const auto& c : claims) out.items.push_back(claim_item(r, c, ours, out.tolerance_rel));
   for (const auto& p : tables) out.items.push_back(table_item(p, ours, out.tolerance_rel));

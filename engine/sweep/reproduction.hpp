@@ -17,6 +17,8 @@
 //   differs         same ranking, some number outside the tolerance
 //   reversed        a pair the paper ranks one way (strictly) ranks the other way here
 //   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not)
+// A preset's `[reproduction] numbers_not_comparable` (records of another damper than the paper's) makes every table
+// ranking-only.
 // A verdict on synthetic records whose truth is one of the compared models is a recovery check, never evidence
 // for the paper's claim; the report says so on the item.
 #include <string>

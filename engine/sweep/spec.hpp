@@ -33,6 +33,8 @@
 //   [[regressions]]: name, model, split, optimizer, laws = "c_r=poly(phi,3)", where, paper
 //   include = ["fvd.toml", ...]            (a file of parts: only name, title, include and include_optional,
 //       parts whose missing data files are skipped with a note instead of refused)
+//   extends = "mfm.toml"                  a part made of another file of the same folder: its keys, each replaced
+//       whole by this file's (mfm_neutral.toml: the mfm preset's models, splits and tables on another grid)
 // The spec hash covers everything but title, labels, tables and regressions, which may change on a resume.
 #include <cstdint>
 #include <map>
@@ -158,6 +160,9 @@ struct ReproductionSpec {
   std::string data;       ///< "real" or "synthetic"
   std::string truth;      ///< synthetic: what made the records (a model, a documented generator)
   bool truth_is_compared_model = false;  ///< the truth is one of the models compared: verdicts are recovery checks
+  /// Why none of the paper's numbers can be set against ours (records of another damper than the paper's, such as
+  /// a neutral truth's grid): every table is judged by its ranking alone, as a paper file's `numbers_not_comparable`.
+  std::string numbers_not_comparable;
 };
 
 struct PartSpec {

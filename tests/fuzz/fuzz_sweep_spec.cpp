@@ -24,7 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return std::vector<dampbench::Table>{t};
   }();
   try {
-    const auto r = dampbench::sweep::reproduce_text({"/nonexistent/fuzz/paper.toml", "synthetic", "x", true}, text, ours);
+    const auto r = dampbench::sweep::reproduce_text({"/nonexistent/fuzz/paper.toml", "synthetic", "x", true, ""}, text, ours);
     (void)dampbench::sweep::reproduction_markdown(r);
     (void)dampbench::sweep::reproduction_json(r, {"Test 1"});
   } catch (const dampbench::InputError&) {

@@ -10,7 +10,7 @@ void read_reproduction(const Reader& r, const toml::table& root, PartSpec& part,
   if (!node) return;
   const toml::table* t = node->as_table();
   if (!t) r.fail(node, "reproduction", "expected a table: [reproduction] with published, data and truth");
-  r.only_keys(*t, "reproduction", {"published", "data", "truth", "truth_is_compared_model"});
+  r.only_keys(*t, "reproduction", {"published", "data", "truth", "truth_is_compared_model", "numbers_not_comparable"});
   ReproductionSpec spec;
   const std::string folder = std::filesystem::path(r.path()).parent_path().string();
   spec.published = resolve_path(r.required_string(*t, "published", "reproduction"), folder);
@@ -23,6 +23,7 @@ void read_reproduction(const Reader& r, const toml::table& root, PartSpec& part,
   if (spec.data == "synthetic" && spec.truth.empty())
     r.fail(node, "reproduction.truth", "synthetic records need their truth named (what made them)");
   spec.truth_is_compared_model = r.boolean(*t, "truth_is_compared_model", "reproduction", false);
+  spec.numbers_not_comparable = r.string(*t, "numbers_not_comparable", "reproduction").value_or("");
   part.reproduction = std::move(spec);
 }
 

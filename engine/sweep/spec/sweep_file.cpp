@@ -63,13 +63,48 @@ std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
 }  // namespace
 
+namespace {
+
+/// `extends = "base.toml"`: the base file's keys, each replaced whole by the extending file's key of the same name,
+/// so that a preset on other records (a neutral truth's grid) keeps its paper's models, splits and tables in one
+/// place. The base is one plain sweep file in the same folder (its relative paths are read from there).
+toml::table extended(const Reader& r, const toml::table& root, const std::string& path) {
+  const toml::node* base = root.get("extends");
+  if (!base->is_string()) r.fail(base, "extends", "expected the path of a sweep file in the same folder");
+  const std::string folder = fs::path(path).parent_path().string();
+  const std::string base_path = resolve_path(*base->value<std::string>(), folder);
+  if (fs::path(base_path).parent_path() != fs::path(folder).lexically_normal())
+    r.fail(base, "extends", fmt::format("'{}' is not in this file's folder (its relative paths would change meaning)",
+                                        base_path));
+  const std::string text = r.check(base, "extends", [&] { return read_text(base_path, "extended sweep file"); });
+  toml::table merged = parse_toml(text, base_path);
+  if (merged.contains("extends") || merged.contains("include"))
+    r.fail(base, "extends", fmt::format("'{}' extends or includes other files; the base must be one plain part", base_path));
+  for (const auto& [key, value] : root)
+    if (key != "extends") merged.insert_or_assign(key, toml::node_view<const toml::node>(value));
+  return merged;
+}
+
+}  // namespace
+
 PartSpec read_part(std::string_view text, const std::string& path, const SpecOptions& options,
                    std::vector<std::string>& notes) {
-  const toml::table root = parse_toml(text, path);
   const Reader r(path);
+  const toml::table root = parse_toml(text, path);
   std::vector<std::string> part_notes;
-  PartSpec part = read_part_table(r, root, options, part_notes);
-  part.source = std::string(text);
+  PartSpec part;
+  if (root.contains("extends")) {
+    // Keys of the merged part are copies, without their lines: messages name the file and the key.
+    const toml::table merged = extended(r, root, path);
+    part = read_part_table(r, merged, options, part_notes);
+    // The stored source is the merged part, so that a store re-reads its tables without the base.
+    std::ostringstream source;
+    source << toml::toml_formatter{merged};
+    part.source = source.str();
+  } else {
+    part = read_part_table(r, root, options, part_notes);
+    part.source = std::string(text);
+  }
   notes.insert(notes.end(), part_notes.begin(), part_notes.end());
   return part;
 }

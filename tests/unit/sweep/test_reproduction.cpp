@@ -31,7 +31,7 @@ ReproductionSpec paper_file(const std::string& extra = "", bool truth_is_compare
                             "[[tables]]\ntable = \"Table 2\"\nlabel = \"B\"\nours = \"b\"\ncolumns = [\"Min\", \"Mean\"]\n"
                             "compare = [\"Min\"]\nrows = [[\"Test 1\", 0.30, 0.31], [\"Test 2\", 0.40, 0.41]]\n" +
                                 extra);
-  return {path.string(), "synthetic", "a model", truth_is_compared_model};
+  return {path.string(), "synthetic", "a model", truth_is_compared_model, ""};
 }
 
 TEST(Reproduction, NumbersWithinTheToleranceAndTheSameRankingHold) {
@@ -73,6 +73,22 @@ TEST(Reproduction, AMissingTableIsNotComparableWithTheReason) {
   EXPECT_NE(r.items[2].detail.find("this run wrote no table 'b'"), std::string::npos) << r.items[2].detail;
 }
 
+TEST(Reproduction, RecordsOfAnotherDamperJudgeRankingsOnly) {
+  // Ten times lower in the same order would be "differs" (above); with the preset saying the records are another
+  // damper's, the numbers are not judged: the claim holds on its ranking, each table is not comparable, with why.
+  ReproductionSpec spec = paper_file();
+  spec.numbers_not_comparable = "another damper";
+  const Reproduction same = reproduce(spec, {ours("a", 0.01, 0.02), ours("b", 0.03, 0.04)});
+  EXPECT_EQ(same.items[0].verdict, "holds") << same.items[0].detail;
+  EXPECT_NE(same.items[0].detail.find("ranking only, the numbers are not comparable: another damper"), std::string::npos)
+      << same.items[0].detail;
+  EXPECT_EQ(same.items[1].verdict, "not-comparable");
+  EXPECT_EQ(same.items[1].detail, "another damper");
+  // A ranking the other way is still reversed.
+  const Reproduction other = reproduce(spec, {ours("a", 0.05, 0.02), ours("b", 0.03, 0.04)});
+  EXPECT_EQ(other.items[0].verdict, "reversed") << other.items[0].detail;
+}
+
 TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   const Reproduction r = reproduce(paper_file("", true), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
   const auto j = nlohmann::json::parse(reproduction_json(r, {"rec1", "rec2"}));
@@ -102,7 +118,7 @@ TEST(Reproduction, APaperInPercentComparesAfterItsScaleAndAClaimRanksOneColumnPe
   Table errors{"errors", "errors", {"Dataset", "m", "p"}, {}};
   errors.rows.push_back({"r1", number_cell(0.14), number_cell(0.041)});
   errors.rows.push_back({"r2", number_cell(0.15), number_cell(0.05)});
-  const Reproduction r = reproduce({path.string(), "synthetic", "P", true}, {errors});
+  const Reproduction r = reproduce({path.string(), "synthetic", "P", true, ""}, {errors});
   ASSERT_EQ(r.items.size(), 3u);
   EXPECT_DOUBLE_EQ(r.items[1].paper_values[0].second, 0.015);  // 1.5 % as a fraction
   EXPECT_NE(r.items[1].detail.find("printed values x 0.01"), std::string::npos) << r.items[1].detail;
@@ -127,7 +143,7 @@ TEST(Reproduction, AMalformedPaperFileIsReportedWithFileAndKey) {
   e = testing::error_of([&] { (void)reproduce(bad, tables); });
   EXPECT_NE(e.find("expected a row label and 1 numbers"), std::string::npos) << e;
   // a missing file
-  e = testing::error_of([&] { (void)reproduce({"/nonexistent/paper.toml", "real", "", false}, tables); });
+  e = testing::error_of([&] { (void)reproduce({"/nonexistent/paper.toml", "real", "", false, ""}, tables); });
   EXPECT_NE(e.find("/nonexistent/paper.toml"), std::string::npos) << e;
 }
 

@@ -315,6 +315,43 @@ TEST(SweepSpec, IncludedFilesAreParts) {
             std::string::npos);
 }
 
+TEST(SweepSpec, AnExtendingFileReplacesTheBasesKeysWhole) {
+  const auto dir = testing::test_temp_dir("spec");
+  write_record(dir / "a.csv", "I=0");
+  write_record(dir / "b.csv", "I=1");
+  testing::write_text(dir / "base.toml", "name = \"base\"\nruns = 3\nmodels = [\"mrd.bingham\", \"fvd.linear_viscous\"]\n" + kData);
+  testing::write_text(dir / "other.toml", "extends = \"base.toml\"\nname = \"other\"\n"
+                                          "[[datasets]]\nname = \"b\"\nfile = \"b.csv\"\n");
+  const SweepSpec base = load_sweep((dir / "base.toml").string());
+  const SweepSpec other = load_sweep((dir / "other.toml").string());
+  ASSERT_EQ(other.parts.size(), 1u);
+  const PartSpec& part = other.parts[0];
+  EXPECT_EQ(part.name, "other");
+  EXPECT_EQ(part.runs, 3);  // from the base
+  ASSERT_EQ(part.models.size(), 2u);
+  EXPECT_EQ(part.models[1].model, "fvd.linear_viscous");
+  ASSERT_EQ(part.datasets.size(), 1u);  // [[datasets]] replaced whole, not appended to
+  EXPECT_EQ(part.datasets[0].name, "b");
+  EXPECT_NE(other.hash, base.hash);
+  // The stored source is the merged part: it reads back without the base file.
+  fs::remove(dir / "base.toml");
+  const SweepSpec again = parse_sweep(part.source, part.path);
+  EXPECT_EQ(again.hash, other.hash);
+  EXPECT_EQ(again.parts[0].models.size(), 2u);
+  // A missing base, a base in another folder and a base that extends again are errors naming the key.
+  EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "other.toml").string()); })
+                .find("other.toml:1: key 'extends': cannot open extended sweep file"),
+            std::string::npos);
+  fs::create_directories(dir / "sub");
+  testing::write_text(dir / "sub" / "base.toml", "name = \"base\"\nmodels = [\"mrd.bingham\"]\n" + kData);
+  testing::write_text(dir / "far.toml", "extends = \"sub/base.toml\"\nname = \"far\"\n");
+  EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "far.toml").string()); }).find("is not in this file's folder"),
+            std::string::npos);
+  testing::write_text(dir / "base.toml", "extends = \"other.toml\"\nname = \"base\"\n");
+  EXPECT_NE(testing::error_of([&] { (void)load_sweep((dir / "other.toml").string()); }).find("the base must be one plain part"),
+            std::string::npos);
+}
+
 TEST(SweepSpec, OptionalDatasetsAreSkippedWithANote) {
   const auto dir = testing::test_temp_dir("spec");
   write_record(dir / "a.csv", "I=0");
@@ -371,7 +408,7 @@ TEST(SweepSpec, PresetsAreValid) {
   // Every preset parses (files unchecked: the generated grids live in the build tree).
   SpecOptions o;
   o.check_files = false;
-  for (const char* name : {"fvd", "crfd", "mfm", "fdsp", "utfsm", "utfsm_model", "all"}) {
+  for (const char* name : {"fvd", "crfd", "crfd_neutral", "mfm", "mfm_neutral", "fdsp", "utfsm", "utfsm_model", "all"}) {
     const std::string path = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/presets/" + name + ".toml";
     EXPECT_EQ(testing::error_of([&] { (void)load_sweep(path, o); }), "no error") << name;
   }

@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""The neutral-truth presets give the verdicts docs/reproduce.md shows.
+
+crfd_neutral.toml and mfm_neutral.toml run their paper's preset on a grid whose truth is none of the compared
+models (datasets/README.md). Each is run as a user runs it; the test fails when
+
+  - the run fails, or its reproduction.json labels the records' truth a compared model or a verdict a recovery
+    check (on these grids a verdict is evidence about the paper's claim);
+  - a claim's verdict is missing from the table of docs/reproduce.md's section "## crfd, mfm, fdsp" as the row
+    `| <preset> | <claim id> | **<verdict>**`, so a changed result cannot leave the docs behind.
+
+The grids are generated into WORK_DIR (as a preset does on first use). The presets take about a minute of the
+two cores' time together, so this test has a COST that starts it early.
+
+usage: neutral_presets_test.py DAMPBENCH REPO_ROOT WORK_DIR
+"""
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+PRESETS = ["crfd_neutral", "mfm_neutral"]
+SECTION = "## crfd, mfm, fdsp"
+
+
+def docs_section(root):
+    text = (root / "docs" / "reproduce.md").read_text()
+    begin = text.find("\n" + SECTION + "\n")
+    if begin < 0:
+        sys.exit(f"docs/reproduce.md has no section '{SECTION}'")
+    end = text.find("\n## ", begin + len(SECTION) + 1)
+    return text[begin:end if end >= 0 else len(text)]
+
+
+def main():
+    exe, root, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    docs = docs_section(root)
+    env = dict(os.environ, DAMPBENCH_GENERATED_DIR=str(work / "generated"))
+    failures = []
+    for preset in PRESETS:
+        out = work / preset
+        run = subprocess.run([exe, "run", str(root / "datasets" / "presets" / f"{preset}.toml"), "-o", str(out),
+                              "--quiet", "--no-report", "--threads", "2"], env=env, capture_output=True, text=True)
+        if run.returncode != 0:
+            failures.append(f"{preset}: exit {run.returncode}\n{run.stdout}{run.stderr}")
+            continue
+        report = json.loads((out / "reproduction.json").read_text())
+        if report["data"]["truth_is_compared_model"] is not False:
+            failures.append(f"{preset}: its truth is labelled a compared model")
+        claims = 0
+        for item in report["items"]:
+            if item["recovery_check"] is not False:
+                failures.append(f"{preset} {item['id']}: labelled a recovery check")
+            if not item["id"].startswith("table") or "-" not in item["id"]:
+                continue  # a table, not a claim ("table8-laws")
+            claims += 1
+            row = f"| {preset} | {item['id']} | **{item['verdict']}**"
+            if row not in docs:
+                failures.append(f"docs/reproduce.md lacks the row '{row}' ({item['detail']})")
+        if claims == 0:
+            failures.append(f"{preset}: no claim in reproduction.json")
+        print(f"{preset}: {claims} claims checked")
+    if failures:
+        sys.exit("\n".join(failures))
+
+
+if __name__ == "__main__":
+    main()
