@@ -226,6 +226,50 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
   return item;
 }
 
+/// A claim judged on every row of our first table (but its mean): each pair in `order` must rank that way in ours.
+ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Table>& ours, const std::string& reason) {
+  const std::vector<const PublishedTable*>& order = c.tables;
+  ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
+  const Table* first = find_table(ours, order.front()->ours);
+  if (!first) {
+    item.verdict = "not-comparable";
+    item.detail = fmt::format("this run wrote no table '{}'", order.front()->ours);
+    return item;
+  }
+  std::map<std::string, std::vector<std::string>> reversed;
+  std::size_t rows = 0;
+  for (const auto& table_row : first->rows) {
+    if (table_row.empty() || table_row[0].text == "mean") continue;
+    const std::string& row = table_row[0].text;
+    std::vector<double> here;
+    for (const PublishedTable* p : order) {
+      const std::string& column = c.column.empty() ? p->compare.front() : c.column;
+      const Table* t = find_table(ours, p->ours);
+      const auto v = t ? our_value(*t, row, column) : std::nullopt;
+      if (!v) {
+        item.verdict = "not-comparable";
+        item.detail = fmt::format("our table '{}' has no number at row '{}', column '{}'", p->ours, row, column);
+        return item;
+      }
+      here.push_back(*v);
+      item.values.emplace_back(fmt::format("{}: {}", row, p->label), *v);
+    }
+    ++rows;
+    for (std::size_t a = 0; a < order.size(); ++a)
+      for (std::size_t b = a + 1; b < order.size(); ++b)
+        if (here[a] > here[b]) reversed[fmt::format("{} above {}", order[a]->label, order[b]->label)].push_back(row);
+  }
+  item.verdict = reversed.empty() ? "holds" : "reversed";
+  std::vector<std::string> pairs;
+  for (const auto& [pair, where] : reversed)
+    pairs.push_back(fmt::format("{} on {} of {} rows ({})", pair, where.size(), rows, fmt::join(where, ", ")));
+  item.detail = reversed.empty() ? fmt::format("the claim's ranking on every row of ours ({})", rows)
+                                 : fmt::format("ranked the other way here: {}", fmt::join(pairs, "; "));
+  item.detail += "; ranking only, at our conditions: " + reason;
+  if (!c.note.empty()) item.detail += ". " + c.note;
+  return item;
+}
+
 bool recovery_check(const Reproduction& r) { return r.data.data == "synthetic" && r.data.truth_is_compared_model; }
 
 std::string data_sentence(const ReproductionSpec& d) {
@@ -257,8 +301,18 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
   for (auto& p : tables)
     if (p.not_comparable.empty()) p.not_comparable = spec.numbers_not_comparable;
   const auto claims = read_claims(r, root, tables);
-  for (const auto& c : claims) out.items.push_back(claim_item(r, c, ours, out.tolerance_rel));
-  for (const auto& p : tables) out.items.push_back(table_item(p, ours, out.tolerance_rel));
+  for (const auto& c : claims)
+    out.items.push_back(spec.claims_on_our_rows ? claim_on_our_rows(c, ours, spec.numbers_not_comparable)
+                                                : claim_item(r, c, ours, out.tolerance_rel));
+  for (const auto& p : tables) {
+    if (!spec.claims_on_our_rows) {
+      out.items.push_back(table_item(p, ours, out.tolerance_rel));
+      continue;
+    }
+    ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {},
+                          "not-comparable", spec.numbers_not_comparable, p.table};
+    out.items.push_back(std::move(item));
+  }
   return out;
 }
 
@@ -272,6 +326,11 @@ std::string reproduction_markdown(const Reproduction& r) {
                       i.detail);
   for (const auto& i : r.items) {
     if (i.values.empty()) continue;
+    if (i.paper_values.size() != i.values.size()) {  // a claim judged on our rows: no paper number beside ours
+      md += fmt::format("\n**{}: {}** ({}; {})\n\n| | ours |\n|---|---:|\n", i.id, i.claim, i.table, i.verdict);
+      for (const auto& [label, v] : i.values) md += fmt::format("| {} | {} |\n", label, format_number(v));
+      continue;
+    }
     md += fmt::format("\n**{}: {}** ({}; {})\n\n| | paper | ours | difference |\n|---|---:|---:|---:|\n", i.id, i.claim,
                       i.table, i.verdict);
     for (std::size_t k = 0; k < i.values.size(); ++k)

@@ -18,7 +18,8 @@
 //   reversed        a pair the paper ranks one way (strictly) ranks the other way here
 //   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not)
 // A preset's `[reproduction] numbers_not_comparable` (records of another damper than the paper's) makes every table
-// ranking-only.
+// ranking-only; with `rows = "ours"` (records at other conditions than the paper's: its protocol on the real damper)
+// each claim is judged on every row of our tables in the claim's order, without the paper's rows.
 // A verdict on synthetic records whose truth is one of the compared models is a recovery check, never evidence
 // for the paper's claim; the report says so on the item.
 #include <string>

@@ -163,6 +163,9 @@ struct ReproductionSpec {
   /// Why none of the paper's numbers can be set against ours (records of another damper than the paper's, such as
   /// a neutral truth's grid): every table is judged by its ranking alone, as a paper file's `numbers_not_comparable`.
   std::string numbers_not_comparable;
+  /// The records are not at the paper's conditions (the papers' protocols on the real damper): each claim is judged on
+  /// every row of our tables, in the order the claim states (`rows = "ours"`), and no number is set against the paper's.
+  bool claims_on_our_rows = false;
 };
 
 struct PartSpec {

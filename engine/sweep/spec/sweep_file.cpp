@@ -67,8 +67,11 @@ namespace {
 
 /// `extends = "base.toml"`: the base file's keys, each replaced whole by the extending file's key of the same name,
 /// so that a preset on other records (a neutral truth's grid) keeps its paper's models, splits and tables in one
-/// place. The base is one plain sweep file in the same folder (its relative paths are read from there).
-toml::table extended(const Reader& r, const toml::table& root, const std::string& path) {
+/// place. The base is a sweep file of one part in the same folder (its relative paths are read from there); it may
+/// extend another, up to kMaxExtends files deep.
+constexpr int kMaxExtends = 4;
+
+toml::table extended(const Reader& r, const toml::table& root, const std::string& path, int depth = 1) {
   const toml::node* base = root.get("extends");
   if (!base->is_string()) r.fail(base, "extends", "expected the path of a sweep file in the same folder");
   const std::string folder = fs::path(path).parent_path().string();
@@ -78,8 +81,13 @@ toml::table extended(const Reader& r, const toml::table& root, const std::string
                                         base_path));
   const std::string text = r.check(base, "extends", [&] { return read_text(base_path, "extended sweep file"); });
   toml::table merged = parse_toml(text, base_path);
-  if (merged.contains("extends") || merged.contains("include"))
-    r.fail(base, "extends", fmt::format("'{}' extends or includes other files; the base must be one plain part", base_path));
+  if (merged.contains("include"))
+    r.fail(base, "extends", fmt::format("'{}' includes other files; the base must be one part", base_path));
+  if (merged.contains("extends")) {
+    if (depth >= kMaxExtends)
+      r.fail(base, "extends", fmt::format("more than {} files extend each other from here (a loop?)", kMaxExtends));
+    merged = extended(Reader(base_path), merged, base_path, depth + 1);
+  }
   for (const auto& [key, value] : root)
     if (key != "extends") merged.insert_or_assign(key, toml::node_view<const toml::node>(value));
   return merged;

@@ -89,6 +89,32 @@ TEST(Reproduction, RecordsOfAnotherDamperJudgeRankingsOnly) {
   EXPECT_EQ(other.items[0].verdict, "reversed") << other.items[0].detail;
 }
 
+TEST(Reproduction, AClaimOnOurRowsFollowsItsOrderOnEveryRowOfOurs) {
+  // Records at other conditions than the paper's: rows "Test 1", "Test 2" are ours, whatever the paper's rows are
+  // named; the claim (A below B) is checked on each of them and no number is set against the paper's.
+  ReproductionSpec spec = paper_file();
+  spec.numbers_not_comparable = "the real damper";
+  spec.claims_on_our_rows = true;
+  Table a = ours("a", 0.10, 0.50), b = ours("b", 0.30, 0.40);
+  a.rows[0][0] = b.rows[0][0] = "10mm1Hz0A";  // not a row of the paper file
+  a.rows.push_back({"mean", number_cell(9), number_cell(9)});  // a mean row is not a condition
+  b.rows.push_back({"mean", number_cell(0), number_cell(0)});
+  const Reproduction r = reproduce(spec, {a, b});
+  EXPECT_EQ(r.items[0].verdict, "reversed") << r.items[0].detail;
+  EXPECT_NE(r.items[0].detail.find("A above B on 1 of 2 rows (Test 2)"), std::string::npos) << r.items[0].detail;
+  EXPECT_NE(r.items[0].detail.find("at our conditions: the real damper"), std::string::npos) << r.items[0].detail;
+  ASSERT_EQ(r.items[0].values.size(), 4u);
+  EXPECT_EQ(r.items[0].values[0].first, "10mm1Hz0A: A");
+  EXPECT_TRUE(r.items[0].paper_values.empty());
+  EXPECT_EQ(r.items[1].verdict, "not-comparable");
+  // The report lists ours alone for it (there is no paper number to set beside them).
+  const std::string md = reproduction_markdown(r);
+  EXPECT_NE(md.find("| | ours |\n|---|---:|\n| 10mm1Hz0A: A | 0.1 |"), std::string::npos) << md;
+  // The same order on every row holds.
+  const Reproduction same = reproduce(spec, {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
+  EXPECT_EQ(same.items[0].verdict, "holds") << same.items[0].detail;
+}
+
 TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   const Reproduction r = reproduce(paper_file("", true), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
   const auto j = nlohmann::json::parse(reproduction_json(r, {"rec1", "rec2"}));

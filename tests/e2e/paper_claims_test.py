@@ -1,18 +1,20 @@
 #!/usr/bin/python3
-"""The neutral-truth presets give the verdicts docs/reproduce.md shows.
+"""The presets whose verdicts are evidence give the verdicts docs/reproduce.md shows.
 
 crfd_neutral.toml and mfm_neutral.toml run their paper's preset on a grid whose truth is none of the compared
-models (datasets/README.md). Each is run as a user runs it; the test fails when
+models (datasets/README.md); mfm_utfsm.toml runs the mfm paper's protocol on the real UTFSM damper. Each is run as a
+user runs it; the test fails when
 
   - the run fails, or its reproduction.json labels the records' truth a compared model or a verdict a recovery
-    check (on these grids a verdict is evidence about the paper's claim);
+    check (on these records a verdict is evidence about the paper's claim);
   - a claim's verdict is missing from the table of docs/reproduce.md's section "## crfd, mfm, fdsp" as the row
     `| <preset> | <claim id> | **<verdict>**`, so a changed result cannot leave the docs behind.
 
-The grids are generated into WORK_DIR (as a preset does on first use). The presets take about a minute of the
-two cores' time together, so this test has a COST that starts it early.
+The grids are generated into WORK_DIR (as a preset does on first use); the real-data preset is skipped with a
+message when DATA_DIR ($DAMPBENCH_SHARED_DATA_DIR, else the argument, else REPO/../shared/data) is absent. The presets take about two and a half minutes of the two cores'
+time together, so this test has a COST that starts it early.
 
-usage: neutral_presets_test.py DAMPBENCH REPO_ROOT WORK_DIR
+usage: paper_claims_test.py DAMPBENCH REPO_ROOT WORK_DIR [DATA_DIR]
 """
 import json
 import os
@@ -22,6 +24,7 @@ import subprocess
 import sys
 
 PRESETS = ["crfd_neutral", "mfm_neutral"]
+REAL_DATA_PRESETS = ["mfm_utfsm"]  # read DATA_DIR/utfsm-mr-damper
 SECTION = "## crfd, mfm, fdsp"
 
 
@@ -40,8 +43,16 @@ def main():
     work.mkdir(parents=True)
     docs = docs_section(root)
     env = dict(os.environ, DAMPBENCH_GENERATED_DIR=str(work / "generated"))
+    presets = list(PRESETS)
+    data = pathlib.Path(os.environ.get("DAMPBENCH_SHARED_DATA_DIR") or
+                        (sys.argv[4] if len(sys.argv) > 4 and sys.argv[4] else root.parent / "shared" / "data"))
+    if (data / "utfsm-mr-damper").is_dir():
+        env["DAMPBENCH_SHARED_DATA_DIR"] = str(data)
+        presets += REAL_DATA_PRESETS
+    else:
+        print(f"skipped {', '.join(REAL_DATA_PRESETS)}: no real data at {data / 'utfsm-mr-damper'}")
     failures = []
-    for preset in PRESETS:
+    for preset in presets:
         out = work / preset
         run = subprocess.run([exe, "run", str(root / "datasets" / "presets" / f"{preset}.toml"), "-o", str(out),
                               "--quiet", "--no-report", "--threads", "2"], env=env, capture_output=True, text=True)
