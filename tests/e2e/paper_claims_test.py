@@ -55,7 +55,7 @@ def main():
     for preset in presets:
         out = work / preset
         run = subprocess.run([exe, "run", str(root / "datasets" / "presets" / f"{preset}.toml"), "-o", str(out),
-                              "--quiet", "--no-report", "--threads", "2"], env=env, capture_output=True, text=True)
+                              "--quiet", "--no-report", "--threads", "1"], env=env, capture_output=True, text=True)
         if run.returncode != 0:
             failures.append(f"{preset}: exit {run.returncode}\n{run.stdout}{run.stderr}")
             continue
