@@ -38,14 +38,36 @@ double relative(double ours, double paper) {
   return paper == 0 ? std::numeric_limits<double>::infinity() : (ours - paper) / std::fabs(paper);
 }
 
-std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column) {
+const Cell* our_cell(const Table& t, const std::string& row, const std::string& column) {
   const auto c = std::find(t.columns.begin(), t.columns.end(), column);
-  if (c == t.columns.end()) return std::nullopt;
+  if (c == t.columns.end()) return nullptr;
   const auto j = static_cast<std::size_t>(c - t.columns.begin());
   for (const auto& r : t.rows)
-    if (!r.empty() && r[0].text == row && j < r.size()) return r[j].value;
-  return std::nullopt;
+    if (!r.empty() && r[0].text == row && j < r.size()) return &r[j];
+  return nullptr;
 }
+
+std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column) {
+  const Cell* cell = our_cell(t, row, column);
+  return cell ? cell->value : std::nullopt;
+}
+
+/// Counts, per compared table's label, the numbers of ours that carry † (the tables' mark of a group whose runs end
+/// more than 2 % apart or whose best still improved late), so that a verdict says when it rests on such fits.
+struct Unconverged {
+  std::map<std::string, int> by_label;
+  void count(const Table* t, const std::string& row, const std::string& column, const std::string& label) {
+    const Cell* cell = t ? our_cell(*t, row, column) : nullptr;
+    if (cell && cell->text.find("†") != std::string::npos) ++by_label[label];
+  }
+  [[nodiscard]] std::string note(std::size_t rows) const {
+    if (by_label.empty()) return "";
+    std::vector<std::string> parts;
+    for (const auto& [label, n] : by_label) parts.push_back(fmt::format("{} at {} of {} rows", label, n, rows));
+    return fmt::format("; ours not converged (†: runs more than 2 % apart, or a best still improving late): {}",
+                       fmt::join(parts, ", "));
+  }
+};
 
 const Table* find_table(const std::vector<Table>& ours, const std::string& id) {
   const auto it = std::find_if(ours.begin(), ours.end(), [&](const Table& t) { return t.id == id; });
@@ -171,6 +193,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
   const std::vector<const PublishedTable*>& order = c.tables;
   ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
   std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
+  Unconverged unconverged;
   for (const auto& first_table_row : order.front()->rows) {
     const std::string& row = first_table_row.first;  // a plain reference: lambdas below capture it (clang 14
     std::vector<double> paper, here;                 // does not capture structured bindings)
@@ -187,6 +210,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       }
       paper.push_back(prow->second[j]);
       here.push_back(*v);
+      unconverged.count(t, row, column, p->label);
       const std::string label = fmt::format("{}: {}", row, p->label);
       item.paper_values.emplace_back(label, paper.back());
       item.values.emplace_back(label, here.back());
@@ -222,6 +246,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
     judge_numbers(item, tolerance);
     if (item.verdict != "reversed") item.detail = "same ranking on every row; " + item.detail;
   }
+  item.detail += unconverged.note(order.front()->rows.size());
   if (!c.note.empty()) item.detail += ". " + c.note;
   return item;
 }
@@ -237,6 +262,7 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
     return item;
   }
   std::map<std::string, std::vector<std::string>> reversed;
+  Unconverged unconverged;
   std::size_t rows = 0;
   for (const auto& table_row : first->rows) {
     if (table_row.empty() || table_row[0].text == "mean") continue;
@@ -252,6 +278,7 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
         return item;
       }
       here.push_back(*v);
+      unconverged.count(t, row, column, p->label);
       item.values.emplace_back(fmt::format("{}: {}", row, p->label), *v);
     }
     ++rows;
@@ -265,7 +292,7 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
     pairs.push_back(fmt::format("{} on {} of {} rows ({})", pair, where.size(), rows, fmt::join(where, ", ")));
   item.detail = reversed.empty() ? fmt::format("the claim's ranking on every row of ours ({})", rows)
                                  : fmt::format("ranked the other way here: {}", fmt::join(pairs, "; "));
-  item.detail += "; ranking only, at our conditions: " + reason;
+  item.detail += "; ranking only, at our conditions: " + reason + unconverged.note(rows);
   if (!c.note.empty()) item.detail += ". " + c.note;
   return item;
 }
