@@ -3,12 +3,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/common/vector_math.hpp"
 #include "engine/kernels/cvode_integrator.hpp"
 
 namespace dampbench::synthetic {
 namespace {
-
-double sgn(double v) { return (v > 0) - (v < 0); }
 
 // The motions are smooth in time, so CVODE steps across the sample times freely (as the fvd generator does).
 const CvodeSettings kTruthSettings{1e-10, 1e-9, 200000, /*stop_at_each_time=*/false};
@@ -38,7 +37,7 @@ std::vector<double> mr_valve_force(const MrValveDamper& d, const Motion& motion,
   const double inverse_exponent = 1 / d.flow_exponent;
   auto flow_velocity = [&](double f) {
     const double excess = std::fabs(f) - d.yield_N;
-    const double through_valve = excess > 0 ? sgn(f) * std::pow(excess / d.viscous_N, inverse_exponent) : 0.0;
+    const double through_valve = excess > 0 ? sign(f) * std::pow(excess / d.viscous_N, inverse_exponent) : 0.0;
     return through_valve + f / d.leak_N_s_m;
   };
   const auto valve = integrate_cvode(
@@ -80,7 +79,7 @@ std::vector<double> rotary_orifice_torque(const RotaryOrificeDamper& d, const Mo
       [&](double t, std::span<const double> y, std::span<double> dy) {
         const double w = motion.v(t);
         dy[0] = d.column_N_m_rad * (w - flow_rate(y[0]));
-        dy[1] = d.friction_1_rad * w * (1 - y[1] * sgn(w));
+        dy[1] = d.friction_1_rad * w * (1 - y[1] * sign(w));
       },
       {0.0, 0.0}, t_s, kTruthSettings);
   std::vector<double> T(t_s.size());

@@ -61,10 +61,6 @@ PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOpt
 
 std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
-}  // namespace
-
-namespace {
-
 /// `extends = "base.toml"`: the base file's keys, each replaced whole by the extending file's key of the same name,
 /// so that a preset on other records (a neutral truth's grid) keeps its paper's models, splits and tables in one
 /// place. The base is a sweep file of one part in the same folder (its relative paths are read from there); it may
