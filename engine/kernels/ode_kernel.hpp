@@ -378,19 +378,64 @@ class OdeKernel {
   /// vector log and exp runs only if some lane needs it (kSeriesTerms).
   template <class Inputs>
   void start_power(const Inputs& in, bool anchor) {
-    R all_near = anchor ? R(0) : R(1);  // (over every lane: skipping inactive ones is slower; docs/performance.md)
-    if (!anchor) {
-#pragma omp simd reduction(min : all_near)
-      for (int l = 0; l < W; ++l) all_near = std::min(all_near, chain_near_[l]);
-    }
-    if (all_near > R(0)) return;
-#pragma omp simd
-    for (int l = 0; l < W; ++l) exact_[l] = abs_pow(y_[Law::kPowerState][l], p_.p[Law::kPowerExponentRow][l]);
+    // (over every lane of a chunk: skipping inactive ones is slower; docs/performance.md)
+    if (!exact_powers(y_[Law::kPowerState], anchor ? nullptr : chain_near_)) return;
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
       const bool exact = chain_near_[l] == R(0) || (anchor && in.active(l));
       power0_[l] = exact ? exact_[l] : power0_[l];
     }
+  }
+
+  /// Lanes per chunk of exact_powers(): the narrowest block (kLanes), so a chunk's loop is a whole block's loop
+  /// of that width and gives its lanes the same bits (Float32Lanes.SameBitsForAnyThreadCountBatchSplitAndBlockWidth).
+  static constexpr int kExactChunk = W < 16 ? W : 16;
+  static_assert(W % kExactChunk == 0);
+
+  /// exact_[l] = |s[l]|^e (vector log and exp) for the lanes of every kExactChunk-lane chunk in which some lane that
+  /// has not failed has near[l] == 0 (every chunk when near is null); false when no chunk needed them. A failed lane's
+  /// forces are discarded (NaN), and its state, reset to 0 after each blow-up, leaves the series' radius at every
+  /// step: computed for the whole block, exact powers for such lanes and for stiff ones (whose state moves fast
+  /// relative to itself) were a quarter to half of a Spencer fit's time (docs/performance.md). When every chunk
+  /// needs them, one loop over the block keeps the vector calls of its chunks overlapping.
+  bool exact_powers(const R* s, const R* near) {
+    constexpr int kChunks = W / kExactChunk;
+    bool needed[kChunks];
+    int count = kChunks;
+    if (near) {
+      // Lanes that count: 1 where near or failed. One reduction over the block first (a reduction of its own: in a
+      // loop with other work it left that loop scalar in some clones; an integer count was scalar), because most
+      // stages need no exact power; then one per chunk.
+      R all_near = 1;
+#pragma omp simd reduction(min : all_near)
+      for (int l = 0; l < W; ++l) {
+        counted_near_[l] = failed_[l] > R(0) ? R(1) : near[l];
+        all_near = std::min(all_near, counted_near_[l]);
+      }
+      if (all_near > R(0)) return false;
+      count = 0;
+      for (int c = 0; c < kChunks; ++c) {
+        R chunk_near = 1;
+        const int first = c * kExactChunk;
+#pragma omp simd reduction(min : chunk_near)
+        for (int l = first; l < first + kExactChunk; ++l) chunk_near = std::min(chunk_near, counted_near_[l]);
+        needed[c] = !(chunk_near > R(0));
+        count += needed[c];
+      }
+    }
+    const R* e = p_.p[Law::kPowerExponentRow];
+    if (count == kChunks) {  // (also when near is null; needed[] is then not read)
+#pragma omp simd
+      for (int l = 0; l < W; ++l) exact_[l] = abs_pow(s[l], e[l]);
+      return true;
+    }
+    for (int c = 0; c < kChunks; ++c) {
+      if (!needed[c]) continue;
+      const int first = c * kExactChunk;
+#pragma omp simd
+      for (int l = first; l < first + kExactChunk; ++l) exact_[l] = abs_pow(s[l], e[l]);
+    }
+    return count > 0;
   }
 
   /// RK4 stage: slopes k[to] at y + fraction·h·k[from], inputs at the step's middle (or end: kEnd).
@@ -437,13 +482,8 @@ class OdeKernel {
       power_[l] = power0_[l] * series(eps, l);  // replaced below where the lane is not near (no select here: GCC sinks the
       near_[l] = static_cast<R>(std::fabs(eps) <= R(kSeriesRadius));  // product into its branch and stops)
     }
-    R all_near = 1;  // 0 if some lane is not near (a reduction of its own: in the loop above, it left
-#pragma omp simd reduction(min : all_near)  // that loop scalar in some clones; an integer count was scalar)
-    for (int l = 0; l < W; ++l) all_near = std::min(all_near, near_[l]);
-    if (all_near == R(0)) {
+    if (exact_powers(t_[ps], near_)) {
       // Two loops: in one, GCC sinks the call into the select's branch and leaves the loop scalar.
-#pragma omp simd
-      for (int l = 0; l < W; ++l) exact_[l] = abs_pow(t_[ps][l], p_.p[Law::kPowerExponentRow][l]);
 #pragma omp simd
       for (int l = 0; l < W; ++l) power_[l] = near_[l] > R(0) ? power_[l] : exact_[l];
     }
@@ -473,6 +513,7 @@ class OdeKernel {
   alignas(64) R power_[W] = {};
   alignas(64) R near_[W] = {};   // 1 where the stage's power came from the series
   alignas(64) R exact_[W] = {};  // exact powers (a sub-step's start or a stage)
+  alignas(64) R counted_near_[W] = {};  // near, or 1 for a failed lane (exact_powers)
   alignas(64) R series_[kSeriesTerms][W] = {};
   mutable bool failed_flags_[W] = {};  // failed_ > 0, filled by failed()
 };
