@@ -389,7 +389,7 @@ class OdeKernel {
 
   /// Lanes per chunk of exact_powers(): the narrowest block (kLanes), so a chunk's loop is a whole block's loop
   /// of that width and gives its lanes the same bits (Float32Lanes.SameBitsForAnyThreadCountBatchSplitAndBlockWidth).
-  static constexpr int kExactChunk = W < 16 ? W : 16;
+  static constexpr int kExactChunk = std::min(W, kLanes);
   static_assert(W % kExactChunk == 0);
 
   /// exact_[l] = |s[l]|^e (vector log and exp) for the lanes of every kExactChunk-lane chunk in which some lane that
@@ -403,9 +403,8 @@ class OdeKernel {
     bool needed[kChunks];
     int count = kChunks;
     if (near) {
-      // Lanes that count: 1 where near or failed. One reduction over the block first (a reduction of its own: in a
-      // loop with other work it left that loop scalar in some clones; an integer count was scalar), because most
-      // stages need no exact power; then one per chunk.
+      // counted_near_: 1 where near or failed. One reduction over the block first, because most stages need no
+      // exact power, then one per chunk (min over reals: an integer count was scalar in some clones).
       R all_near = 1;
 #pragma omp simd reduction(min : all_near)
       for (int l = 0; l < W; ++l) {
