@@ -16,7 +16,7 @@ namespace dampbench::synthetic {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& grid_names() {
-  static const std::vector<std::string> names{"fvd", "crfd", "crfd-neutral", "mfm", "mfm-neutral", "fdsp"};
+  static const std::vector<std::string> names{"fvd", "crfd", "crfd-neutral", "mfm", "mfm-neutral", "fdsp", "fdsp-neutral"};
   return names;
 }
 
@@ -27,6 +27,7 @@ void write_grid(const std::string& name, const fs::path& dir, std::uint64_t seed
   if (name == "mfm") return write_mfm(dir, seed);
   if (name == "mfm-neutral") return write_mfm_neutral(dir, seed);
   if (name == "fdsp") return write_fdsp(dir, seed);
+  if (name == "fdsp-neutral") return write_fdsp_neutral(dir, seed);
   throw InputError(fmt::format("unknown synthetic grid '{}' (known: {})", name, fmt::join(grid_names(), ", ")));
 }
 

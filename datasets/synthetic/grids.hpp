@@ -17,7 +17,7 @@ namespace dampbench::synthetic {
 /// The seed of every generated grid (the noise streams are keyed by it and the file name).
 inline constexpr std::uint64_t kGridSeed = 2024;
 
-/// Grid names: "fvd", "crfd", "crfd-neutral", "mfm", "mfm-neutral", "fdsp" (datasets/README.md).
+/// Grid names: "fvd", "crfd", "crfd-neutral", "mfm", "mfm-neutral", "fdsp", "fdsp-neutral" (datasets/README.md).
 const std::vector<std::string>& grid_names();
 
 /// Writes grid `name` into `dir` (created). Throws InputError for an unknown name.

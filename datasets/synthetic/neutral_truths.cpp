@@ -33,6 +33,18 @@ MrValveDamper mfm_valve_damper(double current_A) {
   return d;
 }
 
+MrValveDamper fdsp_valve_damper() {
+  MrValveDamper d;
+  d.yield_N = 40;
+  d.viscous_N = 900;
+  d.flow_exponent = 0.6;
+  d.leak_N_s_m = 2e4;
+  d.column_N_m = 2e5;
+  d.seal_friction_N = 15;
+  d.gas_N = 200;
+  return d;
+}
+
 std::vector<double> mr_valve_force(const MrValveDamper& d, const Motion& motion, std::span<const double> t_s) {
   const double inverse_exponent = 1 / d.flow_exponent;
   auto flow_velocity = [&](double f) {

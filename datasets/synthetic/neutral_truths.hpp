@@ -32,6 +32,13 @@ struct MrValveDamper {
 /// (the valve's magnetic circuit), F_y = 60 + 900·tanh(I/1.2 A) N, c = 1500 + 700·tanh(I/1.2 A) N/(m/s)^0.7.
 MrValveDamper mfm_valve_damper(double current_A);
 
+/// The fdsp grid's damper (a small damper at 0 V, forces of a few hundred newtons at 6.35 mm and 1.5–5 Hz, as the
+/// paper's): a low residual yield force, a strongly shear-thinning valve (m = 0.6: the force per unit velocity falls
+/// as the frequency rises) and a compliant oil column (the loops open with frequency), F_y = 40 N,
+/// c = 900 N/(m/s)^0.6, k = 2e5 N/m. Neither side of fdsp Table 3 has these: both are Spencer's model, whose
+/// dashpots are linear, the frequency-dependent one with its two viscosities as laws in the record's frequency.
+MrValveDamper fdsp_valve_damper();
+
 /// A rotary orifice damper (the crfd grid's neutral truth), in the crfd records' rotary units (θ rad, T N·m).
 /// The vane drives oil through an orifice whose opening the motor angle φ sets; the orifice's torque for a flow
 /// rate ω (over vane displacement) is laminar plus turbulent, T(ω) = c_l·ω + c_t·ω|ω|, behind the oil column's

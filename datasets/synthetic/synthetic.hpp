@@ -36,5 +36,6 @@ void write_crfd_neutral(const std::filesystem::path& dir, std::uint64_t seed);
 void write_mfm(const std::filesystem::path& dir, std::uint64_t seed);
 void write_mfm_neutral(const std::filesystem::path& dir, std::uint64_t seed);
 void write_fdsp(const std::filesystem::path& dir, std::uint64_t seed);
+void write_fdsp_neutral(const std::filesystem::path& dir, std::uint64_t seed);
 
 }  // namespace dampbench::synthetic

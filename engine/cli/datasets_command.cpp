@@ -13,7 +13,7 @@
 namespace dampbench::cli {
 
 void add_datasets_options(CLI::App* cmd, DatasetsOptions& o) {
-  cmd->add_option("grids", o.grids, "grids to generate: fvd, crfd, crfd-neutral, mfm, mfm-neutral, fdsp (default: all)");
+  cmd->add_option("grids", o.grids, "grids to generate: fvd, crfd, crfd-neutral, mfm, mfm-neutral, fdsp, fdsp-neutral (default: all)");
   cmd->add_option("--into", o.into, "folder (default: the cache `run` reads; env DAMPBENCH_GENERATED_DIR)");
 }
 

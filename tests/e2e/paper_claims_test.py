@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The presets whose verdicts are evidence give the verdicts docs/reproduce.md shows.
 
-crfd_neutral.toml and mfm_neutral.toml run their paper's preset on a grid whose truth is none of the compared
+crfd_neutral.toml, mfm_neutral.toml and fdsp_neutral.toml run their paper's preset on a grid whose truth is none of the compared
 models (datasets/README.md); mfm_utfsm.toml runs the mfm paper's protocol on the real UTFSM damper. Each is run as a
 user runs it; the test fails when
 
@@ -13,7 +13,7 @@ user runs it; the test fails when
 The grid is generated into WORK_DIR (as a preset does on first use); the real-data preset is skipped with a
 message when DATA_DIR ($DAMPBENCH_SHARED_DATA_DIR, else the argument, else REPO/../shared/data) is absent. ctest runs
 one test per preset (paper_claims_<preset>), so the two cores share them with the rest of the suite: the mfm
-presets' Spencer law fits take minutes of one core's time each, and their COST starts them first.
+and fdsp presets' Spencer law fits take minutes of one core's time each, and their COST starts them first.
 
 usage: paper_claims_test.py DAMPBENCH REPO_ROOT WORK_DIR PRESET [DATA_DIR]
 """
@@ -24,7 +24,7 @@ import shutil
 import subprocess
 import sys
 
-PRESETS = ["crfd_neutral", "mfm_neutral"]
+PRESETS = ["crfd_neutral", "mfm_neutral", "fdsp_neutral"]
 REAL_DATA_PRESETS = ["mfm_utfsm"]  # read DATA_DIR/utfsm-mr-damper
 SECTION = "## crfd, mfm, fdsp"
 

@@ -8,8 +8,9 @@ namespace dampbench::sweep::spec_file {
 
 void read_regressions(const Reader& r, const toml::table& root, PartSpec& part) {
   const toml::node* regs = root.get("regressions");
-  if (!regs) return;
-  if (!regs->is_array_of_tables()) r.fail(regs, "regressions", "expected [[regressions]] tables");
+  // `regressions = []` is none: a file that extends another drops its base's regressions so.
+  if (!regs || (regs->is_array() && regs->as_array()->empty())) return;
+  if (!regs->is_array_of_tables()) r.fail(regs, "regressions", "expected [[regressions]] tables (or [] for none)");
   const auto& a = *regs->as_array();
   for (std::size_t i = 0; i < a.size(); ++i) {
     const std::string key = fmt::format("regressions[{}]", i);

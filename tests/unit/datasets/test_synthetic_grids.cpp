@@ -77,7 +77,7 @@ TEST_F(SyntheticGrids, UnwritableFolderIsAClearErrorAndLeavesNothing) {
       << message;
   EXPECT_NE(message.find("DAMPBENCH_GENERATED_DIR"), std::string::npos) << message;
   EXPECT_EQ(testing::error_of([&] { (void)ensure_grid(root_, "nope", "build A"); }),
-            "unknown synthetic grid 'nope' (known: fvd, crfd, crfd-neutral, mfm, mfm-neutral, fdsp)");
+            "unknown synthetic grid 'nope' (known: fvd, crfd, crfd-neutral, mfm, mfm-neutral, fdsp, fdsp-neutral)");
 }
 
 TEST_F(SyntheticGrids, SweepGeneratesTheGridItNamesOnFirstUse) {
