@@ -74,16 +74,28 @@ const Table* find_table(const std::vector<Table>& ours, const std::string& id) {
   return it == ours.end() ? nullptr : &*it;
 }
 
-/// "holds" or "differs" by the tolerance, with the largest difference as the detail.
+bool is_not_determined(const ReproductionItem& item, const std::string& label) {
+  return std::find(item.not_determined.begin(), item.not_determined.end(), label) != item.not_determined.end();
+}
+
+/// "holds" or "differs" by the tolerance, with the largest difference as the detail; numbers the records do not
+/// determine are left out (all of them: not-comparable).
 void judge_numbers(ReproductionItem& item, double tolerance) {
   double worst = 0;
-  std::size_t at = 0;
+  std::size_t at = 0, judged = 0;
   for (std::size_t i = 0; i < item.values.size(); ++i) {
+    if (is_not_determined(item, item.values[i].first)) continue;
+    ++judged;
     const double d = std::fabs(relative(item.values[i].second, item.paper_values[i].second));
-    if (!(d <= worst)) worst = d, at = i;
+    if (!(d <= worst) || judged == 1) worst = d, at = i;
+  }
+  if (!item.values.empty() && judged == 0) {
+    if (item.verdict.empty()) item.verdict = "not-comparable";
+    item.detail = "the records determine none of these numbers of ours (‡)";
+    return;
   }
   if (item.verdict.empty()) item.verdict = worst <= tolerance ? "holds" : "differs";
-  if (!item.values.empty()) {
+  if (judged > 0) {
     const std::string words = fmt::format("largest difference {}: ours {:.6g}, paper {:.6g} ({:+.1f} %)", item.values[at].first,
                                           item.values[at].second, item.paper_values[at].second,
                                           100 * relative(item.values[at].second, item.paper_values[at].second));
@@ -158,27 +170,40 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
   return out;
 }
 
+/// `labels` (some of the item's numbers) as "N of M: label, label, ...".
+std::string marked(const ReproductionItem& item, const std::vector<std::string>& labels) {
+  return fmt::format("{} of {}: {}", labels.size(), item.values.size(), fmt::join(labels, ", "));
+}
+
 ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& ours, double tolerance) {
   ReproductionItem item{p.table, fmt::format("{} ({})", p.label, fmt::join(p.compare, ", ")), {}, {}, "", "", p.table};
   if (p.scale != 1) item.detail = fmt::format("the paper's printed values x {:g}", p.scale);
   const Table* t = find_table(ours, p.ours);
+  if (!p.not_comparable.empty() && !t) {  // another damper's records: no number to set beside the paper's anyway
+    item.verdict = "not-comparable";
+    item.detail = p.not_comparable;
+    return item;
+  }
   if (!t) {
     item.verdict = "not-comparable";
     item.detail = fmt::format("this run wrote no table '{}'", p.ours);
     return item;
   }
+  std::vector<std::string> at_bound;
   for (const auto& [row, values] : p.rows)
     for (const auto& column : p.compare) {
       const auto j = static_cast<std::size_t>(std::find(p.columns.begin(), p.columns.end(), column) - p.columns.begin());
-      const auto v = our_value(*t, row, column);
-      if (!v) {
+      const Cell* cell = our_cell(*t, row, column);
+      if (!cell || !cell->value) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("table '{}' has no number at row '{}', column '{}'", p.ours, row, column);
         continue;
       }
       const std::string label = fmt::format("{} {}", row, column);
       item.paper_values.emplace_back(label, values[j]);
-      item.values.emplace_back(label, *v);
+      item.values.emplace_back(label, *cell->value);
+      if (cell->text.find("‡") != std::string::npos) item.not_determined.push_back(label);
+      if (cell->text.find("⊥") != std::string::npos) at_bound.push_back(label);
     }
   if (!p.not_comparable.empty()) {
     item.verdict = "not-comparable";
@@ -186,6 +211,9 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
     return item;
   }
   judge_numbers(item, tolerance);
+  if (!item.not_determined.empty())
+    item.detail += "; not determined by the records (‡, not judged) " + marked(item, item.not_determined);
+  if (!at_bound.empty()) item.detail += "; at a bound of the search box (⊥) " + marked(item, at_bound);
   return item;
 }
 
@@ -361,8 +389,9 @@ std::string reproduction_markdown(const Reproduction& r) {
     md += fmt::format("\n**{}: {}** ({}; {})\n\n| | paper | ours | difference |\n|---|---:|---:|---:|\n", i.id, i.claim,
                       i.table, i.verdict);
     for (std::size_t k = 0; k < i.values.size(); ++k)
-      md += fmt::format("| {} | {} | {} | {:+.1f} % |\n", i.values[k].first, format_number(i.paper_values[k].second),
-                        format_number(i.values[k].second), 100 * relative(i.values[k].second, i.paper_values[k].second));
+      md += fmt::format("| {} | {} | {}{} | {:+.1f} % |\n", i.values[k].first, format_number(i.paper_values[k].second),
+                        format_number(i.values[k].second), is_not_determined(i, i.values[k].first) ? "‡" : "",
+                        100 * relative(i.values[k].second, i.paper_values[k].second));
   }
   return md;
 }
@@ -389,7 +418,8 @@ std::string reproduction_json(const Reproduction& r, const std::vector<std::stri
                           {"values", ours},
                           {"verdict", i.verdict},
                           {"detail", i.detail},
-                          {"recovery_check", recovery_check(r)}});
+                          {"recovery_check", recovery_check(r)},
+                          {"not_determined", i.not_determined}});
   }
   return j.dump(2) + "\n";
 }

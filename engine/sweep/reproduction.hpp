@@ -16,7 +16,11 @@
 //                   ranking alone, said so, when the numbers are not comparable)
 //   differs         same ranking, some number outside the tolerance
 //   reversed        a pair the paper ranks one way (strictly) ranks the other way here
-//   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not)
+//   not-comparable  with the reason (our table is missing, a row or column the paper has and ours has not, or every
+//                   number of ours is one the records do not determine)
+// A number of ours marked ‡ (a parameter the records do not determine: identifiability, engine/fit) is shown beside
+// the paper's but left out of the verdict, and the item names it (`not_determined`); one marked ⊥ (at a bound of the
+// search box) is judged and named.
 // A preset's `[reproduction] numbers_not_comparable` (records of another damper than the paper's) makes every table
 // ranking-only; with `rows = "ours"` (records at other conditions than the paper's: its protocol on the real damper)
 // each claim is judged on every row of our tables in the claim's order, without the paper's rows.
@@ -39,6 +43,9 @@ struct ReproductionItem {
   std::string verdict;
   std::string detail;  ///< why: the largest difference, the reversed pairs, the missing table
   std::string id;      ///< a claim's id (its `id`, else "claim N"), or the table's name
+  /// Labels of `values` our tables mark ‡ (a parameter the records do not determine): listed, never judged, since
+  /// any value of it fits the records as well (a recovery check asks for the determined ones only).
+  std::vector<std::string> not_determined = {};
 };
 
 struct Reproduction {
@@ -56,7 +63,7 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
 
 std::string reproduction_markdown(const Reproduction& r);
 /// {"paper", "title", "source", "tolerance_rel", "data": {kind, truth, truth_is_compared_model, records},
-///  "items": [{id, table, claim, paper_values, values, verdict, detail, recovery_check}]}
+///  "items": [{id, table, claim, paper_values, values, verdict, detail, recovery_check, not_determined}]}
 std::string reproduction_json(const Reproduction& r, const std::vector<std::string>& records);
 
 }  // namespace dampbench::sweep

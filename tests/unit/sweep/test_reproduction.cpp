@@ -129,6 +129,40 @@ TEST(Reproduction, AClaimSaysWhenItRestsOnFitsThatDidNotConverge) {
   EXPECT_EQ(clean.items[0].detail.find("not converged"), std::string::npos) << clean.items[0].detail;
 }
 
+TEST(Reproduction, NumbersTheRecordsDoNotDetermineAreShownButNotJudged) {
+  // Our Test 2 of table a is 4.5x the paper's but marked ‡ (the records do not determine it): Table 1 holds on Test 1
+  // alone and names Test 2; b's Test 1 sits at a bound (⊥) and is judged (within 10 %) and named.
+  Table a = ours("a", 0.105, 0.9);
+  a.rows[1][2] = Cell("0.9‡", 0.9);
+  Table b = ours("b", 0.31, 0.38);
+  b.rows[0][2] = Cell("0.31⊥", 0.31);
+  const Reproduction r = reproduce(paper_file("", true), {a, b});
+  ASSERT_EQ(r.items.size(), 3u);
+  EXPECT_EQ(r.items[1].verdict, "holds") << r.items[1].detail;
+  EXPECT_EQ(r.items[1].not_determined, std::vector<std::string>{"Test 2 Min"});
+  EXPECT_NE(r.items[1].detail.find("not determined by the records (‡, not judged) 1 of 2: Test 2 Min"), std::string::npos)
+      << r.items[1].detail;
+  EXPECT_NE(r.items[1].detail.find("largest difference Test 1 Min"), std::string::npos) << r.items[1].detail;
+  EXPECT_EQ(r.items[2].verdict, "holds");
+  EXPECT_NE(r.items[2].detail.find("at a bound of the search box (⊥) 1 of 2: Test 1 Min"), std::string::npos)
+      << r.items[2].detail;
+  const auto j = nlohmann::json::parse(reproduction_json(r, {}));
+  EXPECT_EQ(j.at("items").at(1).at("not_determined").at(0), "Test 2 Min");
+  EXPECT_NE(reproduction_markdown(r).find("| Test 2 Min | 0.2 | 0.9‡ |"), std::string::npos) << reproduction_markdown(r);
+
+  // Without the mark the same number is judged, and differs.
+  const Reproduction judged = reproduce(paper_file("", true), {ours("a", 0.105, 0.9), b});
+  EXPECT_EQ(judged.items[1].verdict, "differs");
+  EXPECT_TRUE(judged.items[1].not_determined.empty());
+
+  // Every number undetermined: nothing to judge.
+  a.rows[0][2] = Cell("0.105‡", 0.105);
+  const Reproduction none = reproduce(paper_file("", true), {a, b});
+  EXPECT_EQ(none.items[1].verdict, "not-comparable");
+  EXPECT_NE(none.items[1].detail.find("the records determine none of these numbers of ours"), std::string::npos)
+      << none.items[1].detail;
+}
+
 TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   const Reproduction r = reproduce(paper_file("", true), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
   const auto j = nlohmann::json::parse(reproduction_json(r, {"rec1", "rec2"}));
