@@ -1,32 +1,83 @@
 #!/usr/bin/python3
-"""The presets whose verdicts are evidence give the verdicts docs/reproduce.md shows.
+"""The presets' verdicts, and the figures beside them, are the ones docs/reproduce.md shows.
 
-crfd_neutral.toml, mfm_neutral.toml and fdsp_neutral.toml run their paper's preset on a grid whose truth is none of the compared
-models (datasets/README.md); mfm_utfsm.toml runs the mfm paper's protocol on the real UTFSM damper. Each is run as a
+crfd.toml, mfm.toml and fdsp.toml run the papers' procedures on grids made from a compared model (their verdicts are
+recovery checks); crfd_neutral.toml, mfm_neutral.toml and fdsp_neutral.toml on grids whose truth is none of the
+compared models (evidence); mfm_utfsm.toml runs the mfm paper's protocol on the real UTFSM damper. Each is run as a
 user runs it; the test fails when
 
-  - the run fails, or its reproduction.json labels the records' truth a compared model or a verdict a recovery
-    check (on these records a verdict is evidence about the paper's claim);
-  - a claim's verdict is missing from the table of docs/reproduce.md's section "## crfd, mfm, fdsp" as the row
-    `| <preset> | <claim id> | **<verdict>**`, so a changed result cannot leave the docs behind.
+  - the run fails, or its reproduction.json labels the records' truth or a verdict otherwise than the preset's kind
+    (a recovery check on a compared model's grid, evidence elsewhere);
+  - a claim's verdict, or the verdict of a parameter table of the paper ("Table 2") that is judged, is missing from
+    the table of docs/reproduce.md's section "## crfd, mfm, fdsp" as the row `| <preset> | <id> | **<verdict>**`;
+  - a number in that row's text is none of the item's: its values, the paper's (also as printed in %), their
+    relative differences in %, the means of each compared model's values, the numbers of the item's own detail and
+    claim, or how many numbers the records determine. A figure of the docs that a run no longer gives fails here
+    instead of going stale. Numbers that name a condition (followed by Hz, mm, m, A, °, V or kN, alone or as the
+    last of a list) or an equation, table or figure are not results and are not checked.
 
 The grid is generated into WORK_DIR (as a preset does on first use); the real-data preset is skipped with a
 message when DATA_DIR ($DAMPBENCH_SHARED_DATA_DIR, else the argument, else REPO/../shared/data) is absent. ctest runs
-one test per preset (paper_claims_<preset>), so the two cores share them with the rest of the suite: the mfm
-and fdsp presets' Spencer law fits take minutes of one core's time each, and their COST starts them first.
+one test per preset (paper_claims_<preset>), so the two cores share them with the rest of the suite: the mfm and
+fdsp presets' Spencer law fits take a minute or more of one core's time each, and their COST starts them first.
 
 usage: paper_claims_test.py DAMPBENCH REPO_ROOT WORK_DIR PRESET [DATA_DIR]
 """
 import json
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
 
-PRESETS = ["crfd_neutral", "mfm_neutral", "fdsp_neutral"]
+RECOVERY_PRESETS = ["crfd", "mfm", "fdsp"]  # grids made from a compared model
+EVIDENCE_PRESETS = ["crfd_neutral", "mfm_neutral", "fdsp_neutral"]
 REAL_DATA_PRESETS = ["mfm_utfsm"]  # read DATA_DIR/utfsm-mr-damper
 SECTION = "## crfd, mfm, fdsp"
+
+NUMBER = re.compile(r"(?<![\w.])([+\-−]?\d+(?:\.\d+)?(?:e[+\-−]?\d+)?)")
+CONDITION = re.compile(r"^((?:,\s*|\s+and\s+|\s+or\s+|\s*[–-]\s*)[\d.]+)*\s*(Hz|mm|m|A|°|V|kN)(?!\w)")
+REFERENCE = re.compile(r"(eqs?\.|Tables?|Figs?\.)\s*(\d+\s*[–,-]\s*)*$")
+
+
+def as_float(token):
+    return float(token.replace("−", "-"))
+
+
+def numbers_in(text):
+    return [as_float(m.group(1)) for m in NUMBER.finditer(text)]
+
+
+def item_numbers(item):
+    """Every number a docs row may quote for this item (see the module's docstring)."""
+    values, paper = item["values"], item["paper_values"]
+    found = set(values.values()) | set(paper.values())
+    found |= {100 * v for v in paper.values()} | {v / 100 for v in paper.values()}  # a paper's % kept as fractions
+    found |= {100 * (v - paper[k]) / abs(paper[k]) for k, v in values.items() if paper.get(k)}
+    models = {}
+    for label, v in values.items():  # "row: model" (claims) or "row column" (tables)
+        models.setdefault(label.split(": ", 1)[-1] if ": " in label else label.split(" ", 1)[-1], []).append(v)
+    found |= {sum(vs) / len(vs) for vs in models.values()}
+    found |= set(numbers_in(item["detail"])) | set(numbers_in(item["claim"]))
+    found.add(len(values) - len(item.get("not_determined", [])))
+    return {abs(x) for x in found}
+
+
+def unmatched_numbers(text, item):
+    """The numbers of `text` that are none of the item's at their printed precision."""
+    known = item_numbers(item)
+    missing = []
+    for m in NUMBER.finditer(text):
+        if CONDITION.match(text[m.end():]) or REFERENCE.search(text[:m.start()]):
+            continue
+        token = m.group(1).replace("−", "-")
+        mantissa, _, exponent = token.partition("e")
+        decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+        tolerance = 0.5 * 10 ** (int(exponent or 0) - decimals) * (1 + 1e-9)
+        if not any(abs(abs(float(token)) - k) <= tolerance for k in known):
+            missing.append(m.group(1))
+    return missing
 
 
 def docs_section(root):
@@ -38,10 +89,20 @@ def docs_section(root):
     return text[begin:end if end >= 0 else len(text)]
 
 
+def checked_items(report):
+    """The claims ("table8-laws") and the paper's parameter tables ("Table 2") that were judged."""
+    for item in report["items"]:
+        claim = item["id"].startswith("table") and "-" in item["id"]
+        parameters = re.fullmatch(r"Table \d+", item["id"]) and item["verdict"] != "not-comparable"
+        if claim or parameters:
+            yield item
+
+
 def main():
-    if len(sys.argv) < 5 or sys.argv[4] not in PRESETS + REAL_DATA_PRESETS:
+    presets = RECOVERY_PRESETS + EVIDENCE_PRESETS + REAL_DATA_PRESETS
+    if len(sys.argv) < 5 or sys.argv[4] not in presets:
         sys.exit(f"usage: paper_claims_test.py DAMPBENCH REPO_ROOT WORK_DIR PRESET [DATA_DIR], PRESET one of "
-                 f"{', '.join(PRESETS + REAL_DATA_PRESETS)}")
+                 f"{', '.join(presets)}")
     exe, root, work, preset = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3]), sys.argv[4]
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
@@ -60,22 +121,29 @@ def main():
     if run.returncode != 0:
         sys.exit(f"{preset}: exit {run.returncode}\n{run.stdout}{run.stderr}")
     report = json.loads((out / "reproduction.json").read_text())
+    recovery = preset in RECOVERY_PRESETS
     failures = []
-    if report["data"]["truth_is_compared_model"] is not False:
-        failures.append(f"{preset}: its truth is labelled a compared model")
+    if report["data"]["truth_is_compared_model"] is not recovery:
+        failures.append(f"{preset}: its truth is {'not ' if recovery else ''}labelled a compared model")
     claims = 0
     for item in report["items"]:
-        if item["recovery_check"] is not False:
-            failures.append(f"{preset} {item['id']}: labelled a recovery check")
-        if not item["id"].startswith("table") or "-" not in item["id"]:
-            continue  # a table, not a claim ("table8-laws")
-        claims += 1
-        row = f"| {preset} | {item['id']} | **{item['verdict']}**"
-        if row not in docs:
-            failures.append(f"docs/reproduce.md lacks the row '{row}' ({item['detail']})")
+        if item["recovery_check"] is not recovery:
+            failures.append(f"{preset} {item['id']}: {'not ' if recovery else ''}labelled a recovery check")
+    for item in checked_items(report):
+        claims += item["id"][0] == "t"
+        prefix = f"| {preset} | {item['id']} | **{item['verdict']}**"
+        row = next((line for line in docs.split("\n") if line.startswith(prefix)), None)
+        if row is None:
+            failures.append(f"docs/reproduce.md lacks the row '{prefix}' ({item['detail']})")
+            continue
+        what = row.split(" | ", 3)[3] if row.count(" | ") >= 3 else ""
+        missing = unmatched_numbers(what, item)
+        if missing:
+            failures.append(f"docs/reproduce.md, row '{prefix}': {', '.join(missing)} is none of the run's numbers for "
+                            f"this item ({item['detail']})")
     if claims == 0:
         failures.append(f"{preset}: no claim in reproduction.json")
-    print(f"{preset}: {claims} claims checked")
+    print(f"{preset}: {claims} claims and the parameter tables checked")
     if failures:
         sys.exit("\n".join(failures))
 
