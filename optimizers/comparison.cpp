@@ -34,6 +34,28 @@ std::optional<double> sqp_constraint(const OptimizerSpec& spec) {
   return parse_number(t, "ga-sqp: setting 'constraint'");
 }
 
+/// Each entry's optimizer factory, after the settings and the entries are checked (InputError naming the entry).
+std::vector<OptimizerFactory> checked_factories(const std::vector<ComparisonEntry>& entries,
+                                                const ComparisonSettings& settings) {
+  if (entries.empty()) throw InputError("compare: give at least one --optimizer");
+  if (settings.target && !std::isfinite(*settings.target))
+    throw InputError(fmt::format("--target: expected a finite number, got {}", *settings.target));
+  if (!(settings.success_tolerance >= 0) || !std::isfinite(settings.success_tolerance))
+    throw InputError(fmt::format("compare: success tolerance must be a finite number >= 0, got {}", settings.success_tolerance));
+  std::set<std::string> labels;
+  std::vector<OptimizerFactory> factories;
+  for (const ComparisonEntry& e : entries) {
+    if (!labels.insert(e.label).second) throw InputError(fmt::format("--optimizer '{}' is given twice", e.label));
+    try {
+      factories.push_back(make_optimizer_factory(e.spec));
+      (void)sqp_constraint(e.spec);
+    } catch (const InputError& error) {
+      throw InputError(fmt::format("--optimizer '{}': {}", e.label, error.what()));
+    }
+  }
+  return factories;
+}
+
 }  // namespace
 
 OptimizerSpec parse_optimizer_entry(std::string_view text, int default_population, int default_iterations) {
@@ -67,23 +89,7 @@ void completed_trace(const RunResult& run, std::vector<long long>& evaluations, 
 
 Comparison compare_optimizers(const Model& model, const std::vector<const Signals*>& data, const Bounds& bounds,
                               const std::vector<ComparisonEntry>& entries, const ComparisonSettings& settings) {
-  if (entries.empty()) throw InputError("compare: give at least one --optimizer");
-  if (settings.target && !std::isfinite(*settings.target))
-    throw InputError(fmt::format("--target: expected a finite number, got {}", *settings.target));
-  if (!(settings.success_tolerance >= 0) || !std::isfinite(settings.success_tolerance))
-    throw InputError(fmt::format("compare: success tolerance must be a finite number >= 0, got {}", settings.success_tolerance));
-  std::set<std::string> labels;
-  std::vector<OptimizerFactory> factories;
-  for (const ComparisonEntry& e : entries) {
-    if (!labels.insert(e.label).second) throw InputError(fmt::format("--optimizer '{}' is given twice", e.label));
-    try {
-      factories.push_back(make_optimizer_factory(e.spec));
-      (void)sqp_constraint(e.spec);
-    } catch (const InputError& error) {
-      throw InputError(fmt::format("--optimizer '{}': {}", e.label, error.what()));
-    }
-  }
-
+  const std::vector<OptimizerFactory> factories = checked_factories(entries, settings);
   Comparison out;
   out.best_found = kInf;
   for (std::size_t i = 0; i < entries.size(); ++i) {

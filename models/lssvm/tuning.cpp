@@ -152,6 +152,61 @@ class Objective {
   double bound_ = kInf;  ///< a free-run force beyond 10 × the largest training force: diverged
 };
 
+/// The spectral factors of K for the grid σ the GA's batches ask for, kept across generations up to kCacheBytes
+/// (a factor depends on σ alone and serves every c).
+class FactorCache {
+ public:
+  /// Each candidate's factor (keys: its grid σ) into `factors`, decomposing in parallel, in increasing order, the
+  /// grid σ not cached; marks each used at `generation`. Returns how many it decomposed.
+  int fetch(const Objective& obj, int per_decade, const std::vector<int>& keys, long long generation,
+            std::vector<const SpectralFactor*>& factors) {
+    std::vector<int> missing;
+    for (int key : keys)
+      if (!cache_.contains(key)) missing.push_back(key);
+    std::ranges::sort(missing);
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+    std::vector<std::shared_ptr<const SpectralFactor>> made(missing.size());
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, missing.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t k = range.begin(); k != range.end(); ++k)
+            made[k] = obj.factor(sigma_of_grid_index(missing[k], per_decade));
+        },
+        tbb::simple_partitioner());
+    for (std::size_t k = 0; k < missing.size(); ++k) {
+      bytes_ += made[k]->memory_bytes();
+      cache_[missing[k]].factor = std::move(made[k]);
+    }
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      Cached& entry = cache_.at(keys[i]);
+      entry.last_used = generation;
+      factors[i] = entry.factor.get();
+    }
+    return static_cast<int>(missing.size());
+  }
+
+  /// Drops the least recently used (ties: lowest grid index), never one used at `generation`, while the cache
+  /// holds more than kCacheBytes.
+  void trim(long long generation) {
+    while (bytes_ > kCacheBytes) {
+      auto oldest = cache_.begin();
+      for (auto it = cache_.begin(); it != cache_.end(); ++it)
+        if (it->second.last_used < oldest->second.last_used) oldest = it;
+      if (oldest->second.last_used == generation) break;
+      bytes_ -= oldest->second.factor->memory_bytes();
+      cache_.erase(oldest);
+    }
+  }
+
+ private:
+  struct Cached {
+    std::shared_ptr<const SpectralFactor> factor;
+    long long last_used = 0;
+  };
+  std::map<int, Cached> cache_;  // grid index of σ → factor
+  std::size_t bytes_ = 0;
+};
+
 }  // namespace
 
 double snap_sigma(double sigma, int per_decade) {
@@ -185,12 +240,7 @@ TuneResult tune(const TrainingRows& rows, const TuneSettings& s, const TrainingR
                                         : Bounds{{s.c_min, s.sigma_min}, {s.c_max, s.sigma_max}};
   const auto optimizer = make_optimizer_factory(spec)(bounds, hash_key({s.seed, hash_name("lssvm.tune")}));
 
-  struct Cached {
-    std::shared_ptr<const SpectralFactor> factor;
-    long long last_used = 0;
-  };
-  std::map<int, Cached> cache;  // grid index of σ → factor
-  std::size_t cache_bytes = 0;
+  FactorCache cache;
   TuneResult result;
   result.fit_rows = obj.fit_rows();
   result.validation_rows = s.fitness == Fitness::paper ? 0 : obj.validation_rows();
@@ -216,51 +266,16 @@ TuneResult tune(const TrainingRows& rows, const TuneSettings& s, const TrainingR
       evaluate_candidates([&](int i) {
         return obj.free_run_value(to_value(batch.at(i, 0)), snap_sigma(to_value(batch.at(i, 1)), s.sigma_per_decade));
       });
-    } else {
-      // 1. The grid σ of this batch that are not cached, in increasing order, decomposed in parallel.
-      std::vector<int> missing;
-      for (int i = 0; i < n; ++i) {
-        keys[static_cast<std::size_t>(i)] = sigma_grid_index(batch.at(i, 1), s.sigma_per_decade);
-        if (!cache.contains(keys[static_cast<std::size_t>(i)])) missing.push_back(keys[static_cast<std::size_t>(i)]);
-      }
-      std::ranges::sort(missing);
-      missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
-      std::vector<std::shared_ptr<const SpectralFactor>> made(missing.size());
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, missing.size(), 1),
-          [&](const tbb::blocked_range<std::size_t>& range) {
-            for (std::size_t k = range.begin(); k != range.end(); ++k)
-              made[k] = obj.factor(sigma_of_grid_index(missing[k], s.sigma_per_decade));
-          },
-          tbb::simple_partitioner());
-      for (std::size_t k = 0; k < missing.size(); ++k) {
-        cache_bytes += made[k]->memory_bytes();
-        cache[missing[k]].factor = std::move(made[k]);
-      }
-      result.factorizations += static_cast<int>(missing.size());
-
-      // 2. Every candidate from its factor.
-      for (int i = 0; i < n; ++i) {
-        Cached& entry = cache.at(keys[static_cast<std::size_t>(i)]);
-        entry.last_used = generation;
-        factors[static_cast<std::size_t>(i)] = entry.factor.get();
-      }
+    } else {  // every candidate from the factor of its grid σ, those not cached decomposed first
+      for (int i = 0; i < n; ++i) keys[static_cast<std::size_t>(i)] = sigma_grid_index(batch.at(i, 1), s.sigma_per_decade);
+      result.factorizations += cache.fetch(obj, s.sigma_per_decade, keys, generation, factors);
       evaluate_candidates([&](int i) { return obj.value(*factors[static_cast<std::size_t>(i)], batch.at(i, 0)); });
     }
     optimizer->tell(values);
     result.evaluations += n;
     result.best_history.push_back(optimizer->best_value());
 
-    // 3. Bound the cache (empty for the free-run fitness): drop the least recently used (ties: lowest grid index),
-    //    never one used just now.
-    while (cache_bytes > kCacheBytes) {
-      auto oldest = cache.begin();
-      for (auto it = cache.begin(); it != cache.end(); ++it)
-        if (it->second.last_used < oldest->second.last_used) oldest = it;
-      if (oldest->second.last_used == generation) break;
-      cache_bytes -= oldest->second.factor->memory_bytes();
-      cache.erase(oldest);
-    }
+    cache.trim(generation);  // (empty for the free-run fitness)
   }
   const auto best = optimizer->best_position();
   result.c = to_value(best[0]);

@@ -32,6 +32,189 @@ namespace {
 
 constexpr int kMaxRejectedSteps = 20;
 
+/// The bounded Levenberg–Marquardt of ga_lm.hpp in the unit box of the free parameters, from the point y:
+/// `run` iterates (a Jacobian, the free set, damped steps until one is accepted or a stopping rule holds) and
+/// leaves the end point in y, its cost in S and the reason it stopped in the report.
+class BoundedLm {
+ public:
+  BoundedLm(const LocalProblem& problem, const UnitBox& box, const GaLmSettings& settings, LmReport& report)
+      : problem_(problem), box_(box), settings_(settings), report_(report), m_(box.free_dim()) {}
+
+  /// ‖r(y)‖² (+inf when any residual is not finite), r written to `r`.
+  double cost_at(const Eigen::VectorXd& y, Eigen::VectorXd& r) {
+    const std::vector<double> res = problem_.residuals(box_.to_params(std::span<const double>(y.data(), m_)));
+    ++report_.residual_evaluations;
+    if (n_ == 0) n_ = res.size();
+    if (res.size() != n_ || n_ == 0) return std::numeric_limits<double>::infinity();
+    r = Eigen::Map<const Eigen::VectorXd>(res.data(), static_cast<Eigen::Index>(n_));
+    const double s = r.squaredNorm();
+    return std::isfinite(s) ? s : std::numeric_limits<double>::infinity();
+  }
+
+  /// Starts at y (its cost finite: the caller checked it with cost_at into r) and iterates.
+  void run(Eigen::VectorXd y, Eigen::VectorXd r, double S) {
+    y_ = std::move(y), r_ = std::move(r), S_ = S;
+    J_.resize(static_cast<Eigen::Index>(n_), m_);
+    bool stop = false;
+    for (int it = 0; it < settings_.lm_iterations && !stop; ++it) {
+      if (S_ <= 1e-300) {
+        report_.status = "zero residual";
+        break;
+      }
+      take_jacobian();
+      costs_.push_back(S_);
+      ++report_.iterations;
+      const Eigen::VectorXd g = J_.transpose() * r_;
+      const Eigen::MatrixXd A = J_.transpose() * J_;
+      if (!free_set(g, A)) {
+        report_.status = "gradient";
+        break;
+      }
+      if (lambda_ < 0) lambda_ = settings_.lambda0;
+      stop = step(g, A);
+    }
+  }
+
+  [[nodiscard]] const Eigen::VectorXd& y() const { return y_; }
+  [[nodiscard]] double cost() const { return S_; }
+  [[nodiscard]] const std::vector<double>& costs() const { return costs_; }  ///< ‖r‖² where each Jacobian was taken
+
+ private:
+  /// Jacobian by forward differences: one residual vector per free parameter, all in one batch (lane blocks,
+  /// Model::simulate_block); the same values as one call each.
+  void take_jacobian() {
+    std::vector<std::vector<double>> points;
+    std::vector<double> steps;
+    for (int i = 0; i < m_; ++i) {
+      const double s = y_[i] + settings_.fd_step <= 1.0 ? settings_.fd_step : -settings_.fd_step;
+      Eigen::VectorXd yk = y_;
+      yk[i] += s;
+      points.push_back(box_.to_params(std::span<const double>(yk.data(), m_)));
+      steps.push_back(s);
+    }
+    const std::vector<std::vector<double>> columns = problem_.residuals_batch(points);
+    report_.residual_evaluations += m_;
+    for (int i = 0; i < m_; ++i) {
+      const auto& res = columns[static_cast<std::size_t>(i)];
+      const Eigen::Map<const Eigen::VectorXd> r_i(res.data(), static_cast<Eigen::Index>(res.size()));
+      if (res.size() == n_ && std::isfinite(r_i.squaredNorm())) J_.col(i) = (r_i - r_) / steps[i];  // as cost_at accepts
+      else J_.col(i).setZero();
+    }
+  }
+
+  /// Free set: a parameter on a bound whose descent direction leaves the box is held. Fills free_, Af_, gf_ and
+  /// the diagonal floor; false when nothing can move (the gradient test, or no curvature).
+  bool free_set(const Eigen::VectorXd& g, const Eigen::MatrixXd& A) {
+    free_.clear();
+    double g_max = 0;
+    for (int i = 0; i < m_; ++i) {
+      if ((y_[i] <= 0 && g[i] > 0) || (y_[i] >= 1 && g[i] < 0)) continue;
+      free_.push_back(i);
+      g_max = std::max(g_max, std::abs(g[i]));
+    }
+    const double diag_max = A.diagonal().maxCoeff();
+    if (free_.empty() || g_max <= settings_.gtol || !(diag_max > 0)) return false;
+    diag_floor_ = 1e-12 * diag_max;
+    const auto k = static_cast<Eigen::Index>(free_.size());
+    Af_.resize(k, k);
+    gf_.resize(k);
+    for (Eigen::Index a = 0; a < k; ++a) {
+      gf_[a] = g[free_[a]];
+      for (Eigen::Index b = 0; b < k; ++b) Af_(a, b) = A(free_[a], free_[b]);
+    }
+    return true;
+  }
+
+  /// A refused step raises the damping; true when too many steps in a row were refused.
+  bool reject_step() {
+    lambda_ *= nu_;
+    nu_ *= 2;
+    return ++rejected_ >= kMaxRejectedSteps || !std::isfinite(lambda_);
+  }
+
+  /// Geodesic acceleration (Transtrum & Sethna 2012): the second directional derivative of r along the
+  /// velocity v = delta by a finite difference, r_vv ≈ (2/h)((r(y + h·v) − r)/h − J·v), h = 0.1, gives the
+  /// acceleration a = −M⁻¹Jᵀr_vv; the step becomes v + a/2. False (the step refused) when 2‖a‖/‖v‖ >
+  /// geodesic_ratio.
+  bool accelerate(const Eigen::LDLT<Eigen::MatrixXd>& solver, const Eigen::VectorXd& vf, Eigen::VectorXd& delta) {
+    constexpr double h = 0.1;
+    const Eigen::VectorXd probe = y_ + h * delta;
+    if (!(probe.minCoeff() >= 0 && probe.maxCoeff() <= 1 && std::isfinite(cost_at(probe, r_step_)))) return true;
+    const Eigen::VectorXd rvv = (2 / h) * ((r_step_ - r_) / h - J_ * delta);
+    const Eigen::VectorXd gvv = J_.transpose() * rvv;
+    const auto k = static_cast<Eigen::Index>(free_.size());
+    Eigen::VectorXd gvvf(k);
+    for (Eigen::Index a = 0; a < k; ++a) gvvf[a] = gvv[free_[a]];
+    const Eigen::VectorXd af = solver.solve(-gvvf);
+    if (!(af.allFinite() && 2 * af.norm() <= settings_.geodesic_ratio * vf.norm())) return false;
+    for (Eigen::Index a = 0; a < k; ++a) delta[free_[a]] += 0.5 * af[a];
+    return true;
+  }
+
+  /// Damped steps on the free set until one is accepted (false) or a stopping rule holds (true, status set).
+  bool step(const Eigen::VectorXd& g, const Eigen::MatrixXd& A) {
+    const auto k = static_cast<Eigen::Index>(free_.size());
+    for (;;) {
+      Eigen::MatrixXd M = Af_;
+      for (Eigen::Index a = 0; a < k; ++a) M(a, a) += lambda_ * std::max(Af_(a, a), diag_floor_);
+      const Eigen::LDLT<Eigen::MatrixXd> solver = M.ldlt();
+      const Eigen::VectorXd vf = solver.solve(-gf_);
+      Eigen::VectorXd delta = Eigen::VectorXd::Zero(m_);
+      for (Eigen::Index a = 0; a < k; ++a) delta[free_[a]] = vf[a];
+      if (settings_.geodesic && !accelerate(solver, vf, delta)) {
+        if (!reject_step()) continue;
+        report_.status = "no progress";
+        return true;
+      }
+      y_new_ = (y_ + delta).cwiseMax(0.0).cwiseMin(1.0);
+      const Eigen::VectorXd d = y_new_ - y_;
+      if (!d.allFinite() || d.norm() <= settings_.xtol * (y_.norm() + settings_.xtol)) {
+        report_.status = "xtol";
+        return true;
+      }
+      const double S_new = cost_at(y_new_, r_new_);
+      if (S_new < S_) return accept(d, g, A, S_new);
+      if (reject_step()) {
+        report_.status = "no progress";
+        return true;
+      }
+    }
+  }
+
+  /// Takes the step to y_new_ (cost S_new < S_), updates the damping by the gain ratio; true on ftol.
+  bool accept(const Eigen::VectorXd& d, const Eigen::VectorXd& g, const Eigen::MatrixXd& A, double S_new) {
+    const double predicted = -(2 * d.dot(g) + d.dot(A * d));
+    const double rho = predicted > 0 ? (S_ - S_new) / predicted : 1.0;
+    lambda_ *= std::max(1.0 / 3.0, 1 - std::pow(2 * rho - 1, 3));
+    nu_ = 2;
+    rejected_ = 0;
+    const double decrease = (S_ - S_new) / S_;
+    y_ = y_new_;
+    r_ = r_new_;
+    S_ = S_new;
+    if (!(decrease <= settings_.ftol)) return false;
+    report_.status = "ftol";
+    return true;
+  }
+
+  const LocalProblem& problem_;
+  const UnitBox& box_;
+  const GaLmSettings& settings_;
+  LmReport& report_;
+  const int m_;
+  std::size_t n_ = 0;  // residuals per evaluation, from the first
+  Eigen::VectorXd y_, r_, r_step_, r_new_, y_new_;
+  double S_ = 0;
+  Eigen::MatrixXd J_;
+  std::vector<double> costs_;
+  std::vector<int> free_;
+  Eigen::MatrixXd Af_;
+  Eigen::VectorXd gf_;
+  double diag_floor_ = 0;
+  double lambda_ = -1, nu_ = 2;
+  int rejected_ = 0;
+};
+
 }  // namespace
 
 bool GaLm::at_local_optimum() const {
@@ -54,23 +237,11 @@ void GaLm::refine(const LocalProblem& problem) {
     finish_refine(seen);
     return;
   }
-
-  // ‖r(y)‖² (+inf when any residual is not finite), r written to `r`.
-  std::size_t n = 0;
-  auto cost_at = [&](const Eigen::VectorXd& y, Eigen::VectorXd& r) {
-    const std::vector<double> res = problem.residuals(box.to_params(std::span<const double>(y.data(), m)));
-    ++report_.residual_evaluations;
-    if (n == 0) n = res.size();
-    if (res.size() != n || n == 0) return std::numeric_limits<double>::infinity();
-    r = Eigen::Map<const Eigen::VectorXd>(res.data(), static_cast<Eigen::Index>(n));
-    const double s = r.squaredNorm();
-    return std::isfinite(s) ? s : std::numeric_limits<double>::infinity();
-  };
-
+  BoundedLm lm(problem, box, settings_, report_);
   const std::vector<double> start = box.to_unit(global().best_position());
   Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(start.data(), m);
   Eigen::VectorXd r;
-  double S = cost_at(y, r);
+  const double S = lm.cost_at(y, r);
   report_.start_cost = S;
   if (!std::isfinite(S)) {
     report_.status = "the population phase's best has non-finite residuals";
@@ -80,145 +251,16 @@ void GaLm::refine(const LocalProblem& problem) {
   }
   report_.ran = true;
   report_.status = "iterations";
-
-  std::vector<double> costs;  // ‖r‖² where each Jacobian was taken
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(n), m);
-  Eigen::VectorXd r_step, r_new, y_new;
-  double lambda = -1, nu = 2;
-  int rejected = 0;
-  bool stop = false;
-  for (int it = 0; it < settings_.lm_iterations && !stop; ++it) {
-    if (S <= 1e-300) {
-      report_.status = "zero residual";
-      break;
-    }
-    // Jacobian by forward differences: one residual vector per free parameter, all in one batch (lane
-    // blocks, Model::simulate_block); the same values as one call each.
-    std::vector<std::vector<double>> points;
-    std::vector<double> steps;
-    for (int i = 0; i < m; ++i) {
-      const double s = y[i] + settings_.fd_step <= 1.0 ? settings_.fd_step : -settings_.fd_step;
-      Eigen::VectorXd yk = y;
-      yk[i] += s;
-      points.push_back(box.to_params(std::span<const double>(yk.data(), m)));
-      steps.push_back(s);
-    }
-    const std::vector<std::vector<double>> columns = problem.residuals_batch(points);
-    report_.residual_evaluations += m;
-    for (int i = 0; i < m; ++i) {
-      const auto& res = columns[static_cast<std::size_t>(i)];
-      const Eigen::Map<const Eigen::VectorXd> r_i(res.data(), static_cast<Eigen::Index>(res.size()));
-      if (res.size() == n && std::isfinite(r_i.squaredNorm())) J.col(i) = (r_i - r) / steps[i];  // as cost_at accepts
-      else J.col(i).setZero();
-    }
-    costs.push_back(S);
-    ++report_.iterations;
-    const Eigen::VectorXd g = J.transpose() * r;
-    const Eigen::MatrixXd A = J.transpose() * J;
-
-    // Free set: a parameter on a bound whose descent direction leaves the box is held.
-    std::vector<int> free;
-    double g_max = 0;
-    for (int i = 0; i < m; ++i) {
-      if ((y[i] <= 0 && g[i] > 0) || (y[i] >= 1 && g[i] < 0)) continue;
-      free.push_back(i);
-      g_max = std::max(g_max, std::abs(g[i]));
-    }
-    const double diag_max = A.diagonal().maxCoeff();
-    if (free.empty() || g_max <= settings_.gtol || !(diag_max > 0)) {
-      report_.status = "gradient";
-      break;
-    }
-    if (lambda < 0) lambda = settings_.lambda0;
-    const double diag_floor = 1e-12 * diag_max;
-    const auto k = static_cast<Eigen::Index>(free.size());
-    Eigen::MatrixXd Af(k, k);
-    Eigen::VectorXd gf(k);
-    for (Eigen::Index a = 0; a < k; ++a) {
-      gf[a] = g[free[a]];
-      for (Eigen::Index b = 0; b < k; ++b) Af(a, b) = A(free[a], free[b]);
-    }
-
-    // A refused step raises the damping; true when too many steps in a row were refused.
-    const auto reject_step = [&] {
-      lambda *= nu;
-      nu *= 2;
-      return ++rejected >= kMaxRejectedSteps || !std::isfinite(lambda);
-    };
-    for (;;) {  // until a step is accepted or a stopping rule holds
-      Eigen::MatrixXd M = Af;
-      for (Eigen::Index a = 0; a < k; ++a) M(a, a) += lambda * std::max(Af(a, a), diag_floor);
-      const Eigen::LDLT<Eigen::MatrixXd> solver = M.ldlt();
-      const Eigen::VectorXd vf = solver.solve(-gf);
-      Eigen::VectorXd delta = Eigen::VectorXd::Zero(m);
-      for (Eigen::Index a = 0; a < k; ++a) delta[free[a]] = vf[a];
-      bool curvature_ok = true;
-      if (settings_.geodesic) {
-        // Geodesic acceleration (Transtrum & Sethna 2012): the second directional derivative of r along the
-        // velocity v = delta by a finite difference, r_vv ≈ (2/h)((r(y + h·v) − r)/h − J·v), h = 0.1, gives
-        // the acceleration a = −M⁻¹Jᵀr_vv; the step is v + a/2, refused when 2‖a‖/‖v‖ > geodesic_ratio.
-        constexpr double h = 0.1;
-        const Eigen::VectorXd probe = y + h * delta;
-        if (probe.minCoeff() >= 0 && probe.maxCoeff() <= 1 && std::isfinite(cost_at(probe, r_step))) {
-          const Eigen::VectorXd rvv = (2 / h) * ((r_step - r) / h - J * delta);
-          const Eigen::VectorXd gvv = J.transpose() * rvv;
-          Eigen::VectorXd gvvf(k);
-          for (Eigen::Index a = 0; a < k; ++a) gvvf[a] = gvv[free[a]];
-          const Eigen::VectorXd af = solver.solve(-gvvf);
-          if (af.allFinite() && 2 * af.norm() <= settings_.geodesic_ratio * vf.norm()) {
-            for (Eigen::Index a = 0; a < k; ++a) delta[free[a]] += 0.5 * af[a];
-          } else {
-            curvature_ok = false;
-          }
-        }
-      }
-      if (!curvature_ok) {
-        if (reject_step()) {
-          report_.status = "no progress";
-          stop = true;
-          break;
-        }
-        continue;
-      }
-      y_new = (y + delta).cwiseMax(0.0).cwiseMin(1.0);
-      const Eigen::VectorXd d = y_new - y;
-      if (!d.allFinite() || d.norm() <= settings_.xtol * (y.norm() + settings_.xtol)) {
-        report_.status = "xtol";
-        stop = true;
-        break;
-      }
-      const double S_new = cost_at(y_new, r_new);
-      if (S_new < S) {
-        const double predicted = -(2 * d.dot(g) + d.dot(A * d));
-        const double rho = predicted > 0 ? (S - S_new) / predicted : 1.0;
-        lambda *= std::max(1.0 / 3.0, 1 - std::pow(2 * rho - 1, 3));
-        nu = 2;
-        rejected = 0;
-        const double decrease = (S - S_new) / S;
-        y = y_new;
-        r = r_new;
-        S = S_new;
-        if (decrease <= settings_.ftol) {
-          report_.status = "ftol";
-          stop = true;
-        }
-        break;
-      }
-      if (reject_step()) {
-        report_.status = "no progress";
-        stop = true;
-        break;
-      }
-    }
-  }
-  report_.end_cost = S;
+  lm.run(std::move(y), std::move(r), S);
+  report_.end_cost = lm.cost();
+  const std::vector<double>& costs = lm.costs();
   if (!costs.empty()) {
     const std::size_t last_fifth = std::max<std::size_t>(1, (costs.size() + 4) / 5);
-    report_.late_decrease = 1 - std::sqrt(S / costs[costs.size() - last_fifth]);
+    report_.late_decrease = 1 - std::sqrt(lm.cost() / costs[costs.size() - last_fifth]);
   }
 
   // The end point in the run metric's terms.
-  const std::vector<double> x = box.to_params(std::span<const double>(y.data(), m));
+  const std::vector<double> x = box.to_params(std::span<const double>(lm.y().data(), m));
   CandidateBatch one(box.dim(), 1);
   one.set_candidate(0, x);
   double metric = 0;
