@@ -3,7 +3,8 @@
 
 crfd.toml, mfm.toml and fdsp.toml run the papers' procedures on grids made from a compared model (their verdicts are
 recovery checks); crfd_neutral.toml, mfm_neutral.toml and fdsp_neutral.toml on grids whose truth is none of the
-compared models (evidence); mfm_utfsm.toml runs the mfm paper's protocol on the real UTFSM damper. Each is run as a
+compared models (evidence); mfm_utfsm.toml and fdsp_utfsm.toml run the mfm and fdsp papers' protocols on the real
+UTFSM damper. Each is run as a
 user runs it; the test fails when
 
   - the run fails, or its reproduction.json labels the records' truth or a verdict otherwise than the preset's kind
@@ -33,7 +34,7 @@ import sys
 
 RECOVERY_PRESETS = ["crfd", "mfm", "fdsp"]  # grids made from a compared model
 EVIDENCE_PRESETS = ["crfd_neutral", "mfm_neutral", "fdsp_neutral"]
-REAL_DATA_PRESETS = ["mfm_utfsm"]  # read DATA_DIR/utfsm-mr-damper
+REAL_DATA_PRESETS = ["mfm_utfsm", "fdsp_utfsm"]  # read DATA_DIR/utfsm-mr-damper
 SECTION = "## crfd, mfm, fdsp"
 
 NUMBER = re.compile(r"(?<![\w.])([+\-−]?\d+(?:\.\d+)?(?:e[+\-−]?\d+)?)")

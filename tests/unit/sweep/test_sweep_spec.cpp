@@ -426,7 +426,7 @@ TEST(SweepSpec, PresetsAreValid) {
   // Every preset parses (files unchecked: the generated grids live in the build tree).
   SpecOptions o;
   o.check_files = false;
-  for (const char* name : {"fvd", "crfd", "crfd_neutral", "mfm", "mfm_neutral", "mfm_utfsm", "fdsp", "fdsp_neutral", "utfsm", "utfsm_model", "all"}) {
+  for (const char* name : {"fvd", "crfd", "crfd_neutral", "mfm", "mfm_neutral", "mfm_utfsm", "fdsp", "fdsp_neutral", "fdsp_utfsm", "utfsm", "utfsm_model", "all"}) {
     const std::string path = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/presets/" + name + ".toml";
     EXPECT_EQ(testing::error_of([&] { (void)load_sweep(path, o); }), "no error") << name;
   }
