@@ -10,7 +10,7 @@
 //   candidates 256 per box, from the stream keyed by the bench seed, the model id and the box
 //   rates      candidate-samples per second on 2 threads (a fit's), best of `trials`; masked: the share of
 //              candidates that blow up or are too stiff for the kernel (+inf)
-#include "engine/cli/bench_command.hpp"
+#include "engine/cli/bench_rate.hpp"
 
 namespace dampbench::cli {
 

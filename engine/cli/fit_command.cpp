@@ -18,6 +18,7 @@
 #include "engine/fit/fit_defaults.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/fit/model_file.hpp"
+#include "engine/fit/model_file_of_fit.hpp"
 #include "engine/fit/record_start.hpp"
 
 namespace dampbench::cli {

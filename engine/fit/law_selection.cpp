@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "engine/common/error.hpp"
-#include "engine/fit/held_out.hpp"
+#include "engine/fit/folds.hpp"
 #include "engine/model/law_model.hpp"
 
 namespace dampbench {

@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/fit/fitted_range.hpp"
-#include "engine/fit/prepared_fit.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/record/signals.hpp"
 
@@ -41,11 +40,6 @@ struct ModelFile {
 
 /// The record's law variables with their sources: {"I": {"value": 0.5, "source": "--set"}, ...}.
 nlohmann::ordered_json operating_json(const Signals& record);
-
-/// The model file of a finished fit: its best run's coefficients, each record's metric there (evaluated on that
-/// record alone) and operating variables; the vector level is the one the kernels run at.
-ModelFile model_file_of_fit(const FitSpec& spec, const PreparedFit& prepared, const FitOutcome& fit,
-                            const std::string& dampbench_version);
 
 /// The file's text: JSON with every floating-point number as "%.17g".
 std::string model_file_text(const ModelFile& file);

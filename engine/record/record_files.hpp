@@ -8,7 +8,7 @@
 
 #include "engine/record/channel_table.hpp"
 #include "engine/record/dataset.hpp"
-#include "engine/record/record_options.hpp"
+#include "engine/record/record_source.hpp"
 
 namespace dampbench {
 

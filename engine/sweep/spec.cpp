@@ -21,7 +21,6 @@
 #include "engine/model/parameter_law.hpp"
 #include "engine/common/random.hpp"
 #include "engine/sweep/fingerprint.hpp"
-#include "engine/sweep/tables.hpp"
 #include "datasets/synthetic/grids.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
