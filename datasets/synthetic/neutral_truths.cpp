@@ -34,15 +34,8 @@ MrValveDamper mfm_valve_damper(double current_A) {
 }
 
 MrValveDamper fdsp_valve_damper() {
-  MrValveDamper d;
-  d.yield_N = 40;
-  d.viscous_N = 900;
-  d.flow_exponent = 0.6;
-  d.leak_N_s_m = 2e4;
-  d.column_N_m = 2e5;
-  d.seal_friction_N = 15;
-  d.gas_N = 200;
-  return d;
+  return {.yield_N = 40, .viscous_N = 900, .flow_exponent = 0.6, .leak_N_s_m = 2e4, .column_N_m = 2e5,
+          .seal_friction_N = 15, .gas_N = 200};
 }
 
 std::vector<double> mr_valve_force(const MrValveDamper& d, const Motion& motion, std::span<const double> t_s) {
