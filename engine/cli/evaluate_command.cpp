@@ -11,6 +11,7 @@
 #include "engine/common/table.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/fit/fit_records.hpp"
+#include "engine/fit/lssvm_model_file.hpp"
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 
@@ -20,7 +21,8 @@ void add_evaluate_options(CLI::App* c, EvaluateOptions& eval) {
   c->add_option("--model", eval.model, "model id");
   c->add_option("--laws", eval.laws, "parameter laws (then --params gives their coefficients)");
   c->add_option("--params", eval.params, "parameter values in SI, name=value,...");
-  c->add_option("--model-file", eval.model_file, "a fitted model (fit --save-model) instead of --model, --laws, --params");
+  c->add_option("--model-file", eval.model_file,
+                "a fitted model (fit --save-model; or lssvm --save-model: its free run) instead of --model, --laws, --params");
   c->add_option("--data", eval.paths, "record(s)")->required();
   add_data_options(c, eval.data);
   c->add_option("--format", eval.format, "md (default) or json");
@@ -44,7 +46,27 @@ LoadedModel evaluated_model(const EvaluateOptions& o) {
 
 }  // namespace
 
+/// An LS-SVM model file (lssvm --save-model): each record's metrics of the model's free run, what simulating it
+/// means (its first lag samples are the record's measured forces, engine/fit/lssvm_model_file.hpp).
+Evaluation evaluate_lssvm(const EvaluateOptions& o) {
+  if (!o.model.empty() || !o.laws.empty() || !o.params.empty())
+    throw InputError("evaluate: --model-file gives the model: drop --model, --laws and --params");
+  const lssvm::Model model = load_lssvm_model_file(o.model_file);
+  Evaluation e{"lssvm (free run)", {}, {}};
+  for (const std::string& path : o.paths) {
+    RecordOptions data = o.data;
+    data.path = path;
+    for (const Dataset& record : load_records(data, true)) {
+      const Signals signals = prepare_signals(record);
+      e.names.push_back(record.name);
+      e.metrics.push_back(finish_all_metrics(metric_sums(model.simulate(record), signals), signals));
+    }
+  }
+  return e;
+}
+
 Evaluation run_evaluate(const EvaluateOptions& o) {
+  if (!o.model_file.empty() && is_lssvm_model_file(o.model_file)) return evaluate_lssvm(o);
   const LoadedModel loaded = evaluated_model(o);
   const Model& model = *loaded.model.model;
   const FitRecords records = command_records(model, o.paths, o.records, o.data, "evaluate");

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +15,7 @@
 #include "engine/cli/cli_options.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/table.hpp"
+#include "engine/fit/lssvm_model_file.hpp"
 #include "models/lssvm/lssvm.hpp"
 
 namespace dampbench::cli {
@@ -71,6 +73,8 @@ void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
   cmd->add_option("--c", o.c, "fixed c (with --sigma): no GA");
   cmd->add_option("--sigma", o.sigma, "fixed sigma (with --c): no GA");
   cmd->add_option("--format", o.format, "md (default) or json");
+  cmd->add_option("--save-model", o.save_model,
+                  "also write the trained model as JSON (for evaluate/simulate --model-file; its test predictions the same bits)");
   add_data_options(cmd, o.data);
 }
 
@@ -273,6 +277,8 @@ int lssvm_command(const LssvmOptions& o) {
     throw InputError("lssvm: give both --c and --sigma (fixed hyperparameters) or neither (GA tuning)");
   if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
   if (o.test.empty()) throw InputError("lssvm: no --test records");
+  if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
+    throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
 
   const std::vector<Dataset> train = load_files(o.train, o.data);
   const std::vector<Dataset> test = load_files(o.test, o.data);
@@ -292,6 +298,11 @@ int lssvm_command(const LssvmOptions& o) {
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   const lssvm::Model model = lssvm::Model::train(rows, lags, tuned.c, tuned.sigma);
+  if (!o.save_model.empty()) {
+    std::vector<std::string> trained_on;
+    for (const Dataset& record : train) trained_on.push_back(record.name);
+    write_lssvm_model_file(o.save_model, model, trained_on, DAMPBENCH_VERSION);
+  }
   const TestResults results = test_model(model, test, lags);
   const LssvmRun run{settings, tuned, fixed, seconds, lags, rows, train.size(), test.size(), without_current, subsampled};
   if (o.format == "json") print_json(run, results);

@@ -29,6 +29,7 @@ struct LssvmOptions {
   double c = std::numeric_limits<double>::quiet_NaN();      ///< fixed c (with sigma): no GA; NaN: tune
   double sigma = std::numeric_limits<double>::quiet_NaN();  ///< fixed σ (with c): no GA; NaN: tune
   std::string format = "md";       ///< md or json
+  std::string save_model;          ///< also write the trained model here (engine/fit/lssvm_model_file.hpp)
   RecordOptions data;                ///< loader options shared by every record (path unused)
 };
 

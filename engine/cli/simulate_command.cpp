@@ -11,6 +11,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/fit/lssvm_model_file.hpp"
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/record/excitation.hpp"
@@ -24,7 +25,9 @@ void add_simulate_options(CLI::App* c, SimulateOptions& sim) {
   c->add_option("--fixture", sim.fixture, "published law fixture instead of --model, e.g. mfm.table3");
   c->add_option("--laws", sim.laws, "parameter laws, e.g. 'c0=poly(I,1);alpha=poly(I,1)'");
   c->add_option("--params", sim.params, "parameter (or law coefficient) values in SI, name=value,...");
-  c->add_option("--model-file", sim.model_file, "a fitted model (fit --save-model) instead of --model/--fixture, --laws, --params");
+  c->add_option("--model-file", sim.model_file,
+                "a fitted model (fit --save-model, or lssvm --save-model: its free run from --input's first forces) "
+                "instead of --model/--fixture, --laws, --params");
   c->add_option("--input", sim.input.path, "displacement record (CSV); t and x are used");
   add_data_options(c, sim.input);
   c->add_option("--sine", sim.sine, "sinusoid: amp=m,freq=Hz (or vpeak=m/s),cycles=N,fs=Hz");
@@ -65,12 +68,34 @@ LoadedModel simulated_model(const SimulateOptions& o) {
 
 }  // namespace
 
+namespace {
+
+/// An LS-SVM model file (lssvm --save-model): its free run on a record whose first lag samples give the measured
+/// forces it starts from (engine/fit/lssvm_model_file.hpp).
+Simulation simulate_lssvm(const SimulateOptions& o) {
+  if (!o.model.empty() || !o.fixture.empty() || !o.laws.empty() || !o.params.empty())
+    throw InputError("simulate: --model-file gives the model: drop --model, --fixture, --laws and --params");
+  if (!o.sine.empty())
+    throw InputError("simulate: an LS-SVM model runs from a record's first measured forces: give --input FILE with a "
+                     "force column, not --sine");
+  const lssvm::Model model = load_lssvm_model_file(o.model_file);
+  Simulation sim;
+  sim.data = o.record ? *o.record : load_record(o.input, true);
+  if (o.input.path.empty() && !o.input.set.empty()) set_operating(sim.data, o.input.set);
+  sim.force = model.simulate(sim.data);
+  if (o.noise_rel > 0) add_noise(sim.force, o.noise_rel, o.seed);
+  return sim;
+}
+
+}  // namespace
+
 Simulation run_simulate(const SimulateOptions& o) {
   const int displacements = !o.sine.empty() + !o.input.path.empty() + o.record.has_value();
   if (displacements != 1)
     throw InputError("simulate: give exactly one of --input FILE or --sine amp=...,freq=...,cycles=...,fs=...");
   if (!(o.noise_rel >= 0) || !std::isfinite(o.noise_rel))
     throw InputError(fmt::format("--noise-rel: expected a number >= 0, got {}", o.noise_rel));
+  if (!o.model_file.empty() && is_lssvm_model_file(o.model_file)) return simulate_lssvm(o);
   const LoadedModel loaded = simulated_model(o);
   const Model& model = *loaded.model.model;
   Simulation sim;

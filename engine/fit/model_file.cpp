@@ -10,6 +10,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
+#include "engine/fit/json_keys.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/kernels/isa.hpp"
 
@@ -58,6 +59,13 @@ void write_json(std::ostringstream& out, const Json& j, int indent) {
 
 }  // namespace
 
+std::string exact_json_text(const nlohmann::ordered_json& j) {
+  std::ostringstream out;
+  write_json(out, j, 0);
+  out << "\n";
+  return out.str();
+}
+
 std::string model_file_text(const ModelFile& f) {
   Json j;
   j["format"] = kModelFileFormat;
@@ -73,53 +81,12 @@ std::string model_file_text(const ModelFile& f) {
   for (const ModelFileRecord& r : f.records)
     records.push_back({{"name", r.name}, {"path", r.path}, {"metric_value", r.metric_value}, {"operating", r.operating}});
   j["records"] = records;
-  std::ostringstream out;
-  write_json(out, j, 0);
-  out << "\n";
-  return out.str();
+  return exact_json_text(j);
 }
 
 void write_model_file(const std::string& path, const ModelFile& file) { write_text_file(path, model_file_text(file)); }
 
 namespace {
-
-/// Reads keys of one JSON object, naming the file and the key's full path in every message.
-struct Keys {
-  const std::string& source;
-  const Json& object;
-  std::string where;  ///< "model", "records[0]", ... ("" at the top)
-
-  [[nodiscard]] std::string key_path(const std::string& key) const { return where.empty() ? key : where + "." + key; }
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw InputError(fmt::format("{}: key '{}': {}", source, key_path(key), what));
-  }
-  [[nodiscard]] const Json* find(const std::string& key, bool required) const {
-    const auto it = object.find(key);
-    if (it == object.end()) {
-      if (required) fail(key, "missing");
-      return nullptr;
-    }
-    return &*it;
-  }
-  [[nodiscard]] std::string string(const std::string& key, bool required = true) const {
-    const Json* v = find(key, required);
-    if (!v) return "";
-    if (!v->is_string()) fail(key, fmt::format("expected a string, got {}", v->dump()));
-    return v->get<std::string>();
-  }
-  /// A number; null reads as NaN (a non-finite metric is written as null).
-  [[nodiscard]] double number(const std::string& key) const {
-    const Json* v = find(key, true);
-    if (v->is_null()) return std::numeric_limits<double>::quiet_NaN();
-    if (!v->is_number()) fail(key, fmt::format("expected a number, got {}", v->dump()));
-    return v->get<double>();
-  }
-  [[nodiscard]] Keys object_at(const std::string& key) const {
-    const Json* v = find(key, true);
-    if (!v->is_object()) fail(key, fmt::format("expected an object, got {}", v->dump()));
-    return {source, *v, key_path(key)};
-  }
-};
 
 void check_header(const Keys& top) {
   if (const std::string format = top.string("format"); format != kModelFileFormat)

@@ -41,6 +41,10 @@ struct ModelFile {
 /// The record's law variables with their sources: {"I": {"value": 0.5, "source": "--set"}, ...}.
 nlohmann::ordered_json operating_json(const Signals& record);
 
+/// JSON text with every floating-point number as "%.17g" (non-finite as null), so that it reads back to the same bits
+/// in any language: the model files' writer.
+std::string exact_json_text(const nlohmann::ordered_json& j);
+
 /// The file's text: JSON with every floating-point number as "%.17g".
 std::string model_file_text(const ModelFile& file);
 

@@ -74,6 +74,26 @@ double finish_metric(Metric m, const MetricSums& s, const Signals& data) {
   return std::isfinite(value) ? value : std::numeric_limits<double>::infinity();
 }
 
+MetricSums metric_sums(std::span<const double> output, const Signals& data) {
+  const std::vector<double>& measured = data.measured();
+  if (output.size() != measured.size())
+    throw InputError(fmt::format("{}: {} model outputs for {} samples", data.name, output.size(), measured.size()));
+  MetricSums s;
+  for (std::size_t k = 0; k < output.size(); ++k) {
+    if (!std::isfinite(output[k])) {
+      const double inf = std::numeric_limits<double>::infinity();
+      return {inf, inf, inf, inf, inf};
+    }
+    const double e = measured[k] - output[k];
+    s.abs_weighted += data.w_trapz_s[k] * std::fabs(e);
+    s.sq_weighted += data.w_trapz_s[k] * e * e;
+    s.abs += std::fabs(e);
+    s.sq += e * e;
+    s.abs_magnitude += std::fabs(std::fabs(measured[k]) - std::fabs(output[k]));
+  }
+  return s;
+}
+
 std::array<double, kMetricCount> finish_all_metrics(const MetricSums& sums, const Signals& data) {
   std::array<double, kMetricCount> out{};
   for (int i = 0; i < kMetricCount; ++i) out[i] = finish_metric(kAllMetrics[i], sums, data);

@@ -2,6 +2,7 @@
 // Error metrics between measured and model force. Kernels accumulate four sums per candidate while the
 // model runs (no candidates × samples force matrix); the metrics are finished from the sums.
 #include <array>
+#include <span>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -58,5 +59,10 @@ double finish_metric(Metric m, const MetricSums& sums, const Signals& data);
 
 /// Every metric, in the order of kAllMetrics.
 std::array<double, kMetricCount> finish_all_metrics(const MetricSums& sums, const Signals& data);
+
+/// The sums of a model output given as a series (a model outside the lane kernels: the LS-SVM's free run), with the
+/// kernels' definitions: e = the record's measured output − `output`, trapezoid weights w_k. Every sum is +inf when
+/// `output` is not finite somewhere; InputError when its length is not the record's.
+MetricSums metric_sums(std::span<const double> output, const Signals& data);
 
 }  // namespace dampbench

@@ -147,6 +147,27 @@ Model Model::train(const TrainingRows& rows, const Lags& lags, double c, double 
   return m;
 }
 
+Model Model::from_parts(const Lags& lags, double c, double sigma, Normalizer norm, Eigen::MatrixXd points,
+                        Coefficients coef) {
+  const Eigen::Index dim = lags.dim();
+  if (points.rows() != dim || norm.mean.size() != dim || norm.scale.size() != dim)
+    throw InputError(fmt::format("lssvm model: lags {} give {} inputs, but the points have {} and the normalizer {}",
+                                 format_lags(lags), dim, points.rows(), norm.mean.size()));
+  if (points.cols() == 0 || coef.alpha.size() != points.cols())
+    throw InputError(fmt::format("lssvm model: {} training points but {} coefficients alpha", points.cols(),
+                                 coef.alpha.size()));
+  if (!(c > 0) || !std::isfinite(c) || !(sigma > 0) || !std::isfinite(sigma))
+    throw InputError(fmt::format("lssvm model: c and sigma must be positive, got c = {}, sigma = {}", c, sigma));
+  Model m;
+  m.lags_ = lags;
+  m.c_ = c;
+  m.sigma_ = sigma;
+  m.norm_ = std::move(norm);
+  m.X_ = std::move(points);
+  m.coef_ = std::move(coef);
+  return m;
+}
+
 namespace {
 
 /// f at a normalized regressor x; scratch holds N doubles.

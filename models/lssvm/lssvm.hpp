@@ -158,12 +158,17 @@ class Model {
  public:
   /// Normalizes the rows with their own statistics and solves the bordered system.
   static Model train(const TrainingRows& rows, const Lags& lags, double c, double sigma);
+  /// A trained model from its parts as train() left them (a model file read back: engine/fit/lssvm_model_file.hpp).
+  /// InputError when the sizes disagree (lags' dimension, normalizer, points, coefficients).
+  static Model from_parts(const Lags& lags, double c, double sigma, Normalizer norm, Eigen::MatrixXd points,
+                          Coefficients coef);
 
   [[nodiscard]] const Lags& lags() const { return lags_; }
   [[nodiscard]] double c() const { return c_; }
   [[nodiscard]] double sigma() const { return sigma_; }
   [[nodiscard]] const Coefficients& coefficients() const { return coef_; }
   [[nodiscard]] const Normalizer& normalizer() const { return norm_; }
+  [[nodiscard]] const Eigen::MatrixXd& points() const { return X_; }  ///< normalized training points, dim × N
 
   /// f at one raw regressor (dim values, SI).
   [[nodiscard]] double predict(std::span<const double> raw_regressor) const;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -261,6 +262,58 @@ TEST(ModelFileCli, ATimeVaryingCurrentColumnIsRefusedForALaw) {
   r = run_dampbench("fit --model fvd.linear_viscous --runs 1 --iters 2 --data " + csv.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("I = 0.5 (column mean)"), std::string::npos) << r.output;
+}
+
+// An LS-SVM model (lssvm --save-model) predicts the training command's test record again: simulate --model-file
+// gives the free run whose error the command reported (the same sums), evaluate --model-file scores it, and the
+// commands refuse what an LS-SVM cannot do (a sine without measured forces, --params beside the file).
+TEST(ModelFileCli, AnLssvmModelFileRunsTheTrainingCommandsFreeRunAgain) {
+  const auto dir = testing::test_temp_dir("lssvm_model_file_cli");
+  const std::filesystem::path data = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "lssvm";
+  const auto model = dir / "lssvm.json";
+  const std::string test = (data / "test_2Hz_0p2A.csv").string();
+  auto r = run_dampbench("lssvm --train " + (data / "train_2Hz_0A.csv").string() + " --train " +
+                         (data / "train_2Hz_0p8A.csv").string() + " --test " + test +
+                         " --c 50 --sigma 2 --format json --save-model " + model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto trained = nlohmann::json::parse(r.output).at("free_run");
+
+  const auto sim = dir / "sim.csv";
+  r = run_dampbench("simulate --model-file " + model.string() + " --input " + test + " -o " + sim.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<double> predicted, measured;
+  std::ifstream in(sim);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,x,v,a,F");
+  while (std::getline(in, line)) predicted.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  std::ifstream rec(test);
+  while (std::getline(rec, line))
+    if (!line.empty() && line[0] != '#' && line[0] != 't') measured.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  ASSERT_EQ(predicted.size(), measured.size());
+  // The free run's errors from sample 2 on (the first max(d, v, y) = 2 are its measured initial forces).
+  double sum_sq = 0;
+  for (std::size_t k = 2; k < measured.size(); ++k) sum_sq += (measured[k] - predicted[k]) * (measured[k] - predicted[k]);
+  EXPECT_EQ(static_cast<double>(measured.size() - 2), trained.at("samples").get<double>());
+  EXPECT_NEAR(sum_sq / static_cast<double>(measured.size() - 2), trained.at("mse").get<double>(),
+              1e-12 * trained.at("mse").get<double>());
+
+  r = run_dampbench("evaluate --model-file " + model.string() + " --data " + test + " --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const double rmse = nlohmann::json::parse(r.output).at(test).at("rmse").get<double>();
+  EXPECT_NEAR(rmse * rmse * static_cast<double>(measured.size()), sum_sq, 1e-9 * sum_sq);  // the whole record's
+
+  r = run_dampbench("simulate --model-file " + model.string() + " --sine amp=0.01,freq=1,cycles=1,fs=100");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("an LS-SVM model runs from a record's first measured forces"), std::string::npos) << r.output;
+  r = run_dampbench("evaluate --model-file " + model.string() + " --params c0=1 --data " + test);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--model-file gives the model: drop --model, --laws and --params"), std::string::npos)
+      << r.output;
+  r = run_dampbench("lssvm --train " + test + " --test " + test + " --c 1 --sigma 1 --save-model " +
+                    (dir / "no" / "such" / "m.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--save-model: the folder of"), std::string::npos) << r.output;
 }
 
 }  // namespace
