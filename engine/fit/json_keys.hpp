@@ -49,4 +49,25 @@ struct Keys {
   }
 };
 
+/// The JSON object of a file's text; InputError "<source>: not JSON (...)" or "...: expected a JSON object at the top".
+inline nlohmann::ordered_json parse_json_object(const std::string& text, const std::string& source) {
+  nlohmann::ordered_json j;
+  try {
+    j = nlohmann::ordered_json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not JSON ({})", source, e.what()));
+  }
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object at the top", source));
+  return j;
+}
+
+/// Checks the file's "format" and "format_version" keys.
+inline void check_format(const Keys& top, const std::string& format, int version) {
+  if (const std::string given = top.string("format"); given != format)
+    top.fail("format", fmt::format("expected \"{}\", got \"{}\"", format, given));
+  const nlohmann::ordered_json* v = top.find("format_version", true);
+  if (!v->is_number_integer() || v->get<int>() != version)
+    top.fail("format_version", fmt::format("expected {}, got {}", version, v->dump()));
+}
+
 }  // namespace dampbench

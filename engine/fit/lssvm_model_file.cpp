@@ -67,19 +67,9 @@ void write_lssvm_model_file(const std::string& path, const lssvm::Model& model,
 }
 
 lssvm::Model parse_lssvm_model_file(const std::string& text, const std::string& source) {
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", source, e.what()));
-  }
-  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object at the top", source));
+  const Json j = parse_json_object(text, source);
   const Keys top{source, j, ""};
-  if (const std::string format = top.string("format"); format != kLssvmModelFileFormat)
-    top.fail("format", fmt::format("expected \"{}\", got \"{}\"", kLssvmModelFileFormat, format));
-  const Json* version = top.find("format_version", true);
-  if (!version->is_number_integer() || version->get<int>() != kLssvmModelFileVersion)
-    top.fail("format_version", fmt::format("expected {}, got {}", kLssvmModelFileVersion, version->dump()));
+  check_format(top, kLssvmModelFileFormat, kLssvmModelFileVersion);
   const lssvm::Lags lags = lssvm::parse_lags(top.string("lags"), source + ": key 'lags'");
   const Eigen::Index dim = lags.dim();
   const Keys norm = top.object_at("normalizer");

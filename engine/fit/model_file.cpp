@@ -88,14 +88,6 @@ void write_model_file(const std::string& path, const ModelFile& file) { write_te
 
 namespace {
 
-void check_header(const Keys& top) {
-  if (const std::string format = top.string("format"); format != kModelFileFormat)
-    top.fail("format", fmt::format("expected \"{}\", got \"{}\"", kModelFileFormat, format));
-  const Json* version = top.find("format_version", true);
-  if (!version->is_number_integer() || version->get<int>() != kModelFileVersion)
-    top.fail("format_version", fmt::format("expected {}, got {}", kModelFileVersion, version->dump()));
-}
-
 std::vector<ModelFileRecord> parse_records(const Keys& top) {
   const Json* list = top.find("records", true);
   if (!list->is_array()) top.fail("records", fmt::format("expected an array, got {}", list->dump()));
@@ -119,15 +111,9 @@ std::vector<ModelFileRecord> parse_records(const Keys& top) {
 }  // namespace
 
 ModelFile parse_model_file(const std::string& text, const std::string& source) {
-  Json j;
-  try {
-    j = Json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(fmt::format("{}: not JSON ({})", source, e.what()));
-  }
-  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object at the top", source));
+  const Json j = parse_json_object(text, source);
   const Keys top{source, j, ""};
-  check_header(top);
+  check_format(top, kModelFileFormat, kModelFileVersion);
   ModelFile f;
   f.dampbench_version = top.string("dampbench_version");
   f.vector_level = top.string("vector_level");
