@@ -15,6 +15,7 @@
 #include "engine/cli/cli_options.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/table.hpp"
+#include "engine/common/text_file.hpp"
 #include "engine/fit/lssvm_model_file.hpp"
 #include "models/lssvm/lssvm.hpp"
 
@@ -73,6 +74,9 @@ void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
   cmd->add_option("--c", o.c, "fixed c (with --sigma): no GA");
   cmd->add_option("--sigma", o.sigma, "fixed sigma (with --c): no GA");
   cmd->add_option("--format", o.format, "md (default) or json");
+  cmd->add_option("-o,--output", o.output,
+                  "folder for errors.csv (each test sample's forces and errors) and convergence.csv (the search's best "
+                  "objective per generation)");
   cmd->add_option("--save-model", o.save_model,
                   "also write the trained model as JSON (for evaluate/simulate --model-file; its test predictions the same bits)");
   add_data_options(cmd, o.data);
@@ -135,6 +139,7 @@ lssvm::TrainingRows training_rows(const std::vector<Dataset>& train, const lssvm
 struct TestResults {
   std::vector<RecordResult> records;
   lssvm::ErrorMetrics one_step, free_run;  ///< pooled over every test record
+  std::vector<std::vector<double>> one_step_forces, free_run_forces;  ///< per test record, every sample
 };
 
 /// One-step and free-run predictions of every test record, in parallel; metrics pooled afterwards in record order
@@ -158,7 +163,28 @@ TestResults test_model(const lssvm::Model& model, const std::vector<Dataset>& te
   }
   out.one_step = all_one.finish();
   out.free_run = all_free.finish();
+  out.one_step_forces = std::move(one_pred);
+  out.free_run_forces = std::move(free_pred);
   return out;
+}
+
+/// -o DIR: the per-sample forces and errors of every test record (the paper's Fig. 7 shows per-sample errors) and,
+/// when tuned, the search's best objective per generation (its Fig. 8, the convergence of eq. 8's fitness).
+void write_outputs(const std::string& dir, const std::vector<Dataset>& test, const TestResults& results,
+                   const lssvm::TuneResult& tuned, bool fixed) {
+  std::string errors = "record,t,F_measured,F_one_step,F_free_run,e_one_step,e_free_run\n";
+  for (std::size_t k = 0; k < test.size(); ++k)
+    for (std::size_t i = 0; i < test[k].size(); ++i) {
+      const double F = test[k].F_N[i], one = results.one_step_forces[k][i], free = results.free_run_forces[k][i];
+      errors += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", test[k].name, test[k].t_s[i], F, one,
+                            free, F - one, F - free);
+    }
+  write_text_file((std::filesystem::path(dir) / "errors.csv").string(), errors);
+  if (fixed) return;
+  std::string convergence = "generation,best_objective\n";
+  for (std::size_t g = 0; g < tuned.best_history.size(); ++g)
+    convergence += fmt::format("{},{:.17g}\n", g + 1, tuned.best_history[g]);
+  write_text_file((std::filesystem::path(dir) / "convergence.csv").string(), convergence);
 }
 
 /// Everything the output shows besides the test metrics.
@@ -279,6 +305,12 @@ int lssvm_command(const LssvmOptions& o) {
   if (o.test.empty()) throw InputError("lssvm: no --test records");
   if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
     throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
+  if (!o.output.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.output, ec);
+    if (ec || !std::filesystem::is_directory(o.output))
+      throw InputError(fmt::format("-o: cannot make the folder '{}'", o.output));
+  }
 
   const std::vector<Dataset> train = load_files(o.train, o.data);
   const std::vector<Dataset> test = load_files(o.test, o.data);
@@ -304,6 +336,7 @@ int lssvm_command(const LssvmOptions& o) {
     write_lssvm_model_file(o.save_model, model, trained_on, DAMPBENCH_VERSION);
   }
   const TestResults results = test_model(model, test, lags);
+  if (!o.output.empty()) write_outputs(o.output, test, results, tuned, fixed);
   const LssvmRun run{settings, tuned, fixed, seconds, lags, rows, train.size(), test.size(), without_current, subsampled};
   if (o.format == "json") print_json(run, results);
   else print_markdown(run, results);

@@ -30,6 +30,7 @@ struct LssvmOptions {
   double sigma = std::numeric_limits<double>::quiet_NaN();  ///< fixed σ (with c): no GA; NaN: tune
   std::string format = "md";       ///< md or json
   std::string save_model;          ///< also write the trained model here (engine/fit/lssvm_model_file.hpp)
+  std::string output;              ///< folder for errors.csv and convergence.csv ("" = none)
   RecordOptions data;                ///< loader options shared by every record (path unused)
 };
 

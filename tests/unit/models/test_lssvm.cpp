@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -538,6 +539,43 @@ TEST(LssvmCli, JsonReportsChosenHyperparametersAndBothPredictions) {
   EXPECT_NE(nf.output.find("lssvm: test record '" + no_force.string() + "' has no force (F column)"), std::string::npos)
       << nf.output;
   std::filesystem::remove(no_force);
+}
+
+// -o DIR: every test sample's measured, one-step and free-run forces with their errors (the paper's Fig. 7 shows
+// per-sample errors), whose free-run MSE is the reported one, and the GA's best objective per generation (its Fig. 8),
+// which never rises.
+TEST(LssvmCli, OutputFolderHoldsEachTestSamplesErrorsAndTheConvergence) {
+  const std::filesystem::path dir = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "lssvm";
+  const auto out = testing::test_temp_dir("lssvm_output") / "run";
+  const auto r = testing::run_dampbench(
+      "lssvm --train " + (dir / "train_2Hz_0p4A.csv").string() + " --test " + (dir / "test_2Hz_0p4A.csv").string() +
+      " --pop 8 --generations 5 --seed 3 --format json -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  std::ifstream errors(out / "errors.csv");
+  std::string line;
+  std::getline(errors, line);
+  EXPECT_EQ(line, "record,t,F_measured,F_one_step,F_free_run,e_one_step,e_free_run");
+  double sum_sq = 0;
+  int rows = 0;
+  while (std::getline(errors, line)) {
+    std::vector<double> cells;
+    std::stringstream ss(line.substr(line.find(',') + 1));
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(std::stod(c));
+    ASSERT_EQ(cells.size(), 6u) << line;
+    EXPECT_EQ(cells[5], cells[1] - cells[3]) << line;  // e = F_measured − F_free_run
+    if (rows++ >= 2) sum_sq += cells[5] * cells[5];  // the first two samples are the free run's initial forces
+  }
+  EXPECT_EQ(rows - 2, j.at("free_run").at("samples").get<int>());
+  EXPECT_NEAR(sum_sq / (rows - 2), j.at("free_run").at("mse").get<double>(), 1e-9 * j.at("free_run").at("mse").get<double>());
+  std::ifstream convergence(out / "convergence.csv");
+  std::getline(convergence, line);
+  EXPECT_EQ(line, "generation,best_objective");
+  std::vector<double> best;
+  while (std::getline(convergence, line)) best.push_back(std::stod(line.substr(line.find(',') + 1)));
+  ASSERT_EQ(best.size(), 5u);
+  for (std::size_t g = 1; g < best.size(); ++g) EXPECT_LE(best[g], best[g - 1]);
+  EXPECT_DOUBLE_EQ(best.back(), j.at("objective").get<double>());
 }
 
 // Issue 13: large training sets train without a flag: beyond the default cap (2000 samples) the rows are evenly
