@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <nlohmann/json.hpp>
 
 #include "tests/test_support.hpp"
@@ -20,7 +21,7 @@ Dataset sine_record(const std::string& name, double freq, double current) {
   Dataset d;
   d.name = name;
   d.operating["I"] = current;
-  const double w = 2 * M_PI * freq, amp = 0.01;
+  const double w = 2 * std::numbers::pi * freq, amp = 0.01;
   for (int k = 0; k < 300; ++k) {
     const double t = k * 0.005;
     d.t_s.push_back(t);
