@@ -121,10 +121,10 @@ VerifyCount rerun_and_compare(const sweep::Plan& plan, const sweep::Store& store
             const auto old = store.group(again->index);
             const sweep::GroupRef g = plan.group(again->index);
             const Model& part_model = *plan.parts()[g.part].models[g.model].model;
-            const ResolvedModel chosen = old->laws.empty() ? ResolvedModel{}
-                                                           : sweep::chosen_law_model(std::string(part_model.id()), old->laws);
+            const ResolvedModel law_model = old->laws.empty() ? ResolvedModel{}
+                                                              : sweep::chosen_law_model(std::string(part_model.id()), old->laws);
             std::vector<std::string> names;
-            for (const auto& p : (chosen.model ? *chosen.model : part_model).parameters()) names.push_back(p.name);
+            for (const auto& p : (law_model.model ? *law_model.model : part_model).parameters()) names.push_back(p.name);
             const auto diff = sweep::compare_records(*old, *again, names);
             count.runs += static_cast<long long>(old->run_results.size());
             if (diff.empty()) return;

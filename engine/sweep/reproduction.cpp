@@ -153,7 +153,8 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
     const toml::table& t = *n.as_table();
     r.only_keys(t, key, {"id", "text", "column", "order", "note"});
     PublishedClaim c{r.string(t, "id", key).value_or(fmt::format("claim {}", i)), r.required_string(t, "text", key),
-                     r.string(t, "column", key).value_or(""), r.strings(t, "order", key), r.string(t, "note", key).value_or("")};
+                     r.string(t, "column", key).value_or(""), r.strings(t, "order", key), r.string(t, "note", key).value_or(""),
+                     {}};
     if (c.order.size() < 2) r.fail(&t, key + ".order", "expected two or more tables, best first");
     for (const auto& name : c.order) {
       const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });

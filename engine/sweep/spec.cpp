@@ -60,8 +60,8 @@ int PartSpec::optimizer_index(std::string_view n) const {
   return -1;
 }
 std::vector<std::pair<int, int>> PartSpec::pairs(const SplitSpec& split) const {
-  const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
-    return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  const auto listed = [](const std::vector<std::string>& names, const std::string& entry) {
+    return names.empty() || std::find(names.begin(), names.end(), entry) != names.end();
   };
   std::vector<std::pair<int, int>> out;
   for (int m = 0; m < static_cast<int>(models.size()); ++m) {
