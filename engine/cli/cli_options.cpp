@@ -1,6 +1,7 @@
 #include "engine/cli/cli_options.hpp"
 
 #include <cmath>
+#include <filesystem>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -60,6 +61,11 @@ std::vector<double> parse_params(const Model& model, const std::string& text, co
 void check_format(const std::string& format) {
   if (format != "md" && format != "json")
     throw InputError(fmt::format("--format: expected md or json, got '{}'", format));
+}
+
+void check_output_folder(std::string_view option, const std::string& path) {
+  if (!path.empty() && !std::filesystem::is_directory(std::filesystem::absolute(path).parent_path()))
+    throw InputError(fmt::format("{}: the folder of '{}' does not exist", option, path));
 }
 
 nlohmann::ordered_json json_number(double v) {

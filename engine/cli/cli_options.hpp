@@ -2,6 +2,7 @@
 // What several commands share: the loader options of their records, the output formats they accept, and numbers
 // in JSON output.
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,10 @@ std::vector<double> parse_params(const Model& model, const std::string& text, co
 
 /// InputError unless `format` is md or json.
 void check_format(const std::string& format);
+
+/// Before the work that ends in writing `path`: InputError "OPTION: the folder of 'PATH' does not exist" when it
+/// does not (nothing when `path` is empty), so that no finished result is lost to a mistyped folder.
+void check_output_folder(std::string_view option, const std::string& path);
 
 /// A JSON number that stays valid JSON: non-finite values become null.
 nlohmann::ordered_json json_number(double v);

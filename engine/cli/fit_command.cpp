@@ -1,7 +1,6 @@
 #include "engine/cli/fit_command.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -312,13 +311,8 @@ void print_markdown(const PreparedFit& p, const FitOutcome& fit, const FitTables
 
 FitRun run_fit_options(const FitOptions& o) {
   check_format(o.format);
-  if (!o.report.empty()) {  // before the fit, not after it
-    const auto folder = std::filesystem::absolute(o.report).parent_path();
-    if (!std::filesystem::is_directory(folder))
-      throw InputError(fmt::format("--report: the folder of '{}' does not exist", o.report));
-  }
-  if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
-    throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
+  check_output_folder("--report", o.report);  // before the fit, not after it
+  check_output_folder("--save-model", o.save_model);
   FitRun run{o.fit, prepare_fit(o.fit), {}, {}, {}};
   PreparedFit& prepared = run.prepared;
   HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit

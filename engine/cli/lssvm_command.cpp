@@ -303,8 +303,7 @@ int lssvm_command(const LssvmOptions& o) {
     throw InputError("lssvm: give both --c and --sigma (fixed hyperparameters) or neither (GA tuning)");
   if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
   if (o.test.empty()) throw InputError("lssvm: no --test records");
-  if (!o.save_model.empty() && !std::filesystem::is_directory(std::filesystem::absolute(o.save_model).parent_path()))
-    throw InputError(fmt::format("--save-model: the folder of '{}' does not exist", o.save_model));
+  check_output_folder("--save-model", o.save_model);  // before the training, not after it
   if (!o.output.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);

@@ -1,7 +1,9 @@
 #pragma once
-// Reading the keys of a JSON file with messages that name the file and the key: the model files' readers
+// Reading a model file and the keys of its JSON with messages that name the file and the key: the model files' readers
 // (model_file.cpp, lssvm_model_file.cpp).
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -48,6 +50,15 @@ struct Keys {
     return {source, *v, key_path(key)};
   }
 };
+
+/// A model file's text; InputError "--model-file: cannot open '<path>'".
+inline std::string read_model_file_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("--model-file: cannot open '{}'", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 /// The JSON object of a file's text; InputError "<source>: not JSON (...)" or "...: expected a JSON object at the top".
 inline nlohmann::ordered_json parse_json_object(const std::string& text, const std::string& source) {

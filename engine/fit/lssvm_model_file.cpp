@@ -1,7 +1,6 @@
 #include "engine/fit/lssvm_model_file.hpp"
 
 #include <fstream>
-#include <sstream>
 
 #include "engine/common/text_file.hpp"
 #include "engine/fit/json_keys.hpp"
@@ -18,9 +17,8 @@ Json vector_json(const Eigen::VectorXd& v) {
   return a;
 }
 
-/// The numbers of the array at `key` (exactly `size` of them when size ≥ 0).
-Eigen::VectorXd vector_at(const Keys& keys, const std::string& key, Eigen::Index size) {
-  const Json* v = keys.find(key, true);
+/// The numbers of the array `v`, which messages name as `key` of `keys` (exactly `size` of them when size ≥ 0).
+Eigen::VectorXd numbers_of(const Json* v, const Keys& keys, const std::string& key, Eigen::Index size) {
   if (!v->is_array()) keys.fail(key, fmt::format("expected an array of numbers, got {}", v->dump().substr(0, 80)));
   if (size >= 0 && static_cast<Eigen::Index>(v->size()) != size)
     keys.fail(key, fmt::format("expected {} numbers, got {}", size, v->size()));
@@ -32,12 +30,9 @@ Eigen::VectorXd vector_at(const Keys& keys, const std::string& key, Eigen::Index
   return out;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("--model-file: cannot open '{}'", path));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+/// The numbers of the array at `key`.
+Eigen::VectorXd vector_at(const Keys& keys, const std::string& key, Eigen::Index size) {
+  return numbers_of(keys.find(key, true), keys, key, size);
 }
 
 }  // namespace
@@ -79,16 +74,16 @@ lssvm::Model parse_lssvm_model_file(const std::string& text, const std::string& 
   if (!list->is_array() || static_cast<Eigen::Index>(list->size()) != coef.alpha.size())
     top.fail("points", fmt::format("expected an array of {} points (one per alpha)", coef.alpha.size()));
   Eigen::MatrixXd points(dim, coef.alpha.size());
-  for (std::size_t n = 0; n < list->size(); ++n) {
-    const Json wrapper = {{"point", (*list)[n]}};
-    points.col(static_cast<Eigen::Index>(n)) = vector_at(Keys{source, wrapper, fmt::format("points[{}]", n)}, "point", dim);
+  for (std::size_t n = 0; n < list->size(); ++n) {  // messages name points[n].point
+    const Keys at{source, j, fmt::format("points[{}]", n)};
+    points.col(static_cast<Eigen::Index>(n)) = numbers_of(&(*list)[n], at, "point", dim);
   }
   return lssvm::Model::from_parts(lags, top.number("c"), top.number("sigma"), std::move(normalizer), std::move(points),
                                   std::move(coef));
 }
 
 lssvm::Model load_lssvm_model_file(const std::string& path) {
-  return parse_lssvm_model_file(read_file(path), path);
+  return parse_lssvm_model_file(read_model_file_text(path), path);
 }
 
 bool is_lssvm_model_file(const std::string& path) {

@@ -167,12 +167,8 @@ std::vector<double> coefficients_in_order(const ModelFile& f, const Model& model
 }  // namespace
 
 LoadedModel load_model_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("--model-file: cannot open '{}'", path));
-  std::ostringstream text;
-  text << in.rdbuf();
   LoadedModel m;
-  m.file = parse_model_file(text.str(), path);
+  m.file = parse_model_file(read_model_file_text(path), path);
   ModelChoice choice = m.file.choice;
   choice.option_prefix = "model.";  // messages name the file's key model.laws
   ModelChoice base = choice;

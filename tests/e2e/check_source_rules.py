@@ -432,18 +432,18 @@ def under(path, dirs):
     return any(path.startswith(d + "/") for d in dirs)
 
 
-def include_cycles(root, paths):
+def add_include_edges(edges, path, src):
+    """Records in `edges` (unit -> units) the same-folder headers the file at `path` includes, for include_cycles."""
+    if not (path.endswith(CPP_EXTENSIONS) and under(path, CYCLE_DIRS)):
+        return
+    unit, folder = os.path.splitext(path)[0], os.path.dirname(path)
+    for included in INCLUDE_RE.findall(src):
+        if included != unit and os.path.dirname(included) == folder:
+            edges.setdefault(unit, set()).add(included)
+
+
+def include_cycles(edges):
     """Loops of same-folder includes between units, as lists of unit names (sorted), each loop once."""
-    edges = {}
-    for path in paths:
-        if not (path.endswith(CPP_EXTENSIONS) and under(path, CYCLE_DIRS)):
-            continue
-        unit, folder = os.path.splitext(path)[0], os.path.dirname(path)
-        with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
-            code = f.read()
-        for included in INCLUDE_RE.findall(code):
-            if included != unit and os.path.dirname(included) == folder:
-                edges.setdefault(unit, set()).add(included)
     # Tarjan's strongly connected components, iteratively (a folder may hold many units).
     index, low, on_stack, stack, loops, counter = {}, {}, set(), [], [], [0]
     for start in sorted(edges):
@@ -485,10 +485,7 @@ def include_cycles(root, paths):
 
 def check(root):
     """Every violation below root, as 'path:line: rule: detail' strings."""
-    problems = []
-    for loop in include_cycles(root, tracked_files(root)):
-        if tuple(loop) not in INCLUDE_CYCLE_EXCEPTIONS:
-            problems.append("%s.hpp:0: include-cycle: %s include each other" % (loop[0], ", ".join(loop)))
+    problems, edges = [], {}
     for path in tracked_files(root):
         try:
             with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
@@ -498,6 +495,7 @@ def check(root):
             continue
         if "\0" in src:
             continue                                      # binary
+        add_include_edges(edges, path, src)
         for number, text in enumerate(src.split("\n"), 1):
             for m in OUTSIDE_DOC_RE.finditer(text):
                 problems.append("%s:%d: outside-doc: cites %s, which is not in the repository "
@@ -532,7 +530,9 @@ def check(root):
                 if length > MAX_FUNCTION_LINES and (path, fn) not in FUNCTION_EXCEPTIONS:
                     problems.append("%s:%d: function-size: %s spans %d lines, %d-%d (limit %d)"
                                     % (path, first, fn, length, first, last, MAX_FUNCTION_LINES))
-    return problems
+    cycles = ["%s.hpp:0: include-cycle: %s include each other" % (loop[0], ", ".join(loop))
+              for loop in include_cycles(edges) if tuple(loop) not in INCLUDE_CYCLE_EXCEPTIONS]
+    return cycles + problems
 
 
 # ---------------------------------------------------------------- self-test

@@ -90,12 +90,15 @@ def docs_section(root):
     return text[begin:end if end >= 0 else len(text)]
 
 
+def is_claim(item):
+    """A claim of the paper ("table8-laws"), not one of its tables."""
+    return item["id"].startswith("table") and "-" in item["id"]
+
+
 def checked_items(report):
-    """The claims ("table8-laws") and the paper's parameter tables ("Table 2") that were judged."""
+    """The claims and the paper's parameter tables ("Table 2") that were judged."""
     for item in report["items"]:
-        claim = item["id"].startswith("table") and "-" in item["id"]
-        parameters = re.fullmatch(r"Table \d+", item["id"]) and item["verdict"] != "not-comparable"
-        if claim or parameters:
+        if is_claim(item) or (re.fullmatch(r"Table \d+", item["id"]) and item["verdict"] != "not-comparable"):
             yield item
 
 
@@ -131,7 +134,7 @@ def main():
         if item["recovery_check"] is not recovery:
             failures.append(f"{preset} {item['id']}: {'not ' if recovery else ''}labelled a recovery check")
     for item in checked_items(report):
-        claims += item["id"][0] == "t"
+        claims += is_claim(item)
         prefix = f"| {preset} | {item['id']} | **{item['verdict']}**"
         row = next((line for line in docs.split("\n") if line.startswith(prefix)), None)
         if row is None:
