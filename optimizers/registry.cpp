@@ -22,8 +22,8 @@ namespace {
 /// An unknown setting, with the names the optimizer knows (what optimizer_settings lists).
 class UnknownSetting : public InputError {
  public:
-  UnknownSetting(const std::string& message, std::vector<std::string> known)
-      : InputError(message), known(std::move(known)) {}
+  UnknownSetting(const std::string& message, std::vector<std::string> known_names)
+      : InputError(message), known(std::move(known_names)) {}
   std::vector<std::string> known;
 };
 

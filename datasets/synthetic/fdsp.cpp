@@ -24,7 +24,7 @@ using FdspTruth = std::function<std::vector<double>(double amp_m, double freq_hz
 void write_fdsp_grid(const std::filesystem::path& dir, std::uint64_t seed, std::string_view truth_words,
                      const FdspTruth& force) {
   constexpr double kAmp = 0.00635;
-  constexpr int kCycles = 3, kSamplesPerCycle = 400;
+  constexpr int kCycles = 3, kFdspSamplesPerCycle = 400;
   for (int i = 0; i <= 7; ++i) {
     const double f = 1.5 + 0.5 * i;
     Record r;
@@ -34,7 +34,7 @@ void write_fdsp_grid(const std::filesystem::path& dir, std::uint64_t seed, std::
     r.description = fmt::format("Synthetic fdsp record: 6.35 mm, {:g} Hz, 0 V, {} cycles; {}, 1 % noise (datasets/README.md)",
                                 f, kCycles, truth_words);
     r.operating = {{"V", 0.0}, {"amp", kAmp}, {"freq", f}};
-    const Dataset d = sine_record(kAmp, f, kCycles, kSamplesPerCycle, r);
+    const Dataset d = sine_record(kAmp, f, kCycles, kFdspSamplesPerCycle, r);
     r.F = force(kAmp, f, d);
     add_noise(r.F, 0.01, seed, r.file);
     write_record(dir, r);

@@ -132,7 +132,9 @@ TEST(Cli, ACappedFitStillImprovingIsPointedToALocalStage) {
     const bool pointed = r.output.find("ga has no local stage to make it precise (fit with --optimizer ga-lm, fit's "
                                        "default for this model, or raise --max-evals)") != std::string::npos;
     EXPECT_EQ(pointed, still_improving) << r.output;
-    if (!still_improving) EXPECT_NE(r.output.find("do not trust this fit; raise --max-evals"), std::string::npos);
+    if (!still_improving) {
+      EXPECT_NE(r.output.find("do not trust this fit; raise --max-evals"), std::string::npos);
+    }
   }
   EXPECT_GE(improving, 1);  // a 4-generation GA restarted with 8 improves its best (measured: seeds 1 and 2)
 }

@@ -55,13 +55,13 @@ RecordOptions utfsm_options() {
 std::vector<Case> cases() {
   const std::string fvd = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/fvd/";
   std::vector<Case> c;
-  c.push_back({"fvd_pso", "fvd.gv_linear_elastic", "", "pso", 20, 20, 2, 7, {fvd + "test1_20mm_92mms.csv"}, {}, "of_abs"});
+  c.push_back({"fvd_pso", "fvd.gv_linear_elastic", "", "pso", 20, 20, 2, 7, {fvd + "test1_20mm_92mms.csv"}, {}, "of_abs", ""});
   c.push_back({"fvd_joint_de", "fvd.generalized_viscous", "", "de", 16, 12, 3, 3,
-               {fvd + "test2_20mm_230mms.csv", fvd + "test3_20mm_460mms.csv"}, {}, "nrmse"});
+               {fvd + "test2_20mm_230mms.csv", fvd + "test3_20mm_460mms.csv"}, {}, "nrmse", ""});
   c.push_back({"bouc_wen_ga_lm", "mrd.bouc_wen", "", "ga-lm", 12, 4, 2, 1, {utfsm("10mm1Hz1A.txt")}, utfsm_options(),
-               "nrmse"});
+               "nrmse", ""});
   c.push_back({"bingham_laws_joint", "mrd.bingham", "f_c=poly(I,1);c0=poly(I,1)", "pso", 20, 15, 2, 5,
-               {utfsm("10mm1Hz0A.txt"), utfsm("10mm1Hz1A.txt")}, utfsm_options(), "nrmse"});
+               {utfsm("10mm1Hz0A.txt"), utfsm("10mm1Hz1A.txt")}, utfsm_options(), "nrmse", ""});
   c.push_back({"bingham_laws_start_per_file", "mrd.bingham", "f_c=poly(I,1);c0=poly(I,1)", "pso", 20, 15, 2, 5,
                {utfsm("10mm1Hz0A.txt"), utfsm("10mm1Hz0x5A.txt"), utfsm("10mm1Hz1A.txt")}, utfsm_options(), "nrmse",
                "per-file"});

@@ -115,7 +115,7 @@ TEST(ValueLaws, EachFamilysCoefficientsMeanTheSameInTheLawGrammar) {
 
 TEST(ValueLaws, ADecreasingTrendFallsBackToAConstantBecauseLawsRiseWithCurrent) {
   const std::vector<std::map<std::string, double>> vars{{{"I", 0.0}}, {{"I", 0.5}}, {{"I", 1.0}}};
-  const ValueFit fit = fit_value_law({ValueLaw::Shape::linear}, vars, {3.0, 2.0, 1.0});
+  const ValueFit fit = fit_value_law({ValueLaw::Shape::linear, ValueLaw::Factor::none, ""}, vars, {3.0, 2.0, 1.0});
   EXPECT_EQ(fit.coefficients[1], 0.0);
   EXPECT_DOUBLE_EQ(fit.coefficients[0], 2.0);
   EXPECT_EQ(ValueLaw{}.text(), "free");

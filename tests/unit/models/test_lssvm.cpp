@@ -579,16 +579,20 @@ TEST(LssvmCli, OutputFolderHoldsEachTestSamplesErrorsAndTheConvergence) {
 }
 
 // Issue 13: large training sets train without a flag: beyond the default cap (2000 samples) the rows are evenly
-// spaced and the output says so; --max-train 0 takes them all. Every record of datasets/lssvm (16 × ~240 rows).
+// spaced and the output says so; --max-train 0 takes them all. The training files and the 4 Hz test files of
+// datasets/lssvm (11 × ~240 rows): above the cap, and a full solve a third of all 16 files' (its cost grows as n³).
 TEST(LssvmCli, LargeTrainingSetsAreSubsampledWithANote) {
   const std::filesystem::path dir = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "lssvm";
   std::string train;
-  for (const auto& e : std::filesystem::directory_iterator(dir))
-    if (e.path().extension() == ".csv") train += " --train " + e.path().string();
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() == ".csv" && (name.starts_with("train_") || name.starts_with("test_4Hz")))
+      train += " --train " + e.path().string();
+  }
   const std::string test = " --test " + (dir / "test_2Hz_0p4A.csv").string() + " --c 10 --sigma 1";
   const auto j = nlohmann::json::parse(testing::run_dampbench("lssvm" + train + test + " --format json").output);
   const int available = j.at("train_samples_available").get<int>();
-  EXPECT_GT(available, 3000);
+  EXPECT_GT(available, 2400);
   EXPECT_EQ(j.at("train_samples").get<int>(), 2000);
   const auto md = testing::run_dampbench("lssvm" + train + test);
   ASSERT_EQ(md.exit_code, 0) << md.output;

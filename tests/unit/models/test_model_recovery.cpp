@@ -26,8 +26,6 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.model << " by " << c.op
 
 class ModelRecovery : public ::testing::TestWithParam<Case> {};
 
-}  // namespace
-
 TEST_P(ModelRecovery, RecoversNoiseFreeData) {
   const Case& c = GetParam();
   const Model& model = find_model(c.model);
@@ -77,4 +75,5 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
+}  // namespace
 }  // namespace dampbench

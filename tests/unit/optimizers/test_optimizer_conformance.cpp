@@ -258,8 +258,6 @@ struct SmallIdentification {
   }
 };
 
-}  // namespace
-
 // ---- every check, every optimizer -------------------------------------------------------------------
 
 class Conformance : public ::testing::TestWithParam<Entry> {
@@ -307,8 +305,6 @@ INSTANTIATE_TEST_SUITE_P(Optimizers, Conformance, ::testing::ValuesIn(kOptimizer
 
 // ---- convergence on the standard functions, every optimizer's own targets ------------------------------
 
-namespace {
-
 /// One optimizer's cases on one function (every dimension: one test, as each test is a process of its own).
 struct FunctionCases {
   const Entry* optimizer;
@@ -328,8 +324,6 @@ std::vector<FunctionCases> convergence_cases() {
   return out;
 }
 
-}  // namespace
-
 class StandardFunctions : public ::testing::TestWithParam<FunctionCases> {};
 
 TEST_P(StandardFunctions, ReachesKnownOptimum) {
@@ -342,8 +336,6 @@ INSTANTIATE_TEST_SUITE_P(Optimizers, StandardFunctions, ::testing::ValuesIn(conv
                          [](const auto& p) { return p.param.name(); });
 
 // ---- settings: each optimizer rejects a bad value with a message that names it and the setting ------------
-
-namespace {
 
 struct Rejection {
   const char* optimizer;
@@ -428,8 +420,6 @@ const Rejection kRejections[] = {
     {"ga-lm", 20, 10, "constraint=4", kGaLmUnknownConstraint},
 };
 
-}  // namespace
-
 TEST(OptimizerSettings, RejectsBadValuesWithTheirMessages) {
   for (const Rejection& r : kRejections) {
     OptimizerSpec spec{r.optimizer, r.population, r.iterations};
@@ -439,4 +429,5 @@ TEST(OptimizerSettings, RejectsBadValuesWithTheirMessages) {
   }
 }
 
+}  // namespace
 }  // namespace dampbench

@@ -120,7 +120,7 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
     EXPECT_EQ(each[r].at("best_value").get<double>(), g.run_results[r].best_value) << r;
   // the group's evaluations are the whole group's: the records' own fits before the joint fit's runs
   long long joint = 0;
-  for (const auto& run : g.run_results) joint += run.evaluations;
+  for (const auto& result : g.run_results) joint += result.evaluations;
   const long long own_fits = j.at("law_selection").at("evaluations").get<long long>();
   EXPECT_GE(own_fits, static_cast<long long>(train.size()) * 2 * 24 * 31);  // each record: 2 runs of 24 × (30 + 1)
   EXPECT_EQ(g.evaluations, joint + own_fits);
