@@ -16,17 +16,23 @@ import sys
 
 
 def ninja_steps(build):
-    """{output: seconds} from .ninja_log, newest entry per output."""
+    """{output: seconds} from .ninja_log, newest entry per output. A command with several outputs (a link and the
+    test list gtest_discover_tests writes after it) has one line per output with the same times and command hash:
+    it counts once, under its first output."""
     path = os.path.join(build, ".ninja_log")
-    steps = {}
+    newest = {}
     with open(path) as f:
         for line in f:
             if line.startswith("#"):
                 continue
             fields = line.rstrip("\n").split("\t")
-            if len(fields) < 4:
+            if len(fields) < 5:
                 continue
-            start, end, output = int(fields[0]), int(fields[1]), fields[3]
+            newest[fields[3]] = (int(fields[0]), int(fields[1]), fields[4])
+    steps, seen = {}, set()
+    for output, (start, end, command_hash) in newest.items():
+        if (start, end, command_hash) not in seen:
+            seen.add((start, end, command_hash))
             steps[output] = (end - start) / 1000.0
     return steps
 
