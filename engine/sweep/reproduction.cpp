@@ -23,6 +23,7 @@ struct PublishedTable {
   std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column (in our unit)
   double scale = 1;  ///< printed value × scale = the value in our table's unit (0.01: the paper prints %)
   std::string not_comparable;  ///< why its numbers cannot be set against ours (then only rankings are judged)
+  std::string row_key;         ///< our table's column whose text names a row ("": its first column)
 };
 
 struct PublishedClaim {
@@ -38,17 +39,21 @@ double relative(double ours, double paper) {
   return paper == 0 ? std::numeric_limits<double>::infinity() : (ours - paper) / std::fabs(paper);
 }
 
-const Cell* our_cell(const Table& t, const std::string& row, const std::string& column) {
-  const auto c = std::find(t.columns.begin(), t.columns.end(), column);
-  if (c == t.columns.end()) return nullptr;
-  const auto j = static_cast<std::size_t>(c - t.columns.begin());
+/// Our table's cell at `row` (the text of the row's first cell, or of its cell in column `row_key`), `column`.
+const Cell* our_cell(const Table& t, const std::string& row, const std::string& column, const std::string& row_key = "") {
+  const auto index = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
+  };
+  const std::size_t j = index(column), key = row_key.empty() ? 0 : index(row_key);
+  if (j >= t.columns.size() || key >= t.columns.size()) return nullptr;
   for (const auto& r : t.rows)
-    if (!r.empty() && r[0].text == row && j < r.size()) return &r[j];
+    if (key < r.size() && r[key].text == row && j < r.size()) return &r[j];
   return nullptr;
 }
 
-std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column) {
-  const Cell* cell = our_cell(t, row, column);
+std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column,
+                                const std::string& row_key = "") {
+  const Cell* cell = our_cell(t, row, column, row_key);
   return cell ? cell->value : std::nullopt;
 }
 
@@ -56,8 +61,9 @@ std::optional<double> our_value(const Table& t, const std::string& row, const st
 /// more than 2 % apart or whose best still improved late), so that a verdict says when it rests on such fits.
 struct Unconverged {
   std::map<std::string, int> by_label;
-  void count(const Table* t, const std::string& row, const std::string& column, const std::string& label) {
-    const Cell* cell = t ? our_cell(*t, row, column) : nullptr;
+  void count(const Table* t, const std::string& row, const std::string& column, const std::string& label,
+             const std::string& row_key) {
+    const Cell* cell = t ? our_cell(*t, row, column, row_key) : nullptr;
     if (cell && cell->text.find("†") != std::string::npos) ++by_label[label];
   }
   [[nodiscard]] std::string note(std::size_t rows) const {
@@ -111,7 +117,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
   for (const toml::node& n : *node->as_array()) {
     const std::string key = fmt::format("tables[{}]", i++);
     const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable"});
+    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable", "row_key"});
     PublishedTable p;
     p.table = r.required_string(t, "table", key);
     p.ours = r.required_string(t, "ours", key);
@@ -124,6 +130,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
       if (std::find(p.columns.begin(), p.columns.end(), c) == p.columns.end())
         r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
     p.not_comparable = r.string(t, "numbers_not_comparable", key).value_or("");
+    p.row_key = r.string(t, "row_key", key).value_or("");
     p.scale = r.number(t, "scale", key).value_or(1.0);
     if (!(p.scale > 0)) r.fail(t.get("scale"), key + ".scale", "expected a number > 0 (printed value x scale = ours)");
     const toml::node* rows = t.get("rows");
@@ -194,7 +201,7 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
   for (const auto& [row, values] : p.rows)
     for (const auto& column : p.compare) {
       const auto j = static_cast<std::size_t>(std::find(p.columns.begin(), p.columns.end(), column) - p.columns.begin());
-      const Cell* cell = our_cell(*t, row, column);
+      const Cell* cell = our_cell(*t, row, column, p.row_key);
       if (!cell || !cell->value) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("table '{}' has no number at row '{}', column '{}'", p.ours, row, column);
@@ -231,7 +238,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), column) - p->columns.begin());
       const auto prow = std::find_if(p->rows.begin(), p->rows.end(), [&](const auto& x) { return x.first == row; });
       const Table* t = find_table(ours, p->ours);
-      const auto v = t ? our_value(*t, row, column) : std::nullopt;
+      const auto v = t ? our_value(*t, row, column, p->row_key) : std::nullopt;
       if (prow == p->rows.end() || !v) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("row '{}' of {} is missing from the paper file or from our table '{}'", row, p->table, p->ours);
@@ -239,7 +246,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       }
       paper.push_back(prow->second[j]);
       here.push_back(*v);
-      unconverged.count(t, row, column, p->label);
+      unconverged.count(t, row, column, p->label, p->row_key);
       const std::string label = fmt::format("{}: {}", row, p->label);
       item.paper_values.emplace_back(label, paper.back());
       item.values.emplace_back(label, here.back());
@@ -300,14 +307,14 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
     for (const PublishedTable* p : order) {
       const std::string& column = c.column.empty() ? p->compare.front() : c.column;
       const Table* t = find_table(ours, p->ours);
-      const auto v = t ? our_value(*t, row, column) : std::nullopt;
+      const auto v = t ? our_value(*t, row, column, p->row_key) : std::nullopt;
       if (!v) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("our table '{}' has no number at row '{}', column '{}'", p->ours, row, column);
         return item;
       }
       here.push_back(*v);
-      unconverged.count(t, row, column, p->label);
+      unconverged.count(t, row, column, p->label, p->row_key);
       item.values.emplace_back(fmt::format("{}: {}", row, p->label), *v);
     }
     ++rows;

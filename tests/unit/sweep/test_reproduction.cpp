@@ -163,6 +163,32 @@ TEST(Reproduction, NumbersTheRecordsDoNotDetermineAreShownButNotJudged) {
       << none.items[1].detail;
 }
 
+// A regression table names each coefficient in a later column, its first column only on a law's first row
+// (Parameter, Law, Coefficient, Value): `row_key` names the column whose text labels the rows.
+TEST(Reproduction, RowsAreFoundByTheColumnRowKeyNames) {
+  Table laws{"reg", "reg", {"Parameter", "Law", "Coefficient", "Value"}, {}};
+  laws.rows.push_back({Cell("c_r"), Cell("poly(phi,1)"), Cell("c_r_phi0"), number_cell(1.0)});
+  laws.rows.push_back({Cell(""), Cell(""), Cell("c_r_phi1"), number_cell(0.25)});
+  const std::string table = "[[tables]]\ntable = \"Table 5\"\nours = \"reg\"\ncolumns = [\"Value\"]\n"
+                            "rows = [[\"c_r_phi0\", 1.05], [\"c_r_phi1\", 0.2]]\n";
+  const Reproduction keyed = reproduce(paper_file(table + "row_key = \"Coefficient\"\n"),
+                                       {ours("a", 0.105, 0.19), ours("b", 0.31, 0.38), laws});
+  ASSERT_EQ(keyed.items.size(), 4u);
+  EXPECT_EQ(keyed.items[3].verdict, "differs") << keyed.items[3].detail;  // 0.25 is +25 % of 0.2; 1.0 within 10 %
+  ASSERT_EQ(keyed.items[3].values.size(), 2u);
+  EXPECT_EQ(keyed.items[3].values[1].first, "c_r_phi1 Value");
+  EXPECT_DOUBLE_EQ(keyed.items[3].values[1].second, 0.25);
+  // Keyed by the first column, the coefficients are not found.
+  const Reproduction first = reproduce(paper_file(table), {ours("a", 0.105, 0.19), ours("b", 0.31, 0.38), laws});
+  EXPECT_EQ(first.items[3].verdict, "not-comparable");
+  EXPECT_NE(first.items[3].detail.find("has no number at row 'c_r_phi"), std::string::npos)
+      << first.items[3].detail;
+  // A key that is not one of our columns finds nothing either.
+  const Reproduction wrong = reproduce(paper_file(table + "row_key = \"Name\"\n"),
+                                       {ours("a", 0.105, 0.19), ours("b", 0.31, 0.38), laws});
+  EXPECT_EQ(wrong.items[3].verdict, "not-comparable");
+}
+
 TEST(Reproduction, JsonFollowsTheContractAndMarksRecoveryChecks) {
   const Reproduction r = reproduce(paper_file("", true), {ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)});
   const auto j = nlohmann::json::parse(reproduction_json(r, {"rec1", "rec2"}));

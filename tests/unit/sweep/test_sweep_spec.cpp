@@ -427,7 +427,7 @@ TEST(SweepSpec, PresetsAreValid) {
   SpecOptions o;
   o.check_files = false;
   for (const char* name : {"fvd", "crfd", "crfd_neutral", "mfm", "mfm_neutral", "mfm_utfsm", "fdsp", "fdsp_neutral", "fdsp_utfsm", "utfsm", "utfsm_model", "all"}) {
-    const std::string path = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/presets/" + name + ".toml";
+    const std::string path = fmt::format("{}/datasets/presets/{}.toml", DAMPBENCH_SOURCE_DIR, name);
     EXPECT_EQ(testing::error_of([&] { (void)load_sweep(path, o); }), "no error") << name;
   }
 }
