@@ -9,8 +9,8 @@ user runs it; the test fails when
 
   - the run fails, or its reproduction.json labels the records' truth or a verdict otherwise than the preset's kind
     (a recovery check on a compared model's grid, evidence elsewhere);
-  - a claim's verdict, or the verdict of a parameter table ("Table 2") or equation ("eq. 4.4") of the paper that is
-    judged, is missing from
+  - a claim's verdict, or the verdict of a parameter table ("Table 2"), equation ("eq. 4.4") or figure ("Fig. 9") of
+    the paper that is judged, is missing from
     the table of docs/reproduce.md's section "## crfd, mfm, fdsp" as the row `| <preset> | <id> | **<verdict>**`;
   - a number in that row's text is none of the item's: its values, the paper's (also as printed in %), their
     relative differences in %, the means of each compared model's values, the numbers of the item's own detail and
@@ -97,9 +97,9 @@ def is_claim(item):
 
 
 def checked_items(report):
-    """The claims and the paper's parameter tables ("Table 2") and equations ("eq. 4.4") that were judged."""
+    """The claims and the paper's parameter tables ("Table 2"), equations ("eq. 4.4") and figures ("Fig. 9") judged."""
     for item in report["items"]:
-        if is_claim(item) or (re.fullmatch(r"Table \d+|eq\. [\d.]+", item["id"]) and item["verdict"] != "not-comparable"):
+        if is_claim(item) or (re.fullmatch(r"Table \d+|eq\. [\d.]+|Fig\. \d+", item["id"]) and item["verdict"] != "not-comparable"):
             yield item
 
 
