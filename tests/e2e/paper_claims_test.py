@@ -99,7 +99,7 @@ def is_claim(item):
 def checked_items(report):
     """The claims and the paper's parameter tables ("Table 2"), equations ("eq. 4.4") and figures ("Fig. 9") judged."""
     for item in report["items"]:
-        if is_claim(item) or (re.fullmatch(r"Table \d+|eq\. [\d.]+|Fig\. \d+", item["id"]) and item["verdict"] != "not-comparable"):
+        if is_claim(item) or (re.fullmatch(r"Table \d+|eqs?\. [\d.]+(?:-[\d.]+)?|Fig\. \d+", item["id"]) and item["verdict"] != "not-comparable"):
             yield item
 
 
