@@ -39,21 +39,28 @@ double relative(double ours, double paper) {
   return paper == 0 ? std::numeric_limits<double>::infinity() : (ours - paper) / std::fabs(paper);
 }
 
-/// Our table's cell at `row` (the text of the row's first cell, or of its cell in column `row_key`), `column`.
-const Cell* our_cell(const Table& t, const std::string& row, const std::string& column, const std::string& row_key = "") {
-  const auto index = [&](const std::string& name) {
-    return static_cast<std::size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
-  };
-  const std::size_t j = index(column), key = row_key.empty() ? 0 : index(row_key);
+std::size_t column_index(const Table& t, const std::string& name) {
+  return static_cast<std::size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
+}
+
+/// The column of our table whose text names its rows: the paper file's `row_key`, else the first; t.columns.size()
+/// when our table has no such column.
+std::size_t row_label_column(const Table& t, const PublishedTable& p) {
+  return p.row_key.empty() ? 0 : column_index(t, p.row_key);
+}
+
+/// Our table's cell at `row` (as row_label_column names rows) and `column`, for the paper's table `p`.
+const Cell* our_cell(const Table& t, const PublishedTable& p, const std::string& row, const std::string& column) {
+  const std::size_t j = column_index(t, column), key = row_label_column(t, p);
   if (j >= t.columns.size() || key >= t.columns.size()) return nullptr;
   for (const auto& r : t.rows)
     if (key < r.size() && r[key].text == row && j < r.size()) return &r[j];
   return nullptr;
 }
 
-std::optional<double> our_value(const Table& t, const std::string& row, const std::string& column,
-                                const std::string& row_key = "") {
-  const Cell* cell = our_cell(t, row, column, row_key);
+std::optional<double> our_value(const Table& t, const PublishedTable& p, const std::string& row,
+                                const std::string& column) {
+  const Cell* cell = our_cell(t, p, row, column);
   return cell ? cell->value : std::nullopt;
 }
 
@@ -61,10 +68,9 @@ std::optional<double> our_value(const Table& t, const std::string& row, const st
 /// more than 2 % apart or whose best still improved late), so that a verdict says when it rests on such fits.
 struct Unconverged {
   std::map<std::string, int> by_label;
-  void count(const Table* t, const std::string& row, const std::string& column, const std::string& label,
-             const std::string& row_key) {
-    const Cell* cell = t ? our_cell(*t, row, column, row_key) : nullptr;
-    if (cell && cell->text.find("†") != std::string::npos) ++by_label[label];
+  void count(const Table* t, const PublishedTable& p, const std::string& row, const std::string& column) {
+    const Cell* cell = t ? our_cell(*t, p, row, column) : nullptr;
+    if (cell && cell->text.find("†") != std::string::npos) ++by_label[p.label];
   }
   [[nodiscard]] std::string note(std::size_t rows) const {
     if (by_label.empty()) return "";
@@ -201,7 +207,7 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
   for (const auto& [row, values] : p.rows)
     for (const auto& column : p.compare) {
       const auto j = static_cast<std::size_t>(std::find(p.columns.begin(), p.columns.end(), column) - p.columns.begin());
-      const Cell* cell = our_cell(*t, row, column, p.row_key);
+      const Cell* cell = our_cell(*t, p, row, column);
       if (!cell || !cell->value) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("table '{}' has no number at row '{}', column '{}'", p.ours, row, column);
@@ -238,7 +244,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       const auto j = static_cast<std::size_t>(std::find(p->columns.begin(), p->columns.end(), column) - p->columns.begin());
       const auto prow = std::find_if(p->rows.begin(), p->rows.end(), [&](const auto& x) { return x.first == row; });
       const Table* t = find_table(ours, p->ours);
-      const auto v = t ? our_value(*t, row, column, p->row_key) : std::nullopt;
+      const auto v = t ? our_value(*t, *p, row, column) : std::nullopt;
       if (prow == p->rows.end() || !v) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("row '{}' of {} is missing from the paper file or from our table '{}'", row, p->table, p->ours);
@@ -246,7 +252,7 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       }
       paper.push_back(prow->second[j]);
       here.push_back(*v);
-      unconverged.count(t, row, column, p->label, p->row_key);
+      unconverged.count(t, *p, row, column);
       const std::string label = fmt::format("{}: {}", row, p->label);
       item.paper_values.emplace_back(label, paper.back());
       item.values.emplace_back(label, here.back());
@@ -300,21 +306,22 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
   std::map<std::string, std::vector<std::string>> reversed;
   Unconverged unconverged;
   std::size_t rows = 0;
+  const std::size_t key = row_label_column(*first, *order.front());
   for (const auto& table_row : first->rows) {
-    if (table_row.empty() || table_row[0].text == "mean") continue;
-    const std::string& row = table_row[0].text;
+    if (key >= table_row.size() || table_row[key].text == "mean") continue;
+    const std::string& row = table_row[key].text;
     std::vector<double> here;
     for (const PublishedTable* p : order) {
       const std::string& column = c.column.empty() ? p->compare.front() : c.column;
       const Table* t = find_table(ours, p->ours);
-      const auto v = t ? our_value(*t, row, column, p->row_key) : std::nullopt;
+      const auto v = t ? our_value(*t, *p, row, column) : std::nullopt;
       if (!v) {
         item.verdict = "not-comparable";
         item.detail = fmt::format("our table '{}' has no number at row '{}', column '{}'", p->ours, row, column);
         return item;
       }
       here.push_back(*v);
-      unconverged.count(t, row, column, p->label, p->row_key);
+      unconverged.count(t, *p, row, column);
       item.values.emplace_back(fmt::format("{}: {}", row, p->label), *v);
     }
     ++rows;

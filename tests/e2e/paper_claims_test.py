@@ -40,6 +40,7 @@ SECTION = "## crfd, mfm, fdsp"
 
 NUMBER = re.compile(r"(?<![\w.])([+\-−]?\d+(?:\.\d+)?(?:e[+\-−]?\d+)?)")
 CONDITION = re.compile(r"^((?:,\s*|\s+and\s+|\s+or\s+|\s*[–-]\s*)[\d.]+)*\s*(Hz|mm|m|A|°|V|kN)(?!\w)")
+PAPER_PART = re.compile(r"Table \d+|eqs?\. [\d.]+(?:-[\d.]+)?|Fig\. \d+")  # a table, equation or figure's item id
 REFERENCE = re.compile(r"(eqs?\.|Tables?|Figs?\.)\s*(\d+\s*[–,-]\s*)*$")
 
 
@@ -97,9 +98,10 @@ def is_claim(item):
 
 
 def checked_items(report):
-    """The claims and the paper's parameter tables ("Table 2"), equations ("eq. 4.4") and figures ("Fig. 9") judged."""
+    """The claims and the paper's parameter tables ("Table 2"), equations ("eq. 4.4", "eqs. 4-9") and figures ("Fig. 9")
+    that were judged."""
     for item in report["items"]:
-        if is_claim(item) or (re.fullmatch(r"Table \d+|eqs?\. [\d.]+(?:-[\d.]+)?|Fig\. \d+", item["id"]) and item["verdict"] != "not-comparable"):
+        if is_claim(item) or (PAPER_PART.fullmatch(item["id"]) and item["verdict"] != "not-comparable"):
             yield item
 
 
