@@ -170,7 +170,7 @@ int run_command(const RunOptions& options) {
                              summary.stored_before, summary.failed, summary.wall_time_s, store_path);
     return 0;
   }
-  const sweep::StoreResults results(store);
+  const sweep::StoreResults results(store, sweep_loader());
   std::string report_note;
   write_outputs(store, results, out_dir, {spec_path, store_path, summary}, options.no_report, report_note);
   print_run_summary(plan, results, summary, job, out_dir, store_path, report_note);

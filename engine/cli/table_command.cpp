@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "engine/cli/run_command.hpp"
 #include "engine/common/error.hpp"
 #include "engine/model/metrics.hpp"
 #include "engine/sweep/store.hpp"
@@ -72,7 +73,7 @@ int table_command(const TableOptions& o) {
   if (const std::string shard = store.meta("shard"); !shard.empty())
     std::cerr << fmt::format("note: {} holds shard {} of the sweep only: its tables are partial (dampbench merge joins "
                              "the shards' stores)\n", o.store, shard);
-  const std::vector<Table> reports = store_tables(o, sweep::StoreResults(store));
+  const std::vector<Table> reports = store_tables(o, sweep::StoreResults(store, sweep_loader()));
   if (reports.empty()) {
     std::cerr << fmt::format("dampbench: no '{}' table in {} (no stored task group matches)\n", o.kind, o.store);
     return kExitDifferent;

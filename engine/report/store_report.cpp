@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <functional>
-#include <optional>
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include "engine/common/error.hpp"
 #include "engine/fit/auto_budget.hpp"
@@ -18,13 +16,13 @@ namespace {
 /// Everything a store's report points into, alive while the report is rendered.
 class StoreSources {
  public:
-  StoreSources(const sweep::Store& store, const sweep::Loader& loader) : results_(store) {
+  StoreSources(const sweep::Store& store, const sweep::Loader& loader) : results_(store, loader) {
     const sweep::StoreHeader& h = results_.header;
     if (results_.groups.empty())
       throw StoreError(fmt::format("{}: the store holds no finished task group, so there is nothing to report (run the "
                                    "sweep into it first: dampbench run SWEEP --store {})",
                                    store.path(), store.path()));
-    load_records(loader);
+    load_records();
     const bool many_parts = results_.part_count() > 1;
     auto prefix = [&](int p) { return many_parts ? h.parts[static_cast<std::size_t>(p)].name + ": " : std::string(); };
 
@@ -100,50 +98,21 @@ class StoreSources {
     }
   }
 
-  /// Re-reads every dataset the store names, from the (re-parsed) sweep file of its part.
-  void load_records(const sweep::Loader& loader) {
-    const sweep::StoreHeader& h = results_.header;
-    std::vector<std::optional<sweep::SweepSpec>> specs(h.parts.size());
-    std::vector<std::string> spec_errors(h.parts.size());
-    for (std::size_t p = 0; p < h.parts.size(); ++p) try {
-        sweep::SpecOptions o;
-        o.datasets_optional = true;  // a missing file is reported per record below
-        specs[p] = sweep::parse_sweep(h.parts[p].source, h.parts[p].path, o);
-      } catch (const std::exception& e) {
-        spec_errors[p] = e.what();
-      }
-    loaded_.resize(h.datasets.size());
-    input_.records.resize(h.datasets.size());
-    tbb::parallel_for(std::size_t{0}, h.datasets.size(), [&](std::size_t i) {
-      const sweep::StoreDataset& d = h.datasets[i];
+  /// Every dataset the store names, read again from the (re-parsed) sweep file of its part.
+  void load_records() {
+    const std::vector<sweep::StoreRecord>& loaded = results_.records();
+    input_.records.resize(loaded.size());
+    for (std::size_t i = 0; i < loaded.size(); ++i) {
       RecordInput& r = input_.records[i];
-      r.name = d.name;
-      r.label = d.label;
-      const auto p = static_cast<std::size_t>(d.part);
-      if (!specs[p]) {
-        r.unavailable = fmt::format("the sweep file could not be read again: {}", spec_errors[p]);
-        return;
-      }
-      const auto& list = specs[p]->parts.at(0).datasets;
-      const auto it = std::find_if(list.begin(), list.end(), [&](const auto& s) { return s.name == d.name; });
-      if (it == list.end()) {
-        r.unavailable = fmt::format("its file ({}) is no longer found", d.path);
-        return;
-      }
-      loaded_[i] = sweep::load_dataset(*it, loader);
-      if (!loaded_[i].ok())
-        r.unavailable = loaded_[i].error;
-      else if (loaded_[i].hash != d.hash)
-        r.unavailable = fmt::format("{} changed since the store was written (hash {}, stored {})", d.path, loaded_[i].hash, d.hash);
-      else
-        r.signals = &loaded_[i].signals;
-    });
-    for (const RecordInput& r : input_.records)
+      r.name = results_.header.datasets[i].name;
+      r.label = results_.header.datasets[i].label;
+      r.signals = loaded[i].signals();
+      r.unavailable = loaded[i].unavailable;
       if (!r.signals) input_.notes.push_back(fmt::format("Record '{}' is not drawn: {}.", r.name, r.unavailable));
+    }
   }
 
   sweep::StoreResults results_;
-  std::vector<sweep::LoadedDataset> loaded_;
   ReportInput input_;
 };
 

@@ -9,29 +9,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/sweep/paper_file.hpp"
 #include "engine/sweep/spec/reader.hpp"
 
 namespace dampbench::sweep {
 namespace {
-
-using spec_file::Reader;
-
-/// One [[tables]] entry of a paper file.
-struct PublishedTable {
-  std::string table, ours, label;
-  std::vector<std::string> columns, compare;
-  std::vector<std::pair<std::string, std::vector<double>>> rows;  ///< row label, a value per column (in our unit)
-  double scale = 1;  ///< printed value × scale = the value in our table's unit (0.01: the paper prints %)
-  std::string not_comparable;  ///< why its numbers cannot be set against ours (then only rankings are judged)
-  std::string row_key;         ///< our table's column whose text names a row ("": its first column)
-};
-
-struct PublishedClaim {
-  std::string id, text, column;
-  std::vector<std::string> order;  ///< tables, best (lowest) first
-  std::string note;                ///< what a verdict on it can mean (e.g. nested models)
-  std::vector<const PublishedTable*> tables;  ///< the [[tables]] entries `order` names, in its order
-};
 
 /// Relative difference of ours from the paper's (0 when equal, +inf against a published 0).
 double relative(double ours, double paper) {
@@ -115,75 +97,6 @@ void judge_numbers(ReproductionItem& item, double tolerance) {
   }
 }
 
-std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root) {
-  std::vector<PublishedTable> out;
-  const toml::node* node = root.get("tables");
-  if (!node || !node->is_array_of_tables()) r.fail(node, "tables", "expected one or more [[tables]]");
-  int i = 0;
-  for (const toml::node& n : *node->as_array()) {
-    const std::string key = fmt::format("tables[{}]", i++);
-    const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable", "row_key"});
-    PublishedTable p;
-    p.table = r.required_string(t, "table", key);
-    p.ours = r.required_string(t, "ours", key);
-    p.label = r.string(t, "label", key).value_or(p.table);
-    p.columns = r.strings(t, "columns", key);
-    if (p.columns.empty()) r.fail(&t, key + ".columns", "expected the table's column names");
-    p.compare = r.strings(t, "compare", key);
-    if (p.compare.empty()) p.compare = p.columns;
-    for (const auto& c : p.compare)
-      if (std::find(p.columns.begin(), p.columns.end(), c) == p.columns.end())
-        r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
-    p.not_comparable = r.string(t, "numbers_not_comparable", key).value_or("");
-    p.row_key = r.string(t, "row_key", key).value_or("");
-    p.scale = r.number(t, "scale", key).value_or(1.0);
-    if (!(p.scale > 0)) r.fail(t.get("scale"), key + ".scale", "expected a number > 0 (printed value x scale = ours)");
-    const toml::node* rows = t.get("rows");
-    if (!rows || !rows->is_array()) r.fail(rows, key + ".rows", "expected rows = [[\"row label\", number, ...], ...]");
-    for (const toml::node& row : *rows->as_array()) {
-      const toml::array* a = row.as_array();
-      if (!a || a->size() != p.columns.size() + 1 || !(*a)[0].is_string())
-        r.fail(&row, key + ".rows",
-               fmt::format("expected a row label and {} numbers (one per column)", p.columns.size()));
-      std::vector<double> values;
-      for (std::size_t j = 1; j < a->size(); ++j) values.push_back(r.number((*a)[j], key + ".rows") * p.scale);
-      p.rows.emplace_back(std::string(*(*a)[0].value<std::string>()), std::move(values));
-    }
-    out.push_back(std::move(p));
-  }
-  return out;
-}
-
-std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root, const std::vector<PublishedTable>& tables) {
-  std::vector<PublishedClaim> out;
-  const toml::node* node = root.get("claims");
-  if (!node) return out;
-  if (!node->is_array_of_tables()) r.fail(node, "claims", "expected [[claims]] tables");
-  int i = 0;
-  for (const toml::node& n : *node->as_array()) {
-    const std::string key = fmt::format("claims[{}]", i++);
-    const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"id", "text", "column", "order", "note"});
-    PublishedClaim c{r.string(t, "id", key).value_or(fmt::format("claim {}", i)), r.required_string(t, "text", key),
-                     r.string(t, "column", key).value_or(""), r.strings(t, "order", key), r.string(t, "note", key).value_or(""),
-                     {}};
-    if (c.order.size() < 2) r.fail(&t, key + ".order", "expected two or more tables, best first");
-    for (const auto& name : c.order) {
-      const auto it = std::find_if(tables.begin(), tables.end(), [&](const PublishedTable& p) { return p.table == name; });
-      if (it == tables.end()) r.fail(t.get("order"), key + ".order", fmt::format("no [[tables]] entry '{}'", name));
-      c.tables.push_back(&*it);
-      if (c.column.empty() && it->compare.size() != 1)
-        r.fail(&t, key + ".column", fmt::format("'{}' compares {} columns: name the one the claim ranks by", name,
-                                                it->compare.size()));
-      if (!c.column.empty() && std::find(it->columns.begin(), it->columns.end(), c.column) == it->columns.end())
-        r.fail(t.get("column"), key + ".column", fmt::format("'{}' has no column '{}'", name, c.column));
-    }
-    out.push_back(std::move(c));
-  }
-  return out;
-}
-
 /// `labels` (some of the item's numbers) as "N of M: label, label, ...".
 std::string marked(const ReproductionItem& item, const std::vector<std::string>& labels) {
   return fmt::format("{} of {}: {}", labels.size(), item.values.size(), fmt::join(labels, ", "));
@@ -231,7 +144,7 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
   return item;
 }
 
-ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std::vector<Table>& ours, double tolerance) {
+ReproductionItem claim_item(const PublishedClaim& c, const std::vector<Table>& ours, double tolerance) {
   const std::vector<const PublishedTable*>& order = c.tables;
   ReproductionItem item{fmt::format("{}", fmt::join(c.order, ", ")), c.text, {}, {}, "", "", c.id};
   std::map<std::string, std::vector<std::string>> reversed;  // "A above B" → the rows where it is
@@ -258,14 +171,9 @@ ReproductionItem claim_item(const Reader& r, const PublishedClaim& c, const std:
       item.values.emplace_back(label, here.back());
     }
     for (std::size_t a = 0; a < order.size(); ++a)
-      for (std::size_t b = a + 1; b < order.size(); ++b) {
-        if (paper[a] > paper[b])
-          r.fail(nullptr, "claims",
-                 fmt::format("{} of {} ({:g}) is above {}'s ({:g}): `order` lists the tables best (lowest) first", row,
-                             order[a]->table, paper[a], order[b]->table, paper[b]));
+      for (std::size_t b = a + 1; b < order.size(); ++b)
         if (paper[a] < paper[b] && here[a] > here[b])
           reversed[fmt::format("{} above {}", order[a]->label, order[b]->label)].push_back(row);
-      }
   }
   if (!reversed.empty()) {
     item.verdict = "reversed";
@@ -340,6 +248,96 @@ ReproductionItem claim_on_our_rows(const PublishedClaim& c, const std::vector<Ta
   return item;
 }
 
+/// The rows of our table `t` (its first column names them; "mean" rows left out) with a number in `column`.
+std::vector<std::pair<std::string, double>> our_column(const Table& t, const std::string& column) {
+  std::vector<std::pair<std::string, double>> out;
+  const std::size_t j = column_index(t, column);
+  for (const auto& row : t.rows)
+    if (j < row.size() && row[j].value && !row.empty() && row[0].text != "mean") out.emplace_back(row[0].text, *row[j].value);
+  return out;
+}
+
+/// A `largest` claim: the paper's row holds the largest value of the column; does ours?
+ReproductionItem largest_item(const PublishedClaim& c, const std::vector<Table>& ours) {
+  const PublishedTable& p = *c.table;
+  ReproductionItem item{p.table, c.text, {}, {}, "", "", c.id};
+  const Table* t = find_table(ours, p.ours);
+  const auto j = static_cast<std::size_t>(std::find(p.columns.begin(), p.columns.end(), c.column) - p.columns.begin());
+  for (const auto& [row, values] : p.rows) {
+    const auto v = t ? our_value(*t, p, row, c.column) : std::nullopt;
+    if (!v) {
+      item.verdict = "not-comparable";
+      item.detail = fmt::format("our table '{}' has no number at row '{}', column '{}'", p.ours, row, c.column);
+      return item;
+    }
+    const std::string label = fmt::format("{} {}", row, c.column);
+    item.paper_values.emplace_back(label, values[j]);
+    item.values.emplace_back(label, *v);
+  }
+  const auto top = std::max_element(item.values.begin(), item.values.end(),
+                                    [](const auto& a, const auto& b) { return a.second < b.second; });
+  const std::string expected = fmt::format("{} {}", c.largest, c.column);
+  item.verdict = top->first == expected ? "holds" : "reversed";
+  item.detail = item.verdict == "holds"
+                    ? fmt::format("the largest {} is {}'s here too ({:.6g})", c.column, c.largest, top->second)
+                    : fmt::format("the largest {} here is {}'s ({:.6g}), not {}'s", c.column,
+                                  top->first.substr(0, top->first.size() - c.column.size() - 1), top->second, c.largest);
+  if (!c.note.empty()) item.detail += ". " + c.note;
+  return item;
+}
+
+/// An `ours` claim: a sign of one column on every row, or columns that rise on every row.
+ReproductionItem ours_claim_item(const PublishedClaim& c, const std::vector<Table>& ours) {
+  ReproductionItem item{c.ours, c.text, {}, {}, "", "", c.id};
+  const Table* t = find_table(ours, c.ours);
+  if (!t) {
+    item.verdict = "not-comparable";
+    item.detail = fmt::format("this run wrote no table '{}'", c.ours);
+    return item;
+  }
+  const std::vector<std::string> columns = c.sign != 0 ? std::vector<std::string>{c.column} : c.order;
+  std::vector<std::vector<std::pair<std::string, double>>> values;
+  for (const auto& column : columns) {
+    values.push_back(our_column(*t, column));
+    if (values.back().empty() || values.back().size() != values.front().size()) {
+      item.verdict = "not-comparable";
+      item.detail = fmt::format("our table '{}' has no number in column '{}' on some row", c.ours, column);
+      return item;
+    }
+  }
+  // Per row, how far it lies in the claim's direction: the value times the sign, or each next column's lead over the
+  // one before (the smallest lead); beyond the margin it confirms, below −margin it contradicts, else a tie.
+  std::vector<std::string> against, ties;
+  for (std::size_t i = 0; i < values.front().size(); ++i) {
+    const std::string& row = values.front()[i].first;
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      item.values.emplace_back(fmt::format("{}: {}", row, columns[k]), values[k][i].second);
+    double lead = std::numeric_limits<double>::infinity();
+    if (c.sign != 0) lead = c.sign * values.front()[i].second;
+    for (std::size_t k = 0; c.sign == 0 && k + 1 < columns.size(); ++k) {
+      const double a = values[k][i].second, b = values[k + 1][i].second;
+      lead = std::min(lead, c.magnitude ? std::fabs(b) - std::fabs(a) : b - a);
+    }
+    if (lead < -c.margin) against.push_back(row);
+    else if (!(lead > c.margin)) ties.push_back(row);
+  }
+  const std::size_t rows = values.front().size();
+  const std::string what = c.sign != 0 ? fmt::format("{} {} 0", c.column, c.sign > 0 ? ">" : "<")
+                                       : fmt::format("{}{} rising", c.magnitude ? "|values| of " : "", fmt::join(columns, ", "));
+  const std::string margin = c.margin > 0 ? fmt::format(" by more than {:g}", c.margin) : "";
+  item.verdict = !against.empty() ? "reversed" : !ties.empty() ? "differs" : "holds";
+  if (item.verdict == "holds") item.detail = fmt::format("{}{} on every row of ours ({})", what, margin, rows);
+  if (!against.empty())
+    item.detail = fmt::format("the other way{} on {} of {} rows ({})", margin, against.size(), rows, fmt::join(against, ", "));
+  if (!ties.empty())
+    item.detail += fmt::format("{}neither way{} on {} of {} rows ({})", item.detail.empty() ? "" : "; ",
+                               c.margin > 0 ? fmt::format(" beyond ±{:g}", c.margin) : "", ties.size(), rows, fmt::join(ties, ", "));
+  item.detail = fmt::format("claim: {}; ", what) + item.detail;
+  item.detail += "; the paper prints no number for it, so ours alone are judged";
+  if (!c.note.empty()) item.detail += ". " + c.note;
+  return item;
+}
+
 bool recovery_check(const Reproduction& r) { return r.data.data == "synthetic" && r.data.truth_is_compared_model; }
 
 std::string data_sentence(const ReproductionSpec& d) {
@@ -357,24 +355,25 @@ Reproduction reproduce(const ReproductionSpec& spec, const std::vector<Table>& o
 }
 
 Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text, const std::vector<Table>& ours) {
-  const Reader r(spec.published);
-  const toml::table root = spec_file::parse_toml(text, spec.published);
-  r.only_keys(root, "", {"paper", "title", "source", "tolerance_rel", "tables", "claims"});
+  PaperFile paper = parse_paper_file(text, spec.published);
   Reproduction out;
-  out.paper = r.required_string(root, "paper", "");
-  out.title = r.required_string(root, "title", "");
-  out.source = r.required_string(root, "source", "");
-  out.tolerance_rel = r.number(root, "tolerance_rel", "").value_or(0.1);
-  if (!(out.tolerance_rel >= 0)) r.fail(root.get("tolerance_rel"), "tolerance_rel", "expected a number >= 0");
+  out.paper = paper.paper;
+  out.title = paper.title;
+  out.source = paper.source;
+  out.tolerance_rel = paper.tolerance_rel;
   out.data = spec;
-  auto tables = read_tables(r, root);
-  for (auto& p : tables)
+  for (auto& p : paper.tables)
     if (p.not_comparable.empty()) p.not_comparable = spec.numbers_not_comparable;
-  const auto claims = read_claims(r, root, tables);
-  for (const auto& c : claims)
-    out.items.push_back(spec.claims_on_our_rows ? claim_on_our_rows(c, ours, spec.numbers_not_comparable)
-                                                : claim_item(r, c, ours, out.tolerance_rel));
-  for (const auto& p : tables) {
+  for (const auto& c : paper.claims) {
+    if (!c.ours.empty())
+      out.items.push_back(ours_claim_item(c, ours));
+    else if (c.table)
+      out.items.push_back(largest_item(c, ours));
+    else
+      out.items.push_back(spec.claims_on_our_rows ? claim_on_our_rows(c, ours, spec.numbers_not_comparable)
+                                                  : claim_item(c, ours, out.tolerance_rel));
+  }
+  for (const auto& p : paper.tables) {
     if (!spec.claims_on_our_rows) {
       out.items.push_back(table_item(p, ours, out.tolerance_rel));
       continue;

@@ -2,15 +2,23 @@
 // The reproduction report of a preset (`reproduction.md`, `reproduction.json` beside its tables): each published
 // table or claim of a paper beside the same numbers from our tables, the difference, and a verdict.
 //
-// The paper's numbers live in a file of their own (datasets/papers/<paper>.toml, as printed, each table cited):
+// The paper's numbers live in a file of their own (datasets/papers/<paper>.toml, as printed, each table cited; read by
+// engine/sweep/paper_file.hpp):
 //   paper, title, source, tolerance_rel (numbers within it "hold")
 //   [[tables]]  table ("Table 3"), ours (the id of our table with the same rows and columns), label (what the
 //               table is of, e.g. the model), columns, rows = [["Test 1", 0.32, ...], ...], compare (the columns
 //               compared; default all), scale (printed value × scale = ours, e.g. 0.01 for a paper's %; default 1),
 //               numbers_not_comparable (the reason, when only rankings can be judged: another metric or unit)
-//   [[claims]]  id (short, for the report's rows), text, order = the tables best (lowest) first as the paper's
-//               numbers rank them, column (the one
-//               they are ranked by; optional when each table compares one), note (what a verdict can mean)
+//   [[claims]]  id (short, for the report's rows), text, note (what a verdict can mean), and one of
+//               - order = the tables best (lowest) first as the paper's numbers rank them, column (the one they are
+//                 ranked by; optional when each table compares one);
+//               - table (a [[tables]] entry), column, largest = the row the paper says holds the largest value of
+//                 that column (its own numbers must agree): judged on ours, `reversed` naming our largest;
+//               - ours = the id of our table, for a statement the paper prints no number for, judged on our rows
+//                 alone: sign = "positive"/"negative" of `column` on every row, or order = our table's columns that
+//                 rise on every row, lowest first (magnitude = true: their absolute values); margin (in the column's
+//                 unit, default 0): a row within it is neither way, and a verdict with such rows and none the other
+//                 way is `differs`
 // Verdicts (fixed vocabulary):
 //   holds           same ranking (a claim) and every number within tolerance_rel of the paper's (or the same
 //                   ranking alone, said so, when the numbers are not comparable)

@@ -15,6 +15,9 @@
 //                 bound; then params…_se, the relative standard errors (%) with the identifiability flags
 //   errors        metric of each model's best run on each dataset, fitted and predicted (crfd Table 8,
 //                 mfm Tables 4–5, fdsp Table 3)
+//   energy        the energy each model's best run dissipates per cycle (∫F dx, the loop's area) on each dataset,
+//                 as its difference in % from the measured one (the fvd paper's argument under its Figs. 3-4);
+//                 needs the records (StoreResults' loader)
 //   held-out      a model fitted on several records (laws across conditions) on each record it fitted and
 //                 predicted, beside the record's own fit (the same registered model fitted to it alone) and
 //                 their ratio, with the means and the worst ratio per role
@@ -31,6 +34,7 @@
 //   overview      groups, tasks, failures, wall time and candidate-samples/s
 //   sweep         (command line) every table the sweep file asks for
 #include <map>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -43,6 +47,7 @@
 #include "engine/sweep/analysis.hpp"
 #include "engine/sweep/spec.hpp"
 #include "engine/sweep/store.hpp"
+#include "engine/sweep/store_records.hpp"
 
 namespace dampbench::sweep {
 
@@ -62,7 +67,9 @@ ResolvedModel chosen_law_model(const std::string& base_model_id, const std::stri
 
 class StoreResults {
  public:
-  explicit StoreResults(const Store& store);
+  /// `loader` reads the records again when a table needs their samples (the energy kind): once, on the first such
+  /// request (reload_store_records); without one, those tables say that the records are not available.
+  explicit StoreResults(const Store& store, Loader loader = {});
 
   const StoreHeader header;
   std::vector<GroupRecord> groups;
@@ -72,8 +79,16 @@ class StoreResults {
   /// The model of a group's parameters: its part's model, or the law model the group chose (GroupRecord::laws).
   [[nodiscard]] const Model& model(const GroupRecord& g) const;
   [[nodiscard]] int part_count() const { return static_cast<int>(header.parts.size()); }
+  /// Every record of the header (StoreHeader::datasets' order) as read again; each says why when it was not
+  /// (every one, without a loader).
+  [[nodiscard]] const std::vector<StoreRecord>& records() const;
+  /// Dataset `dataset` of `part` (the part's numbering) as read again, or null with the reason in `why`.
+  [[nodiscard]] const Signals* record(int part, int dataset, std::string& why) const;
 
  private:
+  Loader loader_;
+  mutable std::once_flag records_read_;
+  mutable std::vector<StoreRecord> records_;  ///< StoreHeader::datasets' order, read on the first record() call
   std::vector<std::vector<ResolvedModel>> models_;
   std::map<std::tuple<int, int, std::string>, ResolvedModel> chosen_;  ///< (part, model, laws) → law model
 };

@@ -14,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include "engine/cli/report_command.hpp"
+#include "engine/cli/run_command.hpp"
 #include "engine/cli/table_command.hpp"
 #include "engine/identification/convergence.hpp"
 #include "engine/model/metrics.hpp"
@@ -227,7 +228,7 @@ class StoreReader {
   const sweep::StoreResults& results() {
     released([&] {
       const std::lock_guard lock(mutex_);
-      if (!results_) results_ = std::make_unique<sweep::StoreResults>(store_);
+      if (!results_) results_ = std::make_unique<sweep::StoreResults>(store_, cli::sweep_loader());
     });
     return *results_;  // never replaced once read: other threads may hold it
   }

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The presets' verdicts, and the figures beside them, are the ones docs/reproduce.md shows.
 
-crfd.toml, mfm.toml and fdsp.toml run the papers' procedures on grids made from a compared model (their verdicts are
+fvd.toml runs the fvd paper's procedure on records whose truth is none of its models (evidence, section "## fvd:
+Tables 3–14", rows `| <id> | **<verdict>**`); crfd.toml, mfm.toml and fdsp.toml run the papers' procedures on grids made from a compared model (their verdicts are
 recovery checks); crfd_neutral.toml, mfm_neutral.toml and fdsp_neutral.toml on grids whose truth is none of the
 compared models (evidence); mfm_utfsm.toml and fdsp_utfsm.toml run the mfm and fdsp papers' protocols on the real
 UTFSM damper. Each is run as a
@@ -34,9 +35,10 @@ import subprocess
 import sys
 
 RECOVERY_PRESETS = ["crfd", "mfm", "fdsp"]  # grids made from a compared model
-EVIDENCE_PRESETS = ["crfd_neutral", "mfm_neutral", "fdsp_neutral"]
+EVIDENCE_PRESETS = ["fvd", "crfd_neutral", "mfm_neutral", "fdsp_neutral"]
 REAL_DATA_PRESETS = ["mfm_utfsm", "fdsp_utfsm"]  # read DATA_DIR/utfsm-mr-damper
 SECTION = "## crfd, mfm, fdsp"
+OWN_SECTIONS = {"fvd": "## fvd: Tables 3–14"}  # a preset with a section of its own: its rows have no preset column
 
 NUMBER = re.compile(r"(?<![\w.])([+\-−]?\d+(?:\.\d+)?(?:e[+\-−]?\d+)?)")
 CONDITION = re.compile(r"^((?:,\s*|\s+and\s+|\s+or\s+|\s*[–-]\s*)[\d.]+)*\s*(Hz|mm|m|A|°|V|kN)(?!\w)")
@@ -67,12 +69,13 @@ def item_numbers(item):
     return {abs(x) for x in found}
 
 
-def unmatched_numbers(text, item):
-    """The numbers of `text` that are none of the item's at their printed precision."""
-    known = item_numbers(item)
+def unmatched_in(text, known, names=None):
+    """The numbers of `text` that are none of `known` at their printed precision; a number after a match of `names`
+    (a regex ending at the number) names something and is not checked."""
     missing = []
     for m in NUMBER.finditer(text):
-        if CONDITION.match(text[m.end():]) or REFERENCE.search(text[:m.start()]):
+        before = text[:m.start()]
+        if CONDITION.match(text[m.end():]) or REFERENCE.search(before) or (names and names.search(before)):
             continue
         token = m.group(1).replace("−", "-")
         mantissa, _, exponent = token.partition("e")
@@ -83,18 +86,23 @@ def unmatched_numbers(text, item):
     return missing
 
 
-def docs_section(root):
+def unmatched_numbers(text, item):
+    """The numbers of `text` that are none of the item's at their printed precision."""
+    return unmatched_in(text, item_numbers(item))
+
+
+def docs_section(root, section):
     text = (root / "docs" / "reproduce.md").read_text()
-    begin = text.find("\n" + SECTION + "\n")
+    begin = text.find("\n" + section + "\n")
     if begin < 0:
-        sys.exit(f"docs/reproduce.md has no section '{SECTION}'")
-    end = text.find("\n## ", begin + len(SECTION) + 1)
+        sys.exit(f"docs/reproduce.md has no section '{section}'")
+    end = text.find("\n## ", begin + len(section) + 1)
     return text[begin:end if end >= 0 else len(text)]
 
 
 def is_claim(item):
-    """A claim of the paper ("table8-laws"), not one of its tables."""
-    return item["id"].startswith("table") and "-" in item["id"]
+    """A claim of the paper ("table8-laws", "energy-linear-elastic"), not one of its tables (whose id is the table's)."""
+    return item["id"] != item["table"]
 
 
 def checked_items(report):
@@ -113,7 +121,7 @@ def main():
     exe, root, work, preset = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3]), sys.argv[4]
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
-    docs = docs_section(root)
+    docs = docs_section(root, OWN_SECTIONS.get(preset, SECTION))
     env = dict(os.environ, DAMPBENCH_GENERATED_DIR=str(work / "generated"))
     if preset in REAL_DATA_PRESETS:
         data = pathlib.Path(os.environ.get("DAMPBENCH_SHARED_DATA_DIR") or
@@ -138,12 +146,14 @@ def main():
             failures.append(f"{preset} {item['id']}: {'not ' if recovery else ''}labelled a recovery check")
     for item in checked_items(report):
         claims += is_claim(item)
-        prefix = f"| {preset} | {item['id']} | **{item['verdict']}**"
+        own = preset in OWN_SECTIONS
+        prefix = f"| {item['id']} | **{item['verdict']}**" if own else f"| {preset} | {item['id']} | **{item['verdict']}**"
         row = next((line for line in docs.split("\n") if line.startswith(prefix)), None)
         if row is None:
             failures.append(f"docs/reproduce.md lacks the row '{prefix}' ({item['detail']})")
             continue
-        what = row.split(" | ", 3)[3] if row.count(" | ") >= 3 else ""
+        columns = 2 if own else 3  # the row's text after its preset, id and verdict
+        what = row.split(" | ", columns)[columns] if row.count(" | ") >= columns else ""
         missing = unmatched_numbers(what, item)
         if missing:
             failures.append(f"docs/reproduce.md, row '{prefix}': {', '.join(missing)} is none of the run's numbers for "

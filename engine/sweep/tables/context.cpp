@@ -36,8 +36,9 @@ Context::Context(const StoreResults& results, int p, const TableSpec& request)
         std::find(t.optimizers.begin(), t.optimizers.end(), optimizer_label(g.optimizer)) == t.optimizers.end())
       continue;
     if (metric && g.metric != *metric) continue;
-    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors and held-out.
-    if (!t.where.everything() && t.kind != "errors" && t.kind != "held-out") {
+    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors, energy and
+    // held-out.
+    if (!t.where.everything() && t.kind != "errors" && t.kind != "energy" && t.kind != "held-out") {
       const auto& fs = fitset(g);
       if (std::none_of(fs.fit.begin(), fs.fit.end(), [&](int d) { return matches(t.where, d); })) continue;
     }
@@ -134,6 +135,17 @@ std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int 
   for (const auto& x : g.dataset_metrics)
     if (x.run == best.run && x.dataset == d && x.predicted == predicted) return x.metrics[static_cast<std::size_t>(metric)];
   return std::nullopt;
+}
+
+std::set<int> series_datasets(const Context& c, const std::vector<Series>& list, bool fits, bool predictions) {
+  std::set<int> datasets;
+  for (const auto& s : list)
+    for (const GroupRecord* g : s.groups) {
+      const auto& fs = c.fitset(*g);
+      if (fits) datasets.insert(fs.fit.begin(), fs.fit.end());
+      if (predictions) datasets.insert(fs.predict.begin(), fs.predict.end());
+    }
+  return datasets;
 }
 
 SeriesValue series_value(const Context& c, const Series& s, int d, int metric, bool fits, bool predictions) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,6 +84,9 @@ std::vector<double> best_values(const GroupRecord& g);
 /// Metric `metric` of group `g`'s best run on dataset `d`: as fitted (its own fit or a joint fit's dataset), or as
 /// predicted; none when the group does not fit (or predict) `d`.
 std::optional<double> dataset_value(const Context& c, const GroupRecord& g, int d, bool predicted, int metric);
+
+/// The datasets the series' groups fit (with `fits`) and predict (with `predictions`).
+std::set<int> series_datasets(const Context& c, const std::vector<Series>& list, bool fits, bool predictions);
 
 /// One series' value on one dataset: the fit value when the series fits it (and `fits`), else the prediction of it
 /// (when `predictions`), the mean over the series' groups that fit or predict it.

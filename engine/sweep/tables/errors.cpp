@@ -26,13 +26,7 @@ void errors_tables(const Context& c, std::vector<Table>& out) {
                                     shown != optimized ? fmt::format(" (runs optimized {})", metric_name(optimized)) : ""),
                         cols);
     const bool fits = c.t.role != "predict", predictions = c.t.role != "fit";
-    std::set<int> datasets;
-    for (const auto& s : list)
-      for (const GroupRecord* g : s.groups) {
-        const auto& fs = c.fitset(*g);
-        if (fits) datasets.insert(fs.fit.begin(), fs.fit.end());
-        if (predictions) datasets.insert(fs.predict.begin(), fs.predict.end());
-      }
+    const std::set<int> datasets = series_datasets(c, list, fits, predictions);
     std::vector<double> sums(list.size(), 0);
     std::vector<int> counts(list.size(), 0);
     bool averaged = false, predicted_any = false, unconverged_any = false;

@@ -1,9 +1,11 @@
 // A store read once for its tables: header, groups with their traces, the parts' specs, the rebuilt models.
 #include "engine/sweep/tables.hpp"
 
+#include <utility>
+
 namespace dampbench::sweep {
 
-StoreResults::StoreResults(const Store& store) : header(store.header()) {
+StoreResults::StoreResults(const Store& store, Loader loader) : header(store.header()), loader_(std::move(loader)) {
   GroupQuery q;
   q.traces = true;
   groups = store.groups(q);
@@ -41,6 +43,25 @@ const Model& StoreResults::model(const GroupRecord& g) const {
 
 const Model& StoreResults::model(int part, int m) const {
   return *models_.at(static_cast<std::size_t>(part)).at(static_cast<std::size_t>(m)).model;
+}
+
+const std::vector<StoreRecord>& StoreResults::records() const {
+  std::call_once(records_read_, [&] {
+    if (loader_) {
+      records_ = reload_store_records(header, loader_);
+      return;
+    }
+    records_.resize(header.datasets.size());
+    for (StoreRecord& r : records_)
+      r.unavailable = "the records were not read again with the store (tables of the energy kind need their samples)";
+  });
+  return records_;
+}
+
+const Signals* StoreResults::record(int part, int dataset, std::string& why) const {
+  const StoreRecord& r = records().at(static_cast<std::size_t>(header.dataset(part, dataset)));
+  why = r.unavailable;
+  return r.signals();
 }
 
 }  // namespace dampbench::sweep

@@ -233,7 +233,7 @@ std::string section_of(const std::filesystem::path& path, const std::string& fro
   return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
 }
 
-// The fvd preset as a user runs it: the paper's Tables 3-6 beside ours with verdicts, and the figures
+// The fvd preset as a user runs it: the paper's Tables 3-14 and its energy argument beside ours with verdicts, and the figures
 // docs/reproduce.md shows are the ones this build writes (a doc table row per CSV row, the leading columns).
 TEST(Cli, FvdPresetWritesItsReproductionAndTheDocsShowItsFigures) {
   const auto out = testing::test_temp_dir("cli_fvd") / "fvd";
@@ -246,7 +246,8 @@ TEST(Cli, FvdPresetWritesItsReproductionAndTheDocsShowItsFigures) {
   EXPECT_EQ(j.at("data").at("kind"), "synthetic");
   EXPECT_EQ(j.at("data").at("truth_is_compared_model"), false);
   EXPECT_EQ(j.at("data").at("records").size(), 4u);
-  ASSERT_EQ(j.at("items").size(), 5u);  // the ranking claim, Tables 3-6
+  // The ranking claim, the two energy claims, the three variability claims, Tables 3-14.
+  ASSERT_EQ(j.at("items").size(), 18u);
   const auto& claim = j.at("items").at(0);
   // The nested models rank as the paper's do on every test; our synthetic truth sits close to the elastic models,
   // so their OF values are far below the paper's real-damper ones.
@@ -272,6 +273,7 @@ TEST(Cli, FvdPresetWritesItsReproductionAndTheDocsShowItsFigures) {
   expect_rows_in_docs("ranking.csv", 6);
   expect_rows_in_docs("table06_of_abs_fvd.gv_quadratic_elastic.csv", 5);
   expect_rows_in_docs("table14_variability_fvd.gv_quadratic_elastic.csv", 4);
+  expect_rows_in_docs("energy.csv", 7);
   for (const auto& item : j.at("items"))
     EXPECT_NE(docs.find(fmt::format("| {} | **{}** |", item.at("id").get<std::string>(),
                                     item.at("verdict").get<std::string>())),

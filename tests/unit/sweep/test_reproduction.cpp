@@ -227,6 +227,97 @@ TEST(Reproduction, APaperInPercentComparesAfterItsScaleAndAClaimRanksOneColumnPe
   EXPECT_NE(r.items[0].detail.find("M above P on every row (2)"), std::string::npos) << r.items[0].detail;
 }
 
+/// Our energy-style table: a row per test, a signed column per model ("dE A", "dE B") and a mean row.
+Table energy(double a1, double a2, double b1, double b2) {
+  Table t{"energy", "energy", {"Dataset", "dE A", "dE B"}, {}};
+  t.rows.push_back({"Test 1", number_cell(a1), number_cell(b1)});
+  t.rows.push_back({"Test 2", number_cell(a2), number_cell(b2)});
+  t.rows.push_back({"mean", number_cell(-99), number_cell(99)});  // not a condition: never judged
+  return t;
+}
+
+TEST(Reproduction, AClaimWithoutPublishedNumbersIsJudgedOnOurTableAlone) {
+  // "A overestimates at every velocity" (a sign) and "B is closer than A" (|B| below |A|), with a margin of 1.
+  const auto spec = paper_file(
+      "[[claims]]\nid = \"sign\"\ntext = \"A overestimates\"\nours = \"energy\"\ncolumn = \"dE A\"\n"
+      "sign = \"positive\"\nmargin = 1.0\n"
+      "[[claims]]\nid = \"closer\"\ntext = \"B closer than A\"\nours = \"energy\"\n"
+      "order = [\"dE B\", \"dE A\"]\nmagnitude = true\nmargin = 1.0\n");
+  const std::vector<Table> base{ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)};
+  auto with = [&](Table e) {
+    std::vector<Table> t = base;
+    t.push_back(std::move(e));
+    return reproduce(spec, t);
+  };
+  // A above +1 on both rows, |B| at least 1 below |A| on both (−3 is far from 0 in magnitude order: |−3| < |5|).
+  Reproduction r = with(energy(5, 2.5, -3, 0.5));
+  ASSERT_EQ(r.items.size(), 5u);  // the ranking claim, the two claims on ours, the two tables
+  EXPECT_EQ(r.items[1].id, "sign");
+  EXPECT_EQ(r.items[1].verdict, "holds") << r.items[1].detail;
+  EXPECT_EQ(r.items[2].verdict, "holds") << r.items[2].detail;
+  EXPECT_TRUE(r.items[1].paper_values.empty());
+  ASSERT_EQ(r.items[1].values.size(), 2u);  // the mean row is left out
+  EXPECT_EQ(r.items[1].values[1].first, "Test 2: dE A");
+  ASSERT_EQ(r.items[2].values.size(), 4u);
+  // Below −1 on one row: the other way there.
+  r = with(energy(5, -1.5, -3, 0.5));
+  EXPECT_EQ(r.items[1].verdict, "reversed") << r.items[1].detail;
+  EXPECT_NE(r.items[1].detail.find("the other way by more than 1 on 1 of 2 rows (Test 2)"), std::string::npos)
+      << r.items[1].detail;
+  // Within ±1 of 0 on a row and nowhere the other way: neither over nor under there, so it differs.
+  r = with(energy(5, 0.4, 0.2, 0.1));
+  EXPECT_EQ(r.items[1].verdict, "differs") << r.items[1].detail;
+  EXPECT_NE(r.items[1].detail.find("neither way beyond ±1 on 1 of 2 rows (Test 2)"), std::string::npos) << r.items[1].detail;
+  EXPECT_EQ(r.items[2].verdict, "differs") << r.items[2].detail;  // |0.1| vs |0.4|: a lead of 0.3, within the margin
+  // |B| above |A| by more than the margin on a row: reversed.
+  r = with(energy(5, 2.5, -7, 0.5));
+  EXPECT_EQ(r.items[2].verdict, "reversed") << r.items[2].detail;
+  EXPECT_NE(r.items[2].detail.find("(Test 1)"), std::string::npos) << r.items[2].detail;
+  // Without our table: not comparable, with why.
+  r = reproduce(spec, base);
+  EXPECT_EQ(r.items[1].verdict, "not-comparable");
+  EXPECT_NE(r.items[1].detail.find("this run wrote no table 'energy'"), std::string::npos) << r.items[1].detail;
+  // The markdown lists ours alone for such a claim.
+  const std::string md = reproduction_markdown(with(energy(5, 2.5, -3, 0.5)));
+  EXPECT_NE(md.find("| | ours |\n|---|---:|\n| Test 1: dE A | 5 |"), std::string::npos) << md;
+}
+
+TEST(Reproduction, ALargestClaimNamesOurLargestRowWhenItIsAnother) {
+  // The paper's Table 3: C varies most (2.4 against 1.2); ours: C 0.3 against alpha 0.26 (holds), or 0.5 (reversed).
+  const auto spec = paper_file(
+      "[[claims]]\nid = \"var\"\ntext = \"C varies most\"\ntable = \"Table 3\"\ncolumn = \"ratio\"\n"
+      "largest = \"C\"\n"
+      "[[tables]]\ntable = \"Table 3\"\nours = \"v\"\ncolumns = [\"mean\", \"ratio\"]\n"
+      "numbers_not_comparable = \"another damper\"\nrows = [[\"C\", 126.0, 2.4], [\"alpha\", 0.42, 1.2]]\n");
+  auto variability = [](double c, double alpha) {
+    Table t{"v", "v", {"Parameter", "mean", "ratio"}, {}};
+    t.rows.push_back({"m", number_cell(1), number_cell(9)});  // a row the paper's table does not list: not compared
+    t.rows.push_back({"C", number_cell(50), number_cell(c)});
+    t.rows.push_back({"alpha", number_cell(0.4), number_cell(alpha)});
+    return t;
+  };
+  const std::vector<Table> base{ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)};
+  std::vector<Table> t = base;
+  t.push_back(variability(0.3, 0.26));
+  Reproduction r = reproduce(spec, t);
+  ASSERT_EQ(r.items.size(), 5u);
+  EXPECT_EQ(r.items[1].verdict, "holds") << r.items[1].detail;
+  ASSERT_EQ(r.items[1].paper_values.size(), 2u);
+  EXPECT_EQ(r.items[1].paper_values[0].first, r.items[1].values[0].first);
+  EXPECT_DOUBLE_EQ(r.items[1].paper_values[0].second, 2.4);
+  t.back() = variability(0.3, 0.5);
+  r = reproduce(spec, t);
+  EXPECT_EQ(r.items[1].verdict, "reversed");
+  EXPECT_NE(r.items[1].detail.find("the largest ratio here is alpha's (0.5), not C's"), std::string::npos) << r.items[1].detail;
+  // A paper file whose own numbers contradict its `largest` is refused.
+  const auto bad = paper_file(
+      "[[claims]]\ntext = \"x\"\ntable = \"Table 3\"\ncolumn = \"ratio\"\nlargest = \"alpha\"\n"
+      "[[tables]]\ntable = \"Table 3\"\nours = \"v\"\ncolumns = [\"mean\", \"ratio\"]\n"
+      "rows = [[\"C\", 126.0, 2.4], [\"alpha\", 0.42, 1.2]]\n");
+  const std::string e = testing::error_of([&] { (void)reproduce(bad, t); });
+  EXPECT_NE(e.find("the paper's largest ratio in Table 3 is row 'C', not 'alpha'"), std::string::npos) << e;
+}
+
 TEST(Reproduction, AMalformedPaperFileIsReportedWithFileAndKey) {
   const std::vector<Table> tables{ours("a", 0.10, 0.20), ours("b", 0.30, 0.40)};
   // order naming a table the file does not have
@@ -242,6 +333,17 @@ TEST(Reproduction, AMalformedPaperFileIsReportedWithFileAndKey) {
   bad = paper_file("[[tables]]\ntable = \"T\"\nours = \"a\"\ncolumns = [\"Min\"]\nrows = [[\"Test 1\"]]\n");
   e = testing::error_of([&] { (void)reproduce(bad, tables); });
   EXPECT_NE(e.find("expected a row label and 1 numbers"), std::string::npos) << e;
+  // a claim on our table with both forms, or with neither
+  bad = paper_file("[[claims]]\ntext = \"x\"\nours = \"a\"\ncolumn = \"Min\"\nsign = \"positive\"\norder = [\"Min\", \"Mean\"]\n");
+  e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("takes either `sign` and `column` or `order`"), std::string::npos) << e;
+  bad = paper_file("[[claims]]\ntext = \"x\"\nours = \"a\"\ncolumn = \"Min\"\nsign = \"up\"\n");
+  e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("expected positive or negative, got 'up'"), std::string::npos) << e;
+  // a sign on the paper's tables (no `ours`)
+  bad = paper_file("[[claims]]\ntext = \"x\"\ncolumn = \"Min\"\nsign = \"positive\"\norder = [\"Table 1\", \"Table 2\"]\n");
+  e = testing::error_of([&] { (void)reproduce(bad, tables); });
+  EXPECT_NE(e.find("belong to a claim on our table alone"), std::string::npos) << e;
   // a missing file
   e = testing::error_of([&] { (void)reproduce({"/nonexistent/paper.toml", "real", "", false, ""}, tables); });
   EXPECT_NE(e.find("/nonexistent/paper.toml"), std::string::npos) << e;

@@ -316,6 +316,39 @@ glob = "{}/data/*.csv"
   EXPECT_EQ(confirmed.output.find("†"), std::string::npos) << confirmed.output;
 }
 
+// The energy table: on a record of a linear viscous damper, F = c·v on x = X sin(ωt), the measured loop's area is
+// π c ω X² per cycle (hand-computed: 39.478 J for c = 2e4 N·s/m, X = 10 mm, 1 Hz) and the fitted linear viscous
+// model dissipates the same; when the record is gone, `table` says so instead of printing a row.
+TEST(SweepEnergy, TheLoopAreaOfALinearViscousRecordAndAGoneRecord) {
+  const fs::path dir = testing::test_temp_dir("sweeprun");
+  const double c = 2e4, X = 0.01, f = 1.0, w = 2 * std::numbers::pi * f;
+  std::string csv = "t[s],x[mm],F[N]\n";
+  for (int k = 0; k < 601; ++k) {  // 3 cycles, 200 samples each
+    const double t = 3.0 * k / (f * 600);
+    csv += fmt::format("{:.12g},{:.12g},{:.12g}\n", t, 1e3 * X * std::sin(w * t), c * X * w * std::cos(w * t));
+  }
+  testing::write_text(dir / "data" / "viscous.csv", csv);
+  const auto table = sweep_table(dir, "fvd.linear_viscous", 3, 20, 40, "energy");
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  const auto row_at = table.output.find("\nviscous,");
+  ASSERT_NE(row_at, std::string::npos) << table.output;
+  std::stringstream row(table.output.substr(row_at + 1));
+  std::string name, cycles, measured, error;
+  std::getline(row, name, ',');
+  std::getline(row, cycles, ',');
+  std::getline(row, measured, ',');
+  std::getline(row, error);
+  EXPECT_EQ(cycles, "3");
+  const double expected = std::numbers::pi * c * w * X * X;
+  EXPECT_NEAR(std::stod(measured), expected, 1e-3 * expected) << table.output;
+  EXPECT_LT(std::fabs(std::stod(error)), 0.5) << table.output;  // dE %: the model is the record's own law
+
+  fs::remove(dir / "data" / "viscous.csv");
+  const auto gone = run_dampbench(fmt::format("table {} --kind energy --format md", (dir / "out" / "store.sqlite").string()));
+  EXPECT_EQ(gone.output.find("| viscous |"), std::string::npos) << gone.output;
+  EXPECT_NE(gone.output.find("the records could not be read again: viscous"), std::string::npos) << gone.output;
+}
+
 // Identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
 // the stiffness (m·a = −mω²x: only K1 − mω² is determined), so both are marked ‡ in the params table and the
 // relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
