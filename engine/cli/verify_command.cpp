@@ -121,8 +121,9 @@ VerifyCount rerun_and_compare(const sweep::Plan& plan, const sweep::Store& store
             const auto old = store.group(again->index);
             const sweep::GroupRef g = plan.group(again->index);
             const Model& part_model = *plan.parts()[g.part].models[g.model].model;
-            const ResolvedModel law_model = old->laws.empty() ? ResolvedModel{}
-                                                              : sweep::chosen_law_model(std::string(part_model.id()), old->laws);
+            // A group's own laws (chosen, or held) act on the entry's registered model, not on the plan's model of it
+            const std::string& base_id = plan.spec().parts[g.part].models[g.model].model;
+            const ResolvedModel law_model = old->laws.empty() ? ResolvedModel{} : sweep::chosen_law_model(base_id, old->laws);
             std::vector<std::string> names;
             for (const auto& p : (law_model.model ? *law_model.model : part_model).parameters()) names.push_back(p.name);
             const auto diff = sweep::compare_records(*old, *again, names);

@@ -303,6 +303,7 @@ void work(const MpiJob&, const sweep::Plan& plan) {
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Bytes = std::shared_ptr<std::string>;
   RecordFitCache record_fits;  // this rank's groups that fit the same records alone share those fits
+  sweep::GroupFitCache group_fits;  // and the fits of groups that others hold to
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
@@ -322,7 +323,7 @@ void work(const MpiJob&, const sweep::Plan& plan) {
           tbb::make_filter<long long, Bytes>(
               tbb::filter_mode::parallel,
               [&](long long i) {
-                return std::make_shared<std::string>(encode_group(sweep::run_group(plan, i, &record_fits)));
+                return std::make_shared<std::string>(encode_group(sweep::run_group(plan, i, &record_fits, &group_fits)));
               }) &
           tbb::make_filter<Bytes, void>(tbb::filter_mode::serial_out_of_order, [&](const Bytes& bytes) {
             const std::lock_guard lock(mpi);

@@ -102,7 +102,9 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
     out.push_back({names[out.size()], unit, lo, hi, paper_unit});
   };
   switch (law.kind) {
-    case ParameterLaw::Kind::free: add(p.lower, p.upper, p.unit, p.paper_unit); break;
+    // A law model shows its coefficients as they are (it has no to_paper_units: a base's conversion may read other
+    // parameters, fvd's C that of alpha), so a free constant's paper unit is its own unit.
+    case ParameterLaw::Kind::free: add(p.lower, p.upper, p.unit, p.unit); break;
     case ParameterLaw::Kind::fixed: break;
     case ParameterLaw::Kind::product:
       for (std::size_t f = 0; f < law.factors.size(); ++f)

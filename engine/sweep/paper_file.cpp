@@ -141,7 +141,8 @@ std::vector<PublishedClaim> read_claims(const Reader& r, const toml::table& root
 
 /// A ranking claim's order against the paper's own numbers, on the rows its tables share.
 void check_ranking(const Reader& r, const PublishedClaim& c) {
-  for (const auto& [row, unused] : c.tables.front()->rows) {
+  for (const auto& first_row : c.tables.front()->rows) {
+    const std::string& row = first_row.first;  // a plain reference: clang 14 does not capture structured bindings
     std::vector<double> paper;
     for (const PublishedTable* p : c.tables) {
       const std::string& column = c.column.empty() ? p->compare.front() : c.column;

@@ -203,6 +203,7 @@ Plan::Plan(SweepSpec spec, const Loader& loader) : spec_(std::move(spec)) {
     tbb::parallel_for(std::size_t{0}, part.datasets.size(),
                       [&](std::size_t d) { pp.datasets[d] = load_dataset(part.datasets[d], loader); });
     for (const auto& s : part.splits) pp.splits.push_back(plan_split(part, s, pp.datasets));
+    pp.holds_any = std::any_of(part.models.begin(), part.models.end(), [](const ModelSpec& m) { return m.hold.has_value(); });
     parts_.push_back(std::move(pp));
   }
   for (int p = 0; p < static_cast<int>(parts_.size()); ++p)
@@ -235,6 +236,19 @@ GroupRef Plan::group(long long index) const {
   g.task_key = hash_key({task_key(part.spec->models[g.model].name, split.fitsets[g.fitset].key_name, opt.label),
                     hash_name(metric_name(g.metric)), hash_name(part.spec->splits[g.split].name)});
   return g;
+}
+
+long long Plan::group_index(int part, int split, int fitset, int model, int optimizer, Metric metric) const {
+  const auto block = std::find_if(blocks_.begin(), blocks_.end(), [&](const Block& b) { return b.part == part && b.split == split; });
+  if (block == blocks_.end()) return -1;
+  const PartPlan& p = parts_[part];
+  const SplitPlan& s = p.splits[split];
+  const auto& metrics = p.spec->metrics;
+  const auto m = std::find(metrics.begin(), metrics.end(), metric);
+  const auto pair = std::find(s.pairs.begin(), s.pairs.end(), std::pair{model, optimizer});
+  if (m == metrics.end() || pair == s.pairs.end() || fitset < 0 || fitset >= static_cast<int>(s.fitsets.size())) return -1;
+  const auto pairs = static_cast<long long>(s.pairs.size()), count = static_cast<long long>(metrics.size());
+  return block->first + (fitset * pairs + (pair - s.pairs.begin())) * count + (m - metrics.begin());
 }
 
 std::string Plan::group_dataset_hash(const GroupRef& g) const {

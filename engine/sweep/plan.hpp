@@ -51,6 +51,7 @@ struct PartPlan {
   std::vector<OptimizerFactory> factories;
   std::vector<LoadedDataset> datasets;
   std::vector<SplitPlan> splits;
+  bool holds_any = false;  ///< some model holds to another's fit (ModelSpec::hold): groups keep their best runs
 };
 
 class Plan {
@@ -67,6 +68,9 @@ class Plan {
   [[nodiscard]] long long groups() const { return groups_; }
   [[nodiscard]] long long tasks() const { return tasks_; }
   [[nodiscard]] GroupRef group(long long index) const;
+  /// The number of the group of (part, split, fit set, model, optimizer, metric); −1 when the split does not
+  /// identify that model with that optimizer, or the part has no such metric.
+  [[nodiscard]] long long group_index(int part, int split, int fitset, int model, int optimizer, Metric metric) const;
 
   /// Hashes of the datasets a group uses (fit then predict), combined.
   [[nodiscard]] std::string group_dataset_hash(const GroupRef& g) const;

@@ -87,9 +87,38 @@ struct GroupFit {
   [[nodiscard]] const Model& model(const Model& part_model) const { return chosen.model ? *chosen.model : part_model; }
 };
 
+/// The caches the groups of one process share: records' own fits and groups' best runs.
+struct Caches {
+  RecordFitCache* record_fits = nullptr;
+  GroupFitCache* group_fits = nullptr;
+};
+
+GroupFit fit_group(const Plan& plan, const GroupRef& g, const std::vector<const Signals*>& records, const Caches& caches);
+
+constexpr std::string_view kHeldFitFailed = "the fit it holds to";
+
+/// HeldValues of group `index`: a group made them before, or they are fitted here (and kept for the others).
+HeldValues held_values(const Plan& plan, long long index, const Caches& caches) {
+  if (auto found = caches.group_fits->find(index)) return *found;
+  const GroupRef g = plan.group(index);
+  const PartPlan& part = plan.parts()[g.part];
+  const Model& model = *part.models[g.model].model;
+  const auto records = group_records(part, part.splits[g.split].fitsets[g.fitset], model);
+  try {
+    const GroupFit fit = fit_group(plan, g, records, caches);
+    HeldValues v = held_values_of(fit.model(model), fit.outcome.best(), *records.front());
+    caches.group_fits->store(index, v);
+    return v;
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    if (what.starts_with(kHeldFitFailed)) throw;  // a fit further down the chain: its message names it
+    throw InputError(fmt::format("{}, {}: {}", kHeldFitFailed, plan.describe(g), what));
+  }
+}
+
 /// The fit of a group (engine/fit): its model, fit datasets, optimizer and budget, keyed by the group's task key.
-GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<const Signals*>& records,
-                   RecordFitCache* record_fits) {
+GroupFit fit_group(const Plan& plan, const GroupRef& g, const std::vector<const Signals*>& records, const Caches& caches) {
+  const PartPlan& part = plan.parts()[g.part];
   const OptimizerEntry& opt = part.spec->optimizers[g.optimizer];
   FitRequest request;
   request.model = &part.models[g.model];
@@ -107,7 +136,7 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
   if (chooses_laws(entry)) {  // as `fit --laws auto`, at the entry's fixed budget (the spec refuses another)
     LawSearch search = law_search(request, *request.model->model, opt.spec.name);
     search.label = fmt::format("model '{}' (laws = \"auto\")", entry.name);
-    search.record_fits = record_fits;
+    search.record_fits = caches.record_fits;
     LawSelection selection;
     out.outcome = fit_with_auto_laws(search, out.chosen, selection);
     out.laws = chosen_laws_text(selection);
@@ -116,8 +145,12 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
   }
   if (entry.start == "per-file") {  // as `fit --start per-file`: from the laws fitted to each record's own fit
     LawSearch search = law_search(request, *request.model->model, opt.spec.name);
-    search.record_fits = record_fits;
+    search.record_fits = caches.record_fits;
     request.start = start_from_record_fits(search, entry, *request.model->model, &out.pre_fit);
+  }
+  if (entry.hold) {  // from another group's fit (engine/sweep/held_fit.hpp)
+    out.chosen = held_model(plan, g, [&](long long i) { return held_values(plan, i, caches); }, out.laws);
+    request.model = &out.chosen;
   }
   out.outcome = run_fit(request);
   return out;
@@ -125,7 +158,9 @@ GroupFit fit_group(const PartPlan& part, const GroupRef& g, const std::vector<co
 
 }  // namespace
 
-GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits) {
+GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits, GroupFitCache* group_fits) {
+  GroupFitCache own_group_fits;  // without a shared one: the fits a held group needs are made for it alone
+  const Caches caches{record_fits, group_fits ? group_fits : &own_group_fits};
   const GroupRef g = plan.group(index);
   const PartPlan& part = plan.parts()[g.part];
   const FitSet& fs = part.splits[g.split].fitsets[g.fitset];
@@ -136,9 +171,12 @@ GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_
   rec.spec_hash = plan.spec().hash;
   rec.dataset_hash = plan.group_dataset_hash(g);
   try {
-    const GroupFit group_fit = fit_group(part, g, group_records(part, fs, *part.models[g.model].model), record_fits);
+    const auto records = group_records(part, fs, *part.models[g.model].model);
+    const GroupFit group_fit = fit_group(plan, g, records, caches);
     const FitOutcome& fit = group_fit.outcome;
     const Model& model = group_fit.model(*part.models[g.model].model);
+    if (part.holds_any && std::isfinite(fit.best().best_value))  // for the groups that hold to this one
+      caches.group_fits->store(index, held_values_of(model, fit.best(), *records.front()));
     rec.laws = group_fit.laws;
     const Identification& id = fit.identification;
     rec.wall_time_s = id.wall_time_s + group_fit.pre_fit.wall_time_s;
@@ -262,6 +300,7 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
   const auto tokens = static_cast<std::size_t>(2 * std::max(1, tbb::this_task_arena::max_concurrency()));
   using Record = std::shared_ptr<GroupRecord>;
   RecordFitCache record_fits;  // groups that fit the same records alone share those fits
+  GroupFitCache group_fits;    // and the groups that others hold to (held_fit.hpp), their best runs
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, long long>(tbb::filter_mode::serial_in_order,
@@ -274,7 +313,7 @@ RunnerSummary run_sweep(const Plan& plan, Store& store, const RunnerOptions& opt
                                           return todo[next++];
                                         }) &
           tbb::make_filter<long long, Record>(tbb::filter_mode::parallel,
-                                              [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i, &record_fits)); }) &
+                                              [&](long long i) { return std::make_shared<GroupRecord>(run_group(plan, i, &record_fits, &group_fits)); }) &
           tbb::make_filter<Record, void>(tbb::filter_mode::serial_out_of_order, [&](const Record& r) {
             if (write_error) return;
             try {

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/fit/record_fit_cache.hpp"
+#include "engine/sweep/held_fit.hpp"
 #include "engine/sweep/plan.hpp"
 #include "engine/sweep/progress.hpp"
 #include "engine/sweep/schedule.hpp"
@@ -26,8 +27,10 @@ namespace dampbench::sweep {
 /// to it (per-dataset metrics of joint fits and predictions, sensitivity). Never throws for bad data or a model
 /// error: the record is marked failed with the message. Groups that fit records alone first (laws = "auto",
 /// start = "per-file") share those fits through `record_fits` when given (engine/fit/record_fit_cache.hpp: the
-/// same bits either way).
-GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits = nullptr);
+/// same bits either way); groups that hold to other groups' fits (a model's `hold`) find them in `group_fits`, or
+/// make them (engine/sweep/held_fit.hpp).
+GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_fits = nullptr,
+                      GroupFitCache* group_fits = nullptr);
 
 /// The store header (plan, datasets, fingerprint) of a plan.
 StoreHeader make_store_header(const Plan& plan, const std::string& spec_path);

@@ -63,11 +63,27 @@ struct DatasetSpec {
 
 /// A model to identify (engine/fit/resolve_model.hpp); its name is its label, unique in the part (default: the
 /// model id).
+/// A model fitted from another's fit (fdsp §5.2, step 2 of its identification): every parameter but `free` is held at
+/// the best fit of model `from` in split `split` (its one fit set; the lowest of its optimizers' groups), and each
+/// free parameter searches ±`first` (a fraction) around that fit's value. With `next` > 0 the fit sets of this
+/// model's split are fitted in the ascending order of the law variable `order`, each within ±`next` around the fit
+/// before it as well (engine/sweep/held_fit.hpp).
+struct HoldSpec {
+  std::string laws;  ///< the entry's own laws, as written (ModelSpec::laws adds the held parameters to them)
+  std::string from, split;
+  std::vector<std::string> free;
+  double first = 0.4, next = 0;
+  std::string order;
+};
+
 struct ModelSpec : ModelChoice {
   std::vector<std::string> optimizers;  ///< optimizer labels this model is identified with (empty: all)
   /// "per-file": a law model's search starts from the laws fitted to each fit record's own fit, as `fit --start
   /// per-file` (engine/fit/record_start.hpp); "" from the box.
   std::string start;
+  /// Parameters held at another model's fit; `laws` then also fixes them, at placeholders (the middle of their
+  /// default bounds) that each group replaces by the fit's values (GroupRecord::laws keeps them).
+  std::optional<HoldSpec> hold;
 };
 
 struct OptimizerEntry {

@@ -1,5 +1,6 @@
 // Models: ids, law fixtures or [[models]] tables, with the [bounds] table; every model is built once here so
 // that a bad law, bound or name is reported before anything runs.
+#include "engine/sweep/held_fit.hpp"
 #include "engine/sweep/spec/reader.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
@@ -7,6 +8,34 @@
 namespace dampbench::sweep::spec_file {
 
 namespace {
+
+/// `hold = { from, split, free, first, next, order }` (HoldSpec); the entry's laws then fix the held parameters at
+/// placeholders (held_laws), which each group replaces by the fit it holds to.
+void read_hold(const Reader& r, const toml::node& n, const std::string& key, ModelSpec& m) {
+  if (!n.is_table()) r.fail(&n, key, "expected { from = \"model\", split = \"split\", free = [\"parameter\", ...], first, next, order }");
+  const toml::table& t = *n.as_table();
+  r.only_keys(t, key, {"from", "split", "free", "first", "next", "order"});
+  HoldSpec h;
+  h.laws = m.laws;
+  h.from = r.required_string(t, "from", key);
+  h.split = r.required_string(t, "split", key);
+  h.free = r.strings(t, "free", key);  // may be empty when the entry's laws are what is fitted
+  h.first = r.number(t, "first", key).value_or(0.4);
+  if (!(h.first > 0 && h.first <= 1)) r.fail(t.get("first"), Reader::join(key, "first"), "expected a fraction in (0, 1]");
+  h.next = r.number(t, "next", key).value_or(0.0);
+  if (!(h.next >= 0 && h.next <= 1)) r.fail(t.get("next"), Reader::join(key, "next"), "expected a fraction in [0, 1]");
+  h.order = r.string(t, "order", key).value_or("");
+  if ((h.next > 0) == h.order.empty())
+    r.fail(&n, key, "next (a window around the fit before) and order (the variable the fits follow) go together");
+  if (m.model.empty() || chooses_laws(m) || !m.start.empty())
+    r.fail(&n, key, "hold needs a registered 'model' whose laws are its own (not \"auto\", no start)");
+  if (h.from == m.name) r.fail(t.get("from"), Reader::join(key, "from"), "a model cannot hold to its own fit");
+  m.hold = std::move(h);
+  r.check(&n, key, [&] {
+    m.laws = held_laws(m, find_model(m.model));
+    return 0;
+  });
+}
 
 ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& key) {
   ModelSpec m;
@@ -29,7 +58,7 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
   }
   if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers, start }");
   const toml::table& t = *n.as_table();
-  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers", "start"});
+  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers", "start", "hold"});
   m.model = r.string(t, "model", key).value_or("");
   m.fixture = r.string(t, "fixture", key).value_or("");
   if (m.model.empty() == m.fixture.empty()) r.fail(&n, key, "expected exactly one of 'model' and 'fixture'");
@@ -48,6 +77,7 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
   if (!m.start.empty() && chooses_laws(m))
     r.fail(t.get("start"), Reader::join(key, "start"),
            "laws = \"auto\" always starts from the records' own fits: drop start");
+  if (const toml::node* h = t.get("hold")) read_hold(r, *h, Reader::join(key, "hold"), m);
   return m;
 }
 
@@ -88,6 +118,23 @@ void read_models(const Reader& r, const toml::table& root, PartSpec& part) {
       key = m.name;
     }
     r.check(n, key, [&] { return resolve_model_or_auto_base(m); });
+  }
+}
+
+void check_holds(const Reader& r, const toml::table& root, const PartSpec& part) {
+  for (std::size_t m = 0; m < part.models.size(); ++m) {
+    if (!part.models[m].hold) continue;
+    const HoldSpec& h = *part.models[m].hold;
+    const toml::node* n = root.get("models")->as_array()->get(m);
+    const std::string key = fmt::format("models[{}].hold", m);
+    const int from = part.model_index(h.from);
+    if (from < 0) r.fail(n, key + ".from", fmt::format("no model named '{}' in 'models'", h.from));
+    if (part.models[from].hold) r.fail(n, key + ".from", fmt::format("'{}' holds to another fit itself", h.from));
+    const int split = part.split_index(h.split);
+    if (split < 0) r.fail(n, key + ".split", fmt::format("no split named '{}'", h.split));
+    const auto pairs = part.pairs(part.splits[split]);
+    if (std::none_of(pairs.begin(), pairs.end(), [&](const auto& p) { return p.first == from; }))
+      r.fail(n, key + ".split", fmt::format("split '{}' does not fit model '{}'", h.split, h.from));
   }
 }
 

@@ -149,6 +149,8 @@ void read_splits(const Reader& r, const toml::table& root, PartSpec& part);
 /// A model with laws = "auto" chooses its laws over the records of a group at a fixed budget, as `fit --laws auto`
 /// does: every split it is in groups several records, and every optimizer it is identified with has a fixed budget.
 void check_auto_laws(const Reader& r, const toml::table& root, const PartSpec& part);
+/// A held model's source (`hold.from`, `hold.split`) names a model the split fits, which holds to nothing itself.
+void check_holds(const Reader& r, const toml::table& root, const PartSpec& part);
 void read_tables(const Reader& r, const toml::table& root, PartSpec& part);
 void read_regressions(const Reader& r, const toml::table& root, PartSpec& part);
 /// `[reproduction]` (published, data, truth, truth_is_compared_model); the published file must exist when

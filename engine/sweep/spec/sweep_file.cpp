@@ -50,6 +50,7 @@ PartSpec read_part_table(const Reader& r, const toml::table& root, const SpecOpt
   }
   read_splits(r, root, part);
   check_auto_laws(r, root, part);
+  check_holds(r, root, part);
   read_tables(r, root, part);
   read_regressions(r, root, part);
   read_reproduction(r, root, part, options.check_files);

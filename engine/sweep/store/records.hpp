@@ -112,7 +112,8 @@ struct GroupRecord : GroupRef {
   /// so a merged store says when each shard finished its groups.
   std::string finished_at;
   /// The laws a group of a `laws = "auto"` model chose (parse_laws text on the model's gauged base: the runs' params
-  /// are that law model's coefficients); empty for every other group.
+  /// are that law model's coefficients), or those of a held model with the values it held (ModelSpec::hold); empty
+  /// for every other group.
   std::string laws;
   std::vector<RunRecord> run_results;
   std::vector<DatasetMetricRecord> dataset_metrics;
