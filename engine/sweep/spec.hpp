@@ -155,6 +155,9 @@ struct TableSpec {
   std::string role;    ///< errors: "fit", "predict" or "" (both)
   Selection where;     ///< restrict conditions
   double target_rel = 0.01;  ///< runtime: target = best known + max(target_rel·|best known|, 1e-12)
+  std::vector<std::string> params;  ///< landscape: the two parameters varied
+  double range = 0.4;               ///< landscape: ±range (a fraction) around the best run's values
+  int points = 11;                  ///< landscape: grid points per parameter (odd: the best run at the centre)
 };
 
 /// Regression of identified per-condition parameters on operating variables (crfd Tables 5–7, mfm eqs. 5–11,

@@ -25,6 +25,9 @@
 //                 5–11, fdsp eqs. 13–14); per law, on how many conditions the parameter was not
 //                 identifiable (‡ on those residual rows)
 //   sensitivity   SP_z per parameter and condition and their mean (crfd eqs. 4.1–4.3, Fig. 9)
+//   landscape     a group's objective over a grid of two parameters (`params`, ±`range` around its best run,
+//                 `points` per side) on its record, and the smallest second difference along each (fdsp Fig. 4);
+//                 needs the records, as energy
 //   ranksum       Mann–Whitney p-values between optimizers (same model and condition) and between models
 //   bootstrap     bootstrap 95 % interval of the mean metric per condition
 //   runtime       fixed-target runtime: success rate and expected running time per optimizer and problem, in

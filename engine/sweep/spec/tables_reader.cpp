@@ -1,5 +1,6 @@
 // The tables a part asks for (`tables` or [[tables]]; kinds: engine/sweep/tables.hpp).
 #include <algorithm>
+#include <cmath>
 
 #include "engine/sweep/tables.hpp"
 
@@ -17,7 +18,7 @@ TableSpec read_table(const Reader& r, const PartSpec& part, const toml::node& n,
     if (!n.is_table()) r.fail(&n, key, "expected a table kind or a table { kind, paper, split, models, ... }");
     const toml::table& t = *n.as_table();
     r.only_keys(t, key, {"kind", "name", "title", "paper", "split", "models", "optimizers", "metric", "role", "where",
-                         "target_rel"});
+                         "target_rel", "params", "range", "points"});
     ts.kind = r.required_string(t, "kind", key);
     ts.name = r.string(t, "name", key).value_or("");
     ts.title = r.string(t, "title", key).value_or("");
@@ -37,7 +38,18 @@ TableSpec read_table(const Reader& r, const PartSpec& part, const toml::node& n,
     if (const toml::node* w = t.get("where")) ts.where = read_selection(r, *w, Reader::join(key, "where"));
     ts.target_rel = r.number(t, "target_rel", key).value_or(0.01);
     if (!(ts.target_rel >= 0)) r.fail(t.get("target_rel"), Reader::join(key, "target_rel"), "expected a number >= 0");
+    ts.params = r.strings(t, "params", key);
+    ts.range = r.number(t, "range", key).value_or(0.4);
+    if (!(ts.range > 0 && ts.range < 1)) r.fail(t.get("range"), Reader::join(key, "range"), "expected a fraction in (0, 1)");
+    const double points = r.number(t, "points", key).value_or(11);
+    if (!(points >= 3 && points <= 101 && points == std::floor(points) && std::fmod(points, 2) == 1))
+      r.fail(t.get("points"), Reader::join(key, "points"), "expected an odd whole number from 3 to 101");
+    ts.points = static_cast<int>(points);
+    if (ts.kind != "landscape" && !ts.params.empty())
+      r.fail(t.get("params"), Reader::join(key, "params"), "params belong to kind = \"landscape\"");
   }
+  if (ts.kind == "landscape" && ts.params.size() != 2)
+    r.fail(&n, key, "kind = \"landscape\" needs params = [\"p1\", \"p2\"], the two parameters it varies");
   const auto kinds = table_kinds();
   if (std::find(kinds.begin(), kinds.end(), ts.kind) == kinds.end())
     r.fail(&n, key, fmt::format("unknown table kind '{}' (known: {})", ts.kind, fmt::join(kinds, ", ")));

@@ -26,6 +26,7 @@ void fvd_tables(const Context& c, std::vector<Table>& out);
 void params_tables(const Context& c, std::vector<Table>& out);
 void errors_tables(const Context& c, std::vector<Table>& out);
 void energy_tables(const Context& c, std::vector<Table>& out);
+void landscape_tables(const Context& c, std::vector<Table>& out);
 void held_out_tables(const Context& c, std::vector<Table>& out);
 void regression_tables(const Context& c, std::vector<Table>& out);
 void sensitivity_tables(const Context& c, std::vector<Table>& out);

@@ -14,7 +14,7 @@ const std::vector<tables::Kind>& tables::registry() {
       {"runs", runs_tables},           {"param-stats", param_stats_tables}, {"variability", variability_tables},
       {"ranking", ranking_tables},     {"fvd", fvd_tables},                 {"params", params_tables},
       {"errors", errors_tables},       {"energy", energy_tables},           {"held-out", held_out_tables},
-      {"regression", regression_tables}, {"sensitivity", sensitivity_tables},
+      {"regression", regression_tables}, {"sensitivity", sensitivity_tables}, {"landscape", landscape_tables},
       {"ranksum", ranksum_tables},     {"bootstrap", bootstrap_tables},     {"runtime", runtime_tables},
       {"failures", failures_table},    {"overview", overview_table}};
   return kinds;

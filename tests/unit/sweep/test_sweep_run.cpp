@@ -466,6 +466,65 @@ TEST(SweepHold, AHoldThatCannotBeFollowedIsRefusedBeforeAnythingRuns) {
             std::string::npos);
 }
 
+// The landscape table (fdsp Fig. 4) on a linear viscous record, F = c·v: of_sq of fvd.linear_viscous is
+// ((c − C)/c)² in C (hand-computed: the mass term is orthogonal to v over whole cycles), so its second difference
+// along C on a 5-point grid of ±40 % is 2·(0.2·C_best/c)² ≈ 0.08 wherever the grid lies; the centre is the best run.
+TEST(SweepLandscape, AQuadraticObjectiveHasTheHandComputedSecondDifference) {
+  const fs::path dir = testing::test_temp_dir("sweeprun");
+  const double c = 2e4, w = 2 * std::numbers::pi;
+  std::string csv = "# operating: freq=1\nt[s],x[mm],F[N]\n";
+  for (int k = 0; k < 401; ++k) {
+    const double t = 2.0 * k / 400;
+    csv += fmt::format("{:.12g},{:.12g},{:.12g}\n", t, 10 * std::sin(w * t), c * 0.01 * w * std::cos(w * t));
+  }
+  testing::write_text(dir / "data" / "viscous.csv", csv);
+  const std::string head = fmt::format(R"toml(name = "landscape"
+runs = 2
+metric = "of_sq"
+models = ["fvd.linear_viscous"]
+[optimizer]
+name = "de"
+population = 20
+iterations = 100
+[[datasets]]
+name = "d"
+glob = "{}/data/*.csv"
+[[tables]]
+kind = "landscape"
+)toml",
+                                       dir.string());
+  testing::write_text(dir / "s.toml", head + "params = [\"C\", \"m\"]\nrange = 0.4\npoints = 5\n");
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto out = run_dampbench(fmt::format("table {} --kind sweep --format json", (dir / "out" / "store.sqlite").string()));
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  const nlohmann::json tables = nlohmann::json::parse(out.output);
+  const nlohmann::json* grid = nullptr;
+  const nlohmann::json* convexity = nullptr;
+  for (const auto& t : tables.at("tables")) {
+    if (t.at("id") == "landscape_fvd.linear_viscous_viscous") grid = &t;
+    if (t.at("id") == "landscape_fvd.linear_viscous_viscous_convexity") convexity = &t;
+  }
+  ASSERT_TRUE(grid && convexity) << out.output;
+  ASSERT_EQ(grid->at("rows").size(), 5u);
+  ASSERT_EQ(grid->at("rows").at(0).size(), 6u);  // the C value, then 5 values of m
+  const double best_C = grid->at("rows").at(2).at(0).get<double>();
+  EXPECT_NEAR(best_C, c, 0.01 * c);
+  const double along_C = convexity->at("rows").at(0).at(1).get<double>();
+  EXPECT_NEAR(along_C, 2 * std::pow(0.2 * best_C / c, 2), 0.02 * 0.08) << out.output;
+  // The centre is the best run's own objective, bit for bit (the same lane arithmetic as the fit's).
+  const auto runs = run_dampbench(fmt::format("table {} --kind runs --format json", (dir / "out" / "store.sqlite").string()));
+  const double best = nlohmann::json::parse(runs.output).at("tables").at(0).at("rows").at(0).at(3).get<double>();
+  EXPECT_EQ(grid->at("rows").at(2).at(3).get<double>(), best) << runs.output;
+  // A landscape without its two parameters, or with an even grid, is refused before anything runs.
+  for (const auto& [entry, message] : {std::pair{"params = [\"C\"]", "needs params"}, {"params = [\"C\", \"m\"]\npoints = 4", "odd whole number"}}) {
+    testing::write_text(dir / "bad.toml", head + entry + "\n");
+    const auto bad = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "bad.toml").string(), (dir / "bad").string()));
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.output.find(message), std::string::npos) << bad.output;
+  }
+}
+
 // Identifiability in the sweep tables. fvd.gv_linear_elastic on one sine cannot tell the mass from
 // the stiffness (m·a = −mω²x: only K1 − mω² is determined), so both are marked ‡ in the params table and the
 // relative standard errors say why; on a two-frequency record of the same model nothing is marked. The store
