@@ -253,7 +253,7 @@ std::vector<std::pair<std::string, double>> our_column(const Table& t, const std
   std::vector<std::pair<std::string, double>> out;
   const std::size_t j = column_index(t, column);
   for (const auto& row : t.rows)
-    if (j < row.size() && row[j].value && !row.empty() && row[0].text != "mean") out.emplace_back(row[0].text, *row[j].value);
+    if (j < row.size() && row[j].value && row[0].text != "mean") out.emplace_back(row[0].text, *row[j].value);
   return out;
 }
 
@@ -275,13 +275,13 @@ ReproductionItem largest_item(const PublishedClaim& c, const std::vector<Table>&
     item.values.emplace_back(label, *v);
   }
   const auto top = std::max_element(item.values.begin(), item.values.end(),
-                                    [](const auto& a, const auto& b) { return a.second < b.second; });
-  const std::string expected = fmt::format("{} {}", c.largest, c.column);
-  item.verdict = top->first == expected ? "holds" : "reversed";
+                                    [](const auto& a, const auto& b) { return a.second < b.second; }) - item.values.begin();
+  const std::string& row = p.rows[static_cast<std::size_t>(top)].first;  // values follow the paper's rows
+  const double value = item.values[static_cast<std::size_t>(top)].second;
+  item.verdict = row == c.largest ? "holds" : "reversed";
   item.detail = item.verdict == "holds"
-                    ? fmt::format("the largest {} is {}'s here too ({:.6g})", c.column, c.largest, top->second)
-                    : fmt::format("the largest {} here is {}'s ({:.6g}), not {}'s", c.column,
-                                  top->first.substr(0, top->first.size() - c.column.size() - 1), top->second, c.largest);
+                    ? fmt::format("the largest {} is {}'s here too ({:.6g})", c.column, c.largest, value)
+                    : fmt::format("the largest {} here is {}'s ({:.6g}), not {}'s", c.column, row, value, c.largest);
   if (!c.note.empty()) item.detail += ". " + c.note;
   return item;
 }

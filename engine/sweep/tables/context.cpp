@@ -36,9 +36,8 @@ Context::Context(const StoreResults& results, int p, const TableSpec& request)
         std::find(t.optimizers.begin(), t.optimizers.end(), optimizer_label(g.optimizer)) == t.optimizers.end())
       continue;
     if (metric && g.metric != *metric) continue;
-    // `where` picks conditions: the fit sets of a series, but the rows (fitted or predicted) of errors, energy and
-    // held-out.
-    if (!t.where.everything() && t.kind != "errors" && t.kind != "energy" && t.kind != "held-out") {
+    // `where` picks conditions: the fit sets of a series, or the rows (fitted or predicted) of a kind that says so.
+    if (!t.where.everything() && !where_picks_rows(t.kind)) {
       const auto& fs = fitset(g);
       if (std::none_of(fs.fit.begin(), fs.fit.end(), [&](int d) { return matches(t.where, d); })) continue;
     }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,10 @@ namespace dampbench::sweep::tables {
 inline Cell num(double v) { return number_cell(v); }
 inline Cell txt(std::string s) { return {std::move(s), std::nullopt}; }
 inline Cell none() { return {"-", std::nullopt}; }
+
+/// Whether table kind `name` reads a request's `where` as its rows (Kind::where_picks_rows, in the registry) rather than
+/// as the series' fits; false for an unknown name.
+bool where_picks_rows(std::string_view name);
 
 /// `s` with every character a file name may not hold replaced by '_'.
 std::string file_stem(std::string s);

@@ -14,6 +14,8 @@ using KindTables = void (*)(const Context& c, std::vector<Table>& out);
 struct Kind {
   std::string_view name;
   KindTables make;
+  /// A request's `where` picks the kind's rows (the records fitted or predicted) instead of the series' fits.
+  bool where_picks_rows = false;
 };
 /// Every kind a sweep file may ask for, in the order the help lists them.
 const std::vector<Kind>& registry();

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/common/error.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/sweep/tables/kinds.hpp"
 
@@ -40,12 +41,10 @@ bool group_landscape(const Context& c, const Series& s, const GroupRecord& g, st
   const Model& model = c.model(g);
   const int n = c.t.points;
   int j[2];
-  for (int a = 0; a < 2; ++a) {
-    j[a] = -1;
-    const auto params = model.parameters();
-    for (int p = 0; p < static_cast<int>(params.size()); ++p)
-      if (params[p].name == c.t.params[a]) j[a] = p;
-    if (j[a] < 0) return why = fmt::format("{} has no parameter '{}'", model.id(), c.t.params[a]), false;
+  try {
+    for (int a = 0; a < 2; ++a) j[a] = model.parameter_index(c.t.params[a]);
+  } catch (const InputError& e) {
+    return why = e.what(), false;
   }
   const std::vector<double>& best = g.run_results.at(static_cast<std::size_t>(g.best_run())).params;
   CandidateBatch batch(model.dim(), n * n);

@@ -13,11 +13,17 @@ const std::vector<tables::Kind>& tables::registry() {
   static const std::vector<Kind> kinds{
       {"runs", runs_tables},           {"param-stats", param_stats_tables}, {"variability", variability_tables},
       {"ranking", ranking_tables},     {"fvd", fvd_tables},                 {"params", params_tables},
-      {"errors", errors_tables},       {"energy", energy_tables},           {"held-out", held_out_tables},
+      {"errors", errors_tables, true}, {"energy", energy_tables, true},     {"held-out", held_out_tables, true},
       {"regression", regression_tables}, {"sensitivity", sensitivity_tables}, {"landscape", landscape_tables},
       {"ranksum", ranksum_tables},     {"bootstrap", bootstrap_tables},     {"runtime", runtime_tables},
       {"failures", failures_table},    {"overview", overview_table}};
   return kinds;
+}
+
+bool tables::where_picks_rows(std::string_view name) {
+  const auto& kinds = registry();
+  const auto it = std::find_if(kinds.begin(), kinds.end(), [&](const Kind& k) { return k.name == name; });
+  return it != kinds.end() && it->where_picks_rows;
 }
 
 std::vector<std::string> table_kinds() {
