@@ -114,6 +114,14 @@ class RunProblem final : public LocalProblem {
     evaluations_ += static_cast<long long>(candidates.size());
     return scaled_residuals(evaluator_.model(), evaluator_.datasets(), candidates);
   }
+  /// Within one lane block (kLanes candidates) the points beside the trial take no extra block.
+  [[nodiscard]] std::vector<std::vector<double>> residuals_ahead(std::span<const std::vector<double>> points) const override {
+    if (points.empty() || points.size() > static_cast<std::size_t>(kLanes)) return {};
+    check_stop(stop_);
+    ++evaluations_;
+    return scaled_residuals(evaluator_.model(), evaluator_.datasets(), points);
+  }
+  void count_evaluations(long long n) const override { evaluations_ += n; }
   [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
   [[nodiscard]] long long evaluations() const { return evaluations_; }
 

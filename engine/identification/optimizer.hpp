@@ -30,6 +30,17 @@ class LocalProblem {
     for (const auto& c : candidates) out.push_back(residuals(std::span<const double>(c)));
     return out;
   }
+  /// Residuals of points[0] (a trial point) and, in the same batch, of points[1...] (what the caller needs next if it
+  /// keeps the trial: Levenberg–Marquardt's Jacobian there), when the problem's batch has idle lanes for them: its
+  /// lane blocks take the time of their dearest lane, so the points beside a single trial cost no extra time. The
+  /// same values as one call each. Counts only points[0] as an evaluation; count_evaluations() adds the others when
+  /// the caller uses them, so a run's evaluations are the algorithm's whatever it computed ahead. Default: {} (no
+  /// idle lanes: the caller evaluates its trial alone).
+  [[nodiscard]] virtual std::vector<std::vector<double>> residuals_ahead(std::span<const std::vector<double>> /*points*/) const {
+    return {};
+  }
+  /// Counts `n` evaluations computed earlier by residuals_ahead.
+  virtual void count_evaluations(long long /*n*/) const {}
   [[nodiscard]] virtual const Bounds& bounds() const = 0;
 };
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -42,7 +44,26 @@ class BoundedLm {
 
   /// ‖r(y)‖² (+inf when any residual is not finite), r written to `r`.
   double cost_at(const Eigen::VectorXd& y, Eigen::VectorXd& r) {
-    const std::vector<double> res = problem_.residuals(box_.to_params(std::span<const double>(y.data(), m_)));
+    return cost_of(problem_.residuals(box_.to_params(std::span<const double>(y.data(), m_))), r);
+  }
+
+  /// cost_at of a trial point y; where the problem has idle lanes beside it (LocalProblem::residuals_ahead) and an
+  /// iteration follows, the Jacobian at y comes in the same batch and take_jacobian uses it if y is accepted: a
+  /// trial and the next Jacobian in one lane block instead of two, the same values.
+  double trial_cost_at(const Eigen::VectorXd& y, Eigen::VectorXd& r) {
+    ahead_.clear();
+    if (report_.iterations >= settings_.lm_iterations) return cost_at(y, r);
+    std::vector<std::vector<double>> points{box_.to_params(std::span<const double>(y.data(), m_))};
+    jacobian_points(y, points, ahead_steps_);
+    std::vector<std::vector<double>> res = problem_.residuals_ahead(points);
+    if (res.size() != points.size()) return cost_at(y, r);
+    ahead_.assign(std::make_move_iterator(res.begin() + 1), std::make_move_iterator(res.end()));
+    return cost_of(res.front(), r);
+  }
+
+  /// ‖r‖² of residuals `res` (+inf when any is not finite or their count differs from the first's), r = res; counts
+  /// one evaluation.
+  double cost_of(const std::vector<double>& res, Eigen::VectorXd& r) {
     ++report_.residual_evaluations;
     if (n_ == 0) n_ = res.size();
     if (res.size() != n_ || n_ == 0) return std::numeric_limits<double>::infinity();
@@ -80,19 +101,34 @@ class BoundedLm {
   [[nodiscard]] const std::vector<double>& costs() const { return costs_; }  ///< ‖r‖² where each Jacobian was taken
 
  private:
-  /// Jacobian by forward differences: one residual vector per free parameter, all in one batch (lane blocks,
-  /// Model::simulate_block); the same values as one call each.
-  void take_jacobian() {
-    std::vector<std::vector<double>> points;
-    std::vector<double> steps;
+  /// The forward-difference points around y, appended to `points`, and their steps.
+  void jacobian_points(const Eigen::VectorXd& y, std::vector<std::vector<double>>& points, std::vector<double>& steps) const {
+    steps.clear();
     for (int i = 0; i < m_; ++i) {
-      const double s = y_[i] + settings_.fd_step <= 1.0 ? settings_.fd_step : -settings_.fd_step;
-      Eigen::VectorXd yk = y_;
+      const double s = y[i] + settings_.fd_step <= 1.0 ? settings_.fd_step : -settings_.fd_step;
+      Eigen::VectorXd yk = y;
       yk[i] += s;
       points.push_back(box_.to_params(std::span<const double>(yk.data(), m_)));
       steps.push_back(s);
     }
-    const std::vector<std::vector<double>> columns = problem_.residuals_batch(points);
+  }
+
+  /// Jacobian by forward differences: one residual vector per free parameter, all in one batch (lane blocks,
+  /// Model::simulate_block), or the one computed beside the accepted trial (trial_cost_at); the same values as
+  /// one call each.
+  void take_jacobian() {
+    std::vector<std::vector<double>> columns;
+    std::vector<double> steps;
+    if (ahead_ready_) {
+      columns = std::move(ahead_), steps = ahead_steps_;
+      problem_.count_evaluations(m_);
+    } else {
+      std::vector<std::vector<double>> points;
+      jacobian_points(y_, points, steps);
+      columns = problem_.residuals_batch(points);
+    }
+    ahead_.clear();
+    ahead_ready_ = false;
     report_.residual_evaluations += m_;
     for (int i = 0; i < m_; ++i) {
       const auto& res = columns[static_cast<std::size_t>(i)];
@@ -172,7 +208,7 @@ class BoundedLm {
         report_.status = "xtol";
         return true;
       }
-      const double S_new = cost_at(y_new_, r_new_);
+      const double S_new = trial_cost_at(y_new_, r_new_);
       if (S_new < S_) return accept(d, g, A, S_new);
       if (reject_step()) {
         report_.status = "no progress";
@@ -192,6 +228,7 @@ class BoundedLm {
     y_ = y_new_;
     r_ = r_new_;
     S_ = S_new;
+    ahead_ready_ = !ahead_.empty();
     if (!(decrease <= settings_.ftol)) return false;
     report_.status = "ftol";
     return true;
@@ -213,6 +250,9 @@ class BoundedLm {
   double diag_floor_ = 0;
   double lambda_ = -1, nu_ = 2;
   int rejected_ = 0;
+  std::vector<std::vector<double>> ahead_;  // residuals of the Jacobian's points around the last trial (or empty)
+  std::vector<double> ahead_steps_;         // their steps
+  bool ahead_ready_ = false;                // ahead_ is the Jacobian at y_ (its trial was accepted)
 };
 
 }  // namespace

@@ -32,7 +32,10 @@
 //   such an implicit wall LM converges slowly in the other parameters: λ grows, the step shrinks in every
 //   coordinate, and the run may stop on xtol before them (tests/unit/optimizers/test_ga_lm.cpp, BacksOffFromAFailureRegion).
 // Each Jacobian costs m residual evaluations, each trial step one (two with geodesic acceleration); all are
-// counted in the run's evaluations.
+// counted in the run's evaluations. Where the problem's lane block has room (LocalProblem::residuals_ahead), the
+// Jacobian at a trial point is simulated in the trial's own block and used if the trial is accepted: one lane block
+// per accepted iteration less (a single trial fills one lane of 16), the same values and the same count (the
+// Jacobian's m evaluations count when it is used; one beside a refused trial is not counted).
 //
 // The result is handed back in the run metric's terms: the LM end point is evaluated through
 // LocalProblem::evaluate and kept only if its metric is lower than the GA best's (ga_hybrid.hpp). With the
