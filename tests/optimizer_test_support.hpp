@@ -194,12 +194,36 @@ class FunctionProblem final : public LocalProblem {
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
     points.emplace_back(params.begin(), params.end());
     ++residual_calls;
+    ++rounds;
     return residuals_(params);
   }
+  /// One round for the whole batch, as a model problem's lane block.
+  [[nodiscard]] std::vector<std::vector<double>> residuals_batch(std::span<const std::vector<double>> candidates) const override {
+    std::vector<std::vector<double>> out;
+    for (const auto& c : candidates) out.push_back(residuals(std::span<const double>(c)));
+    rounds -= static_cast<long long>(candidates.size()) - 1;
+    return out;
+  }
+  /// Answers batches of up to `lanes_ahead` points (0: none, the default problem's answer).
+  [[nodiscard]] std::vector<std::vector<double>> residuals_ahead(std::span<const std::vector<double>> batch) const override {
+    if (batch.empty() || batch.size() > lanes_ahead) return {};
+    ++rounds;
+    ++counted_ahead;
+    std::vector<std::vector<double>> out;
+    for (const auto& c : batch) {
+      points.push_back(c);
+      out.push_back(residuals_(std::span<const double>(c)));
+    }
+    return out;
+  }
+  void count_evaluations(long long n) const override { counted_ahead += n; }
   [[nodiscard]] const Bounds& bounds() const override { return bounds_; }
 
   mutable std::vector<std::vector<double>> points;
   mutable long long evaluations = 0, residual_calls = 0;
+  std::size_t lanes_ahead = 0;
+  mutable long long rounds = 0;         ///< sequential evaluation rounds: one per residuals call or batch
+  mutable long long counted_ahead = 0;  ///< evaluations of residuals_ahead counted (its first point, and count_evaluations)
 
  private:
   Residuals residuals_;

@@ -116,6 +116,35 @@ TEST(GaLm, JacobianCostsOneResidualVectorPerFreeParameter) {
   EXPECT_NEAR(full.run.best_value, 0.25, 1e-15);
 }
 
+// A problem whose batches have idle lanes (a model's lane block) gets each Jacobian beside the trial that leads to it:
+// the same run bit for bit and the same evaluation count, in fewer sequential rounds (one less per Jacobian taken
+// from a trial's batch). A trial's points beside it count only when used.
+TEST(GaLm, JacobianBesideTheTrialGivesTheSameRunInFewerRounds) {
+  for (int geodesic : {1, 0}) {
+    SCOPED_TRACE(::testing::Message() << "geodesic " << geodesic);
+    FunctionProblem plain(testing::rosenbrock_residuals, testing::box(4, -2.048, 2.048));
+    FunctionProblem ahead(testing::rosenbrock_residuals, testing::box(4, -2.048, 2.048));
+    ahead.lanes_ahead = 16;
+    GaLmSettings s = ga_lm_settings(20, 15);
+    s.geodesic = geodesic;
+    const auto a = run_hybrid(s, plain, 3);
+    const auto b = run_hybrid(s, ahead, 3);
+    ASSERT_TRUE(a.report.ran);
+    EXPECT_GT(a.report.iterations, 5);
+    ASSERT_EQ(a.run.best_position.size(), b.run.best_position.size());
+    for (std::size_t j = 0; j < a.run.best_position.size(); ++j)
+      EXPECT_EQ(testing::bits(a.run.best_position[j]), testing::bits(b.run.best_position[j])) << j;
+    EXPECT_EQ(testing::bits(a.run.best_value), testing::bits(b.run.best_value));
+    EXPECT_EQ(a.report.iterations, b.report.iterations);
+    EXPECT_EQ(a.report.status, b.report.status);
+    EXPECT_EQ(a.report.residual_evaluations, b.report.residual_evaluations);
+    EXPECT_EQ(b.report.residual_evaluations, ahead.residual_calls + ahead.counted_ahead);  // counted when used
+    // every Jacobian after the first comes from the batch of the trial accepted before it
+    EXPECT_EQ(plain.rounds - ahead.rounds, b.report.iterations - 1);
+    EXPECT_TRUE(testing::all_points_inside(ahead));
+  }
+}
+
 TEST(GaLm, AtItsCapAnLmThatStillGainsIsNotAtItsOptimumAndOneThatCreepsIs) {
   // Cubic residuals (x − 0.3)³, (y − 0.3)³: Gauss–Newton closes a third of the distance per step, so ‖r‖ falls by
   // ~70 % per Jacobian and 3 Jacobians stop on the cap while still gaining. Add a fixed residual 1 and the same
