@@ -192,28 +192,25 @@ class FunctionProblem final : public LocalProblem {
     evaluations += batch.count();
   }
   [[nodiscard]] std::vector<double> residuals(std::span<const double> params) const override {
-    points.emplace_back(params.begin(), params.end());
     ++residual_calls;
     ++rounds;
-    return residuals_(params);
+    return recorded_residuals(params);
   }
   /// One round for the whole batch, as a model problem's lane block.
   [[nodiscard]] std::vector<std::vector<double>> residuals_batch(std::span<const std::vector<double>> candidates) const override {
+    ++rounds;
+    residual_calls += static_cast<long long>(candidates.size());
     std::vector<std::vector<double>> out;
-    for (const auto& c : candidates) out.push_back(residuals(std::span<const double>(c)));
-    rounds -= static_cast<long long>(candidates.size()) - 1;
+    for (const auto& c : candidates) out.push_back(recorded_residuals(c));
     return out;
   }
-  /// Answers batches of up to `lanes_ahead` points (0: none, the default problem's answer).
+  /// Answers batches of up to `lanes_ahead` points (0: none, the default problem's answer); counts the first.
   [[nodiscard]] std::vector<std::vector<double>> residuals_ahead(std::span<const std::vector<double>> batch) const override {
     if (batch.empty() || batch.size() > lanes_ahead) return {};
     ++rounds;
     ++counted_ahead;
     std::vector<std::vector<double>> out;
-    for (const auto& c : batch) {
-      points.push_back(c);
-      out.push_back(residuals_(std::span<const double>(c)));
-    }
+    for (const auto& c : batch) out.push_back(recorded_residuals(c));
     return out;
   }
   void count_evaluations(long long n) const override { counted_ahead += n; }
@@ -226,6 +223,11 @@ class FunctionProblem final : public LocalProblem {
   mutable long long counted_ahead = 0;  ///< evaluations of residuals_ahead counted (its first point, and count_evaluations)
 
  private:
+  /// residuals_(x), with x kept in `points`.
+  std::vector<double> recorded_residuals(std::span<const double> x) const {
+    points.emplace_back(x.begin(), x.end());
+    return residuals_(x);
+  }
   Residuals residuals_;
   Bounds bounds_;
 };
