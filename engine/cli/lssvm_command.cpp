@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "engine/cli/cli_options.hpp"
+#include "engine/cli/lssvm_reproduction.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/table.hpp"
 #include "engine/common/text_file.hpp"
@@ -50,11 +52,6 @@ std::vector<Dataset> load_files(const std::vector<std::string>& paths, const Rec
   return records;
 }
 
-struct RecordResult {
-  std::string name;
-  lssvm::ErrorMetrics one_step, free_run;
-};
-
 }  // namespace
 
 void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
@@ -77,6 +74,12 @@ void add_lssvm_options(CLI::App* cmd, LssvmOptions& o) {
   cmd->add_option("-o,--output", o.output,
                   "folder for errors.csv (each test sample's forces and errors) and convergence.csv (the search's best "
                   "objective per generation)");
+  cmd->add_option("--reproduce", o.reproduce,
+                  "the lssvm paper's numbers (datasets/papers/lssvm.toml): write reproduction.md and reproduction.json, "
+                  "ours beside them with verdicts, into the -o folder");
+  cmd->add_option("--truth", o.truth,
+                  "with --reproduce: the records are synthetic, made from this (e.g. \"mrd.bouc_wen, datasets/lssvm\"); "
+                  "without it they are real");
   cmd->add_option("--save-model", o.save_model,
                   "also write the trained model as JSON (for evaluate/simulate --model-file; its test predictions the same bits)");
   add_data_options(cmd, o.data);
@@ -137,7 +140,7 @@ lssvm::TrainingRows training_rows(const std::vector<Dataset>& train, const lssvm
 }
 
 struct TestResults {
-  std::vector<RecordResult> records;
+  std::vector<LssvmRecordErrors> records;
   lssvm::ErrorMetrics one_step, free_run;  ///< pooled over every test record
   std::vector<std::vector<double>> one_step_forces, free_run_forces;  ///< per test record, every sample
 };
@@ -198,7 +201,17 @@ struct LssvmRun {
   std::size_t train_records = 0, test_records = 0;
   const std::vector<std::string>& without_current;
   const std::string& subsampled;
+  const sweep::Reproduction* reproduction = nullptr;  ///< with --reproduce
+  std::string reproduction_dir = {};
 };
+
+/// The run's figures the paper's numbers stand beside (lssvm_reproduction.hpp).
+LssvmRunFigures run_figures(const std::vector<Dataset>& train, const lssvm::TrainingRows& rows,
+                            const lssvm::TuneResult& tuned, const TestResults& results) {
+  LssvmRunFigures figures{static_cast<std::size_t>(rows.size()), tuned.c, tuned.sigma, {}, results.records, {"all", results.one_step, results.free_run}};
+  for (const Dataset& record : train) figures.trained_on.push_back(record.name);
+  return figures;
+}
 
 void print_json(const LssvmRun& run, const TestResults& results) {
   const lssvm::TuneResult& tuned = run.tuned;
@@ -223,9 +236,15 @@ void print_json(const LssvmRun& run, const TestResults& results) {
   j["one_step"] = metrics_json(results.one_step);
   j["free_run"] = metrics_json(results.free_run);
   nlohmann::ordered_json recs = nlohmann::ordered_json::array();
-  for (const RecordResult& r : results.records)
+  for (const LssvmRecordErrors& r : results.records)
     recs.push_back({{"name", r.name}, {"one_step", metrics_json(r.one_step)}, {"free_run", metrics_json(r.free_run)}});
   j["records"] = recs;
+  if (run.reproduction) {
+    nlohmann::ordered_json items = nlohmann::ordered_json::array();
+    for (const sweep::ReproductionItem& item : run.reproduction->items)
+      items.push_back({{"id", item.id}, {"verdict", item.verdict}});
+    j["reproduction"] = {{"folder", run.reproduction_dir}, {"items", items}};
+  }
   std::cout << j.dump(2) << "\n";
 }
 
@@ -286,9 +305,16 @@ void print_markdown(const LssvmRun& run, const TestResults& results) {
     for (auto& c : metric_cells(b)) cells.push_back(c);
     t.rows.push_back(cells);
   };
-  for (const RecordResult& r : results.records) row(r.name, r.one_step, r.free_run);
+  for (const LssvmRecordErrors& r : results.records) row(r.name, r.one_step, r.free_run);
   if (results.records.size() > 1) row("all", results.one_step, results.free_run);
   std::cout << t.to_markdown() << "\n";
+  if (!run.reproduction) return;
+  std::cout << fmt::format("Against the lssvm paper's numbers ({}/reproduction.md, with ours beside each):\n\n"
+                           "| item | verdict | detail |\n|---|---|---|\n",
+                           run.reproduction_dir);
+  for (const sweep::ReproductionItem& item : run.reproduction->items)
+    std::cout << fmt::format("| {} | **{}** | {} |\n", item.id, item.verdict, item.detail);
+  std::cout << "\n";
 }
 
 }  // namespace
@@ -304,6 +330,11 @@ int lssvm_command(const LssvmOptions& o) {
   if (o.train.empty()) throw InputError("lssvm: empty training set (no --train records)");
   if (o.test.empty()) throw InputError("lssvm: no --test records");
   check_output_folder("--save-model", o.save_model);  // before the training, not after it
+  if (!o.reproduce.empty() && o.output.empty())
+    throw InputError("--reproduce: give -o FOLDER, where reproduction.md and reproduction.json go");
+  if (!o.truth.empty() && o.reproduce.empty())
+    throw InputError("--truth: it describes the records of a reproduction; give --reproduce FILE too");
+  if (!o.reproduce.empty()) check_lssvm_paper_file(o.reproduce);
   if (!o.output.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.output, ec);
@@ -336,7 +367,13 @@ int lssvm_command(const LssvmOptions& o) {
   }
   const TestResults results = test_model(model, test, lags);
   if (!o.output.empty()) write_outputs(o.output, test, results, tuned, fixed);
-  const LssvmRun run{settings, tuned, fixed, seconds, lags, rows, train.size(), test.size(), without_current, subsampled};
+  LssvmRun run{settings, tuned, fixed, seconds, lags, rows, train.size(), test.size(), without_current, subsampled};
+  std::optional<sweep::Reproduction> reproduction;
+  if (!o.reproduce.empty()) {
+    reproduction = write_lssvm_reproduction(o.output, o.reproduce, o.truth, run_figures(train, rows, tuned, results));
+    run.reproduction = &*reproduction;
+    run.reproduction_dir = o.output;
+  }
   if (o.format == "json") print_json(run, results);
   else print_markdown(run, results);
   return 0;

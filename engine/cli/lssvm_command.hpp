@@ -31,6 +31,8 @@ struct LssvmOptions {
   std::string format = "md";       ///< md or json
   std::string save_model;          ///< also write the trained model here (engine/fit/lssvm_model_file.hpp)
   std::string output;              ///< folder for errors.csv and convergence.csv ("" = none)
+  std::string reproduce;           ///< the paper's numbers (datasets/papers/lssvm.toml): reproduction.md/json in output
+  std::string truth;               ///< what made the records, when synthetic ("": real records)
   RecordOptions data;                ///< loader options shared by every record (path unused)
 };
 

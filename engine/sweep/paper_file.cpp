@@ -19,7 +19,8 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
   for (const toml::node& n : *node->as_array()) {
     const std::string key = fmt::format("tables[{}]", i++);
     const toml::table& t = *n.as_table();
-    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable", "row_key"});
+    r.only_keys(t, key, {"table", "ours", "label", "columns", "rows", "compare", "scale", "numbers_not_comparable", "row_key",
+                            "at_most"});
     PublishedTable p;
     p.table = r.required_string(t, "table", key);
     p.ours = r.required_string(t, "ours", key);
@@ -33,6 +34,7 @@ std::vector<PublishedTable> read_tables(const Reader& r, const toml::table& root
         r.fail(t.get("compare"), key + ".compare", fmt::format("'{}' is not one of its columns", c));
     p.not_comparable = r.string(t, "numbers_not_comparable", key).value_or("");
     p.row_key = r.string(t, "row_key", key).value_or("");
+    p.at_most = r.boolean(t, "at_most", key, false);
     p.scale = r.number(t, "scale", key).value_or(1.0);
     if (!(p.scale > 0)) r.fail(t.get("scale"), key + ".scale", "expected a number > 0 (printed value x scale = ours)");
     const toml::node* rows = t.get("rows");

@@ -16,6 +16,9 @@ struct PublishedTable {
   double scale = 1;  ///< printed value × scale = the value in our table's unit (0.01: the paper prints %)
   std::string not_comparable;  ///< why its numbers cannot be set against ours (then only rankings are judged)
   std::string row_key;         ///< our table's column whose text names a row ("": its first column)
+  /// The paper's numbers are levels of error its claim of accuracy rests on ("the maximum error is within 10 N"): on
+  /// other records than the paper's, ours hold at or below them (within the tolerance above) and differ above.
+  bool at_most = false;
 };
 
 /// One [[claims]] entry. Three forms:

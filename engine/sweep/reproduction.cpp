@@ -73,14 +73,17 @@ bool is_not_determined(const ReproductionItem& item, const std::string& label) {
 }
 
 /// "holds" or "differs" by the tolerance, with the largest difference as the detail; numbers the records do not
-/// determine are left out (all of them: not-comparable).
-void judge_numbers(ReproductionItem& item, double tolerance) {
+/// determine are left out (all of them: not-comparable). With `at_most` (the paper's numbers are levels of error) a
+/// number of ours holds at any distance below the paper's, and only an excess above it counts.
+void judge_numbers(ReproductionItem& item, double tolerance, bool at_most = false) {
   double worst = 0;
-  std::size_t at = 0, judged = 0;
+  std::size_t at = 0, judged = 0, above = 0;
   for (std::size_t i = 0; i < item.values.size(); ++i) {
     if (is_not_determined(item, item.values[i].first)) continue;
     ++judged;
-    const double d = std::fabs(relative(item.values[i].second, item.paper_values[i].second));
+    const double signed_d = relative(item.values[i].second, item.paper_values[i].second);
+    const double d = at_most ? signed_d : std::fabs(signed_d);
+    above += at_most && signed_d > tolerance;
     if (!(d <= worst) || judged == 1) worst = d, at = i;
   }
   if (!item.values.empty() && judged == 0) {
@@ -89,8 +92,12 @@ void judge_numbers(ReproductionItem& item, double tolerance) {
     return;
   }
   if (item.verdict.empty()) item.verdict = worst <= tolerance ? "holds" : "differs";
+  if (at_most && judged > 0)
+    item.detail += fmt::format("{}{} of {} numbers of ours above the paper's level by more than {:g} %",
+                               item.detail.empty() ? "" : "; ", above, judged, 100 * tolerance);
   if (judged > 0) {
-    const std::string words = fmt::format("largest difference {}: ours {:.6g}, paper {:.6g} ({:+.1f} %)", item.values[at].first,
+    const std::string words = fmt::format("{} {}: ours {:.6g}, paper {:.6g} ({:+.1f} %)",
+                                          at_most ? "highest against the paper's level" : "largest difference", item.values[at].first,
                                           item.values[at].second, item.paper_values[at].second,
                                           100 * relative(item.values[at].second, item.paper_values[at].second));
     item.detail = item.detail.empty() ? words : item.detail + "; " + words;
@@ -137,7 +144,7 @@ ReproductionItem table_item(const PublishedTable& p, const std::vector<Table>& o
     item.detail = p.not_comparable;
     return item;
   }
-  judge_numbers(item, tolerance);
+  judge_numbers(item, tolerance, p.at_most);
   if (!item.not_determined.empty())
     item.detail += "; not determined by the records (‡, not judged) " + marked(item, item.not_determined);
   if (!at_bound.empty()) item.detail += "; at a bound of the search box (⊥) " + marked(item, at_bound);
@@ -362,8 +369,12 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
   out.source = paper.source;
   out.tolerance_rel = paper.tolerance_rel;
   out.data = spec;
-  for (auto& p : paper.tables)
-    if (p.not_comparable.empty()) p.not_comparable = spec.numbers_not_comparable;
+  for (auto& p : paper.tables) {
+    const auto own = std::find_if(spec.tables_not_comparable.begin(), spec.tables_not_comparable.end(),
+                                  [&](const auto& entry) { return entry.first == p.ours; });
+    if (p.not_comparable.empty())
+      p.not_comparable = own != spec.tables_not_comparable.end() ? own->second : spec.numbers_not_comparable;
+  }
   for (const auto& c : paper.claims) {
     if (!c.ours.empty())
       out.items.push_back(ours_claim_item(c, ours));

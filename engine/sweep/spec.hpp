@@ -42,6 +42,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/fit/resolve_model.hpp"
@@ -185,6 +186,10 @@ struct ReproductionSpec {
   /// The records are not at the paper's conditions (the papers' protocols on the real damper): each claim is judged on
   /// every row of our tables, in the order the claim states (`rows = "ours"`), and no number is set against the paper's.
   bool claims_on_our_rows = false;
+  /// Our tables (by id) whose numbers cannot be set against the paper's, each with the reason, beside a judged rest:
+  /// a command that knows its records sets it (errors in N of another damper than the paper's, where its relative
+  /// errors are judged).
+  std::vector<std::pair<std::string, std::string>> tables_not_comparable = {};
 };
 
 struct PartSpec {

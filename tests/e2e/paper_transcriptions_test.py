@@ -5,7 +5,8 @@ Every number of every [[tables]] row of each paper file must occur in the text o
 names (`seed <id>`, the file <id>.txt of SEEDS_DIR): as a decimal ("1.270", "-0.334"), as a mantissa times a power
 of ten ("2.065 \\times 10^{-3}", "6.079×10^3") or as a term of a parenthesized sum times a power of ten
 ("(1.870 + 2.240I) \\times 10^3" holds 1870 and 2240), or with a decimal comma ("5,703381", "2,03E+00": a comma
-between digits is read both ways, as the fvd paper's Tables 11-14 print their decimals). Equal within 1e-9 relative, so a transcription that drops a
+between digits is read both ways, as the fvd paper's Tables 11-14 print their decimals), or with the decimal colon of a
+value after "=" ("c = 16:48": the lssvm paper's text renders its decimal point so). Equal within 1e-9 relative, so a transcription that drops a
 digit, a sign of an exponent or a row fails here. Signs are not compared (a printed "−" may be a dash of the table's
 layout); a row label, a scale (`scale = 0.01` for a paper's %) and comments are not numbers of the paper.
 
@@ -27,6 +28,8 @@ def printed_numbers(text):
     found = [float(m.group(0)) for m in re.finditer(rf"(?<![\w.]){DECIMAL}(?:[eE][+\-]?\d+)?", t)]
     for m in re.finditer(r"(?<![\w.,])(\d+),(\d+)([eE][+\-]?\d+)?", t):
         found.append(float(f"{m.group(1)}.{m.group(2)}{m.group(3) or ''}"))
+    for m in re.finditer(r"=\s*(\d+):(\d+)(?![\d:])", t):
+        found.append(float(f"{m.group(1)}.{m.group(2)}"))
     for m in re.finditer(rf"({DECIMAL}){POWER}", t):
         found.append(float(m.group(1)) * 10 ** int(m.group(2)))
     for m in re.finditer(rf"\(([^()]*)\){POWER}", t):

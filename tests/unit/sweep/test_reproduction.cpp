@@ -163,6 +163,50 @@ TEST(Reproduction, NumbersTheRecordsDoNotDetermineAreShownButNotJudged) {
       << none.items[1].detail;
 }
 
+// A paper's levels of error (`at_most`: "the maximum error is within 10 N"): ours hold at any distance below them
+// and up to the tolerance above; beyond it they differ, whatever the others do.
+TEST(Reproduction, LevelsOfErrorHoldAtOrBelowThePapersAndDifferAbove) {
+  const std::string level = "[[tables]]\ntable = \"Fig. 9\"\nours = \"err\"\ncolumns = [\"Min\"]\n"
+                            "rows = [[\"Test 1\", 1.0], [\"Test 2\", 2.0]]\nat_most = true\n";
+  const auto item_with = [&](double t1, double t2) {
+    const Reproduction r = reproduce(paper_file(level), {ours("a", 0.1, 0.2), ours("b", 0.3, 0.4), ours("err", t1, t2)});
+    return r.items.at(3);
+  };
+  // A tenth of the paper's level, and 9 % above it: both hold (the plain table rule would call the first −90 %).
+  const ReproductionItem below = item_with(0.1, 2.18);
+  EXPECT_EQ(below.verdict, "holds") << below.detail;
+  EXPECT_NE(below.detail.find("0 of 2 numbers of ours above the paper's level by more than 10 %"), std::string::npos)
+      << below.detail;
+  EXPECT_NE(below.detail.find("highest against the paper's level Test 2 Min: ours 2.18, paper 2 (+9.0 %)"),
+            std::string::npos)
+      << below.detail;
+  // 12 % above on Test 1 differs, however far below Test 2 is.
+  const ReproductionItem above = item_with(1.12, 0.01);
+  EXPECT_EQ(above.verdict, "differs") << above.detail;
+  EXPECT_NE(above.detail.find("1 of 2 numbers of ours above"), std::string::npos) << above.detail;
+  EXPECT_NE(above.detail.find("Test 1 Min: ours 1.12, paper 1 (+12.0 %)"), std::string::npos) << above.detail;
+  // Without `at_most` the same tenth differs: levels are the only tables judged one-sided.
+  const std::string plain = level.substr(0, level.find("at_most"));
+  const Reproduction r = reproduce(paper_file(plain), {ours("a", 0.1, 0.2), ours("b", 0.3, 0.4), ours("err", 0.1, 2.0)});
+  EXPECT_EQ(r.items.at(3).verdict, "differs") << r.items.at(3).detail;
+}
+
+// A command that knows its records names the tables of ours that are not comparable (errors in N of another damper)
+// beside others that are judged; the preset-wide reason applies to the rest.
+TEST(Reproduction, TablesNamedNotComparableAreShownWithTheirReasonAndTheRestJudged) {
+  ReproductionSpec spec = paper_file();
+  spec.tables_not_comparable = {{"b", "forces of another damper"}};
+  const Reproduction r = reproduce(spec, {ours("a", 0.105, 0.19), ours("b", 0.31, 0.38)});
+  EXPECT_EQ(r.items[1].verdict, "holds") << r.items[1].detail;
+  EXPECT_EQ(r.items[2].verdict, "not-comparable");
+  EXPECT_EQ(r.items[2].detail, "forces of another damper");
+  ASSERT_EQ(r.items[2].values.size(), 2u);  // ours still beside the paper's
+  EXPECT_DOUBLE_EQ(r.items[2].values[0].second, 0.31);
+  EXPECT_NE(r.items[0].detail.find("ranking only, the numbers are not comparable: forces of another damper"),
+            std::string::npos)
+      << r.items[0].detail;
+}
+
 // A regression table names each coefficient in a later column, its first column only on a law's first row
 // (Parameter, Law, Coefficient, Value): `row_key` names the column whose text labels the rows.
 TEST(Reproduction, RowsAreFoundByTheColumnRowKeyNames) {
