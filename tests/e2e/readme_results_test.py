@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The README's Results say what the papers' presets write.
 
-The bullets of README.md's "## Results" that start with one of CHECKED's titles quote the verdicts of presets that
-the paper_claims_<preset> tests run (their reproduction.json in WORK_DIR/paper_claims_<preset>/<preset>/). Every
+The bullets of README.md's "## Results" that start with one of CHECKED's titles quote the verdicts of presets (and of
+the lssvm command's runs) that the paper_claims_<preset> tests run (their reproduction.json in WORK_DIR/paper_claims_<preset>/<preset>/). Every
 number in such a bullet must be one of those items' numbers at its printed precision (paper_claims_test.py's rule:
 values, the paper's, their differences in %, the models' means, the numbers of an item's detail such as "6 of 7
 rows"); numbers that name a condition (5 Hz, 25 mm), a table or an equation, or a test ("test 4") are not results.
@@ -28,6 +28,7 @@ import paper_claims_test as claims  # noqa: E402  (the same reading of a number 
 CHECKED = {
     "fvd paper": ["fvd"],
     "The other papers' claims": ["crfd_neutral", "mfm_neutral", "fdsp_neutral", "mfm_utfsm", "fdsp_utfsm"],
+    "LS-SVM": ["lssvm", "lssvm_utfsm"],
 }
 TEST_NAME = re.compile(r"[Tt]ests?\s*$")  # "test 4": a record's name
 

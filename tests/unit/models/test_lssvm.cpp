@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <limits>
 #include <numbers>
@@ -576,6 +577,49 @@ TEST(LssvmCli, OutputFolderHoldsEachTestSamplesErrorsAndTheConvergence) {
   ASSERT_EQ(best.size(), 5u);
   for (std::size_t g = 1; g < best.size(); ++g) EXPECT_LE(best[g], best[g - 1]);
   EXPECT_DOUBLE_EQ(best.back(), j.at("objective").get<double>());
+}
+
+// --reproduce: the paper file is read before any training (a malformed one fails at once, naming it), it needs -o,
+// and --truth belongs to it. Without --truth the records are real, another damper's: our errors in N are shown beside
+// the paper's and not judged, the relative ones are; with it they are judged too.
+TEST(LssvmCli, ReproductionJudgesErrorsInNewtonOnlyOnSyntheticRecords) {
+  const std::filesystem::path dir = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "lssvm";
+  const std::filesystem::path paper = std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "datasets" / "papers" / "lssvm.toml";
+  const auto out = testing::test_temp_dir("lssvm_reproduction");
+  const std::string run = "lssvm --train " + (dir / "train_2Hz_0p4A.csv").string() + " --test " +
+                          (dir / "test_2Hz_0p4A.csv").string() + " --c 16.48 --sigma 3.39 --format json";
+  const auto no_folder = testing::run_dampbench(run + " --reproduce " + paper.string());
+  EXPECT_NE(no_folder.exit_code, 0);
+  EXPECT_NE(no_folder.output.find("--reproduce: give -o FOLDER"), std::string::npos) << no_folder.output;
+  const auto no_file = testing::run_dampbench(run + " --truth x -o " + out.string());
+  EXPECT_NE(no_file.output.find("--truth: it describes the records of a reproduction"), std::string::npos)
+      << no_file.output;
+  const auto bad = out / "bad.toml";
+  testing::write_text(bad, "paper = \"lssvm\"\n[[tables]]\ntable = 1\n");
+  const auto malformed = testing::run_dampbench(run + " --reproduce " + bad.string() + " -o " + out.string());
+  EXPECT_NE(malformed.exit_code, 0);
+  EXPECT_NE(malformed.output.find(bad.string()), std::string::npos) << malformed.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "errors.csv")) << "the paper file is checked before the run";
+
+  const auto verdicts = [&](const std::string& extra) {
+    const auto r = testing::run_dampbench(run + " --reproduce " + paper.string() + " -o " + out.string() + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::map<std::string, std::string> by_id;
+    std::ifstream file(out / "reproduction.json");
+    const auto report = nlohmann::json::parse(file);
+    for (const auto& item : report.at("items"))
+      by_id[item.at("id").get<std::string>()] = item.at("verdict").get<std::string>();
+    EXPECT_EQ(nlohmann::json::parse(r.output).at("reproduction").at("items").size(), by_id.size());
+    return by_id;
+  };
+  const auto real = verdicts("");
+  EXPECT_EQ(real.at("§4.3 errors, one step"), "not-comparable");
+  EXPECT_EQ(real.at("§4.2 hyperparameters"), "not-comparable");
+  EXPECT_EQ(real.at("Figs. 9-10, one step"), "not-comparable");  // one record: the other figures' rows are missing
+  EXPECT_NE(real.at("Figs. 9-10 largest, one step"), "not-comparable");
+  const auto synthetic = verdicts(" --truth \"datasets/lssvm\"");
+  EXPECT_NE(synthetic.at("§4.3 errors, one step"), "not-comparable");
+  EXPECT_EQ(synthetic.at("Table 1"), "not-comparable");
 }
 
 // Issue 13: large training sets train without a flag: beyond the default cap (2000 samples) the rows are evenly
