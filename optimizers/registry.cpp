@@ -27,11 +27,24 @@ class UnknownSetting : public InputError {
   std::vector<std::string> known;
 };
 
-/// The field a settings key sets: a number, an optional number (unset = the optimizer's rule) or a whole number.
-using SettingField = std::variant<double*, std::optional<double>*, int*, std::optional<int>*>;
+// The settings that pick a name, as read and as listed.
+const ChoiceSetting kPsoVariant{"variant",
+                                {"inertia", "constriction", "linear_inertia"},
+                                "inertia",
+                                "inertia: constant w (Shi & Eberhart 1998); constriction: Clerc & Kennedy's χ with c1 = c2 = "
+                                "2.05; linear_inertia: w from 0.9 to 0.4 with c1 = c2 = 2 (Shi & Eberhart 1999)"};
+const ChoiceSetting kGaPreset{"preset", {"lssvm"}, "none",
+                              "lssvm: the lssvm paper's GA (pc 0.6, pm 0.03, 50 × 500, η_c 15, one elite)"};
+const ChoiceSetting kDeStrategy{"strategy", {"rand1bin", "best1bin", "currenttobest1bin"}, "rand1bin",
+                                "mutation base and crossover (Storn & Price 1997)"};
+const ChoiceSetting kCmaesRestarts{"restarts", {"none", "ipop", "bipop"}, "ipop",
+                                   "ipop: each restart doubles the population; bipop: large and small runs alternate; "
+                                   "none: one run, which may end before the budget"};
+const ChoiceSetting kHybridGlobal{"global", {"ga", "cmaes"}, "ga",
+                                  "the population phase: ga (its settings apply) or cmaes (cmaes's apply)"};
 
-/// Reads one optimizer's settings map: `apply` sets fields from a table of keys, `choice` and `text` read the
-/// rest; `finish` rejects any key no call asked for, listing the known ones.
+/// Reads one optimizer's settings map: `apply` sets fields from the optimizer's table (setting_table.hpp),
+/// `choice` and `text` read the rest; `finish` rejects any key no call asked for, listing the known ones.
 class SettingsReader {
  public:
   SettingsReader(std::string_view optimizer, const std::map<std::string, std::string>& settings)
@@ -44,35 +57,42 @@ class SettingsReader {
     return it == settings_.end() ? nullptr : &it->second;
   }
 
-  /// Sets each field whose key is given.
-  void apply(std::initializer_list<std::pair<std::string_view, SettingField>> table) {
-    for (const auto& entry : table) {
-      const std::string_view key = entry.first;  // not a structured binding: clang 14 cannot capture one
-      const SettingField& field = entry.second;
-      const std::string* t = text(key);
-      if (!t) continue;
-      const double v = parse_number(trim(*t), what(key));
+  /// The number `key` gives (nullopt when absent); InputError for text that is not one, or not a whole number
+  /// when `whole`. Its range is the optimizer's validate()'s to check.
+  [[nodiscard]] std::optional<double> number(std::string_view key, bool whole) {
+    const std::string* t = text(key);
+    if (!t) return std::nullopt;
+    const double v = parse_number(trim(*t), what(key));
+    if (whole && (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max()))
+      throw InputError(fmt::format("{}: expected a whole number, got '{}'", what(key), *t));
+    return v;
+  }
+
+  /// Sets each field of `s` whose key is given, in the table's order.
+  template <class S>
+  void apply(const SettingTable<S>& table, S& s) {
+    for (const auto& row : table) {
+      const std::optional<double> v = number(row.key, row.range.whole);
+      if (!v) continue;
       std::visit(
-          [&](auto* f) {
-            if constexpr (std::is_same_v<decltype(f), int*> || std::is_same_v<decltype(f), std::optional<int>*>) {
-              if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
-                throw InputError(fmt::format("{}: expected a whole number, got '{}'", what(key), *t));
-              *f = static_cast<int>(v);
-            } else {
-              *f = v;
-            }
+          [&](auto field) {
+            auto& target = s.*field;
+            if constexpr (requires { target.has_value(); })
+              target = static_cast<typename std::remove_cvref_t<decltype(target)>::value_type>(*v);
+            else
+              target = static_cast<std::remove_cvref_t<decltype(target)>>(*v);
           },
-          field);
+          row.field);
     }
   }
 
-  /// The value of `key` if it is one of `names` (empty when absent); otherwise InputError.
-  [[nodiscard]] std::string choice(std::string_view key, std::vector<std::string_view> names) {
-    const std::string* t = text(key);
+  /// The name `c.key` gives if it is one of `c.names` (empty when absent); otherwise InputError.
+  [[nodiscard]] std::string choice(const ChoiceSetting& c) {
+    const std::string* t = text(c.key);
     if (!t) return {};
     const std::string_view v = trim(*t);
-    if (std::ranges::find(names, v) == names.end())
-      throw InputError(fmt::format("{}: unknown {} '{}' (known: {})", optimizer_, key, v, fmt::join(names, ", ")));
+    if (std::ranges::find(c.names, v) == c.names.end())
+      throw InputError(fmt::format("{}: unknown {} '{}' (known: {})", optimizer_, c.key, v, fmt::join(c.names, ", ")));
     return std::string(v);
   }
 
@@ -106,13 +126,12 @@ OptimizerFactory factory_of(SettingsReader& read, const Settings& settings) {
 OptimizerFactory make_pso(const OptimizerSpec& spec) {
   SettingsReader read("pso", spec.settings);
   PsoSettings s;
-  const std::string variant = read.choice("variant", {"inertia", "constriction", "linear_inertia"});
+  const std::string variant = read.choice(kPsoVariant);
   if (variant == "constriction") s = PsoSettings::constriction();
   if (variant == "linear_inertia") s = PsoSettings::linear_inertia();
   s.population = spec.population;
   s.iterations = spec.iterations;
-  read.apply({{"inertia", &s.inertia}, {"inertia_end", &s.inertia_end}, {"cognitive", &s.cognitive},
-              {"social", &s.social}, {"vmax_fraction", &s.vmax_fraction}});
+  read.apply(pso_setting_table(), s);
   return factory_of<Pso>(read, s);
 }
 
@@ -125,30 +144,19 @@ Settings with_budget(const OptimizerSpec& spec) {
   return s;
 }
 
-/// The operator settings every genetic algorithm shares.
-void read_genetic(SettingsReader& read, GeneticSettings& s) {
-  read.apply({{"eta_c", &s.eta_c}, {"eta_m", &s.eta_m}, {"tournament", &s.tournament}, {"elites", &s.elites}});
-}
-
-/// The fixed crossover and mutation probabilities of the GA and the hybrids built on it, then read_genetic.
-void read_ga(SettingsReader& read, GaSettings& s) {
-  read.apply({{"pc", &s.pc}, {"pm", &s.pm}});
-  read_genetic(read, s);
-}
 
 OptimizerFactory make_ga(const OptimizerSpec& spec) {
   SettingsReader read("ga", spec.settings);
   // The lssvm paper's preset fixes its own budget (50 × 500) as well.
-  GaSettings s = read.choice("preset", {"lssvm"}) == "lssvm" ? GaSettings::lssvm() : with_budget<GaSettings>(spec);
-  read_ga(read, s);
+  GaSettings s = read.choice(kGaPreset) == "lssvm" ? GaSettings::lssvm() : with_budget<GaSettings>(spec);
+  read.apply(ga_setting_table(), s);
   return factory_of<Ga>(read, s);
 }
 
 OptimizerFactory make_aga(const OptimizerSpec& spec) {
   SettingsReader read("aga", spec.settings);
   auto s = with_budget<AgaSettings>(spec);
-  read.apply({{"k1", &s.k1}, {"k2", &s.k2}, {"k3", &s.k3}, {"k4", &s.k4}, {"pm_min", &s.pm_min}});
-  read_genetic(read, s);
+  read.apply(aga_setting_table(), s);
   return factory_of<Aga>(read, s);
 }
 
@@ -156,14 +164,14 @@ OptimizerFactory make_de(const OptimizerSpec& spec) {
   SettingsReader read("de", spec.settings);
   auto s = with_budget<DeSettings>(spec);
   if (const std::string* t = read.text("strategy")) s.strategy = parse_de_strategy(trim(*t));
-  read.apply({{"F", &s.F}, {"CR", &s.CR}});
+  read.apply(de_setting_table(), s);
   return factory_of<De>(read, s);
 }
 
 /// The cmaes settings other than the budget (also those of a hybrid's cmaes global stage).
 void read_cmaes(SettingsReader& read, CmaesSettings& s) {
   if (const std::string* t = read.text("restarts")) s.restarts = parse_cmaes_restarts(trim(*t));
-  read.apply({{"sigma0", &s.sigma0}, {"tolfun", &s.tolfun}, {"tolx", &s.tolx}});
+  read.apply(cmaes_setting_table(), s);
 }
 
 OptimizerFactory make_cmaes(const OptimizerSpec& spec) {
@@ -175,11 +183,11 @@ OptimizerFactory make_cmaes(const OptimizerSpec& spec) {
 
 /// A hybrid's global stage: `global` (ga, the default, or cmaes), then that stage's settings.
 void read_hybrid_global(SettingsReader& read, HybridSettings& s) {
-  if (read.choice("global", {"ga", "cmaes"}) == "cmaes") {
+  if (read.choice(kHybridGlobal) == "cmaes") {
     s.global = GlobalStage::cmaes;
     read_cmaes(read, s.cmaes);
   } else {
-    read_ga(read, s);
+    read.apply(ga_setting_table(), static_cast<GaSettings&>(s));
   }
 }
 
@@ -189,9 +197,9 @@ OptimizerFactory make_ga_sqp(const OptimizerSpec& spec) {
   read_hybrid_global(read, s);
   if (const std::string* t = read.text("constraint"); t && (trim(*t) == "off" || trim(*t) == "none"))
     s.constraint = std::numeric_limits<double>::infinity();
-  else
-    read.apply({{"constraint", &s.constraint}});
-  read.apply({{"sqp_iterations", &s.sqp_iterations}, {"fd_step", &s.fd_step}, {"xtol", &s.xtol}, {"ftol", &s.ftol}});
+  else if (const auto v = read.number("constraint", false))
+    s.constraint = *v;
+  read.apply(ga_sqp_setting_table(), s);
   return factory_of<GaSqp>(read, s);
 }
 
@@ -199,9 +207,7 @@ OptimizerFactory make_ga_lm(const OptimizerSpec& spec) {
   SettingsReader read("ga-lm", spec.settings);
   auto s = with_budget<GaLmSettings>(spec);
   read_hybrid_global(read, s);
-  read.apply({{"lm_iterations", &s.lm_iterations}, {"fd_step", &s.fd_step}, {"ftol", &s.ftol}, {"xtol", &s.xtol},
-              {"gtol", &s.gtol}, {"lambda0", &s.lambda0}, {"geodesic", &s.geodesic},
-              {"geodesic_ratio", &s.geodesic_ratio}});
+  read.apply(ga_lm_setting_table(), s);
   return factory_of<GaLm>(read, s);
 }
 
@@ -227,6 +233,51 @@ OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec) {
   for (const Entry& e : kOptimizers)
     if (spec.name == e.name) return e.make(spec);
   throw InputError(fmt::format("unknown optimizer '{}' (known: {})", spec.name, fmt::join(optimizer_names(), ", ")));
+}
+
+namespace {
+
+/// A hybrid's rows: its global stage's choice, ga's settings and cmaes's (each applying with that stage), then its own.
+template <class S>
+std::vector<SettingRow> hybrid_rows(const SettingTable<S>& own, std::vector<SettingRow> extra = {}) {
+  std::vector<SettingRow> rows{listed(kHybridGlobal)};
+  for (SettingRow row : listed(rebased<S>(ga_setting_table()), S{})) {
+    row.meaning = "with global = ga: " + row.meaning;
+    rows.push_back(std::move(row));
+  }
+  SettingRow restarts = listed(kCmaesRestarts);
+  restarts.meaning = "with global = cmaes: " + restarts.meaning;
+  rows.push_back(std::move(restarts));
+  for (SettingRow row : listed(cmaes_setting_table(), CmaesSettings{})) {
+    row.meaning = "with global = cmaes: " + row.meaning;
+    rows.push_back(std::move(row));
+  }
+  rows.insert(rows.end(), extra.begin(), extra.end());
+  for (SettingRow& row : listed(own, S{})) rows.push_back(std::move(row));
+  return rows;
+}
+
+template <class S>
+std::vector<SettingRow> with_choice(const ChoiceSetting& c, const SettingTable<S>& table) {
+  std::vector<SettingRow> rows{listed(c)};
+  for (SettingRow& row : listed(table, S{})) rows.push_back(std::move(row));
+  return rows;
+}
+
+}  // namespace
+
+std::vector<SettingRow> optimizer_setting_rows(const std::string& name) {
+  if (name == "pso") return with_choice(kPsoVariant, pso_setting_table());
+  if (name == "ga") return with_choice(kGaPreset, ga_setting_table());
+  if (name == "aga") return listed(aga_setting_table(), AgaSettings{});
+  if (name == "de") return with_choice(kDeStrategy, de_setting_table());
+  if (name == "cmaes") return with_choice(kCmaesRestarts, cmaes_setting_table());
+  if (name == "ga-sqp")
+    return hybrid_rows(ga_sqp_setting_table(),
+                       {{"constraint", "number or off", fmt::format("{:g}", GaSqpSettings{}.constraint), "> 0, or off",
+                         "fdsp eq. 11's threshold on the error, in the run metric's units"}});
+  if (name == "ga-lm") return hybrid_rows(ga_lm_setting_table());
+  throw InputError(fmt::format("unknown optimizer '{}' (known: {})", name, fmt::join(optimizer_names(), ", ")));
 }
 
 std::vector<std::string> optimizer_settings(const std::string& name) {

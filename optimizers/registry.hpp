@@ -1,18 +1,10 @@
 #pragma once
-// Optimizers by name (`--optimizer NAME` and sweep files), with their settings as "key" → "value" strings.
-//
-//   name  settings (defaults and sources in each optimizer's header)
-//   pso   variant (inertia | constriction | linear_inertia), inertia, inertia_end, cognitive, social,
-//         vmax_fraction                                                          optimizers/pso/pso.hpp
-//   ga    pc, pm, eta_c, eta_m, tournament, elites, preset (lssvm)               optimizers/ga/ga.hpp
-//   aga   k1, k2, k3, k4, pm_min, eta_c, eta_m, tournament, elites               optimizers/ga/aga.hpp
-//   de    strategy (rand1bin | best1bin | currenttobest1bin), F, CR              optimizers/de/de.hpp
-//   cmaes restarts (none | ipop | bipop), sigma0, tolfun, tolx                   optimizers/cmaes/cmaes.hpp
-//   ga-sqp  global (ga | cmaes; the population phase), ga's settings (no preset) or with global = cmaes
-//           cmaes's, constraint (fdsp eq. 11, in the run metric's units; or off),
-//           sqp_iterations, fd_step, xtol, ftol                                  optimizers/hybrid/ga_sqp.hpp
-//   ga-lm   global (ga | cmaes), ga's settings (no preset) or with global = cmaes cmaes's, lm_iterations,
-//           fd_step, ftol, xtol, gtol, lambda0, geodesic, geodesic_ratio         optimizers/hybrid/ga_lm.hpp
+// Optimizers by name (`--optimizer NAME` and sweep files), with their settings as "key" → "value" strings, read
+// through each optimizer's table of settings (setting_table.hpp; `dampbench optimizers` lists every one with its
+// type, default, allowed values and meaning):
+//   pso, ga, aga, de, cmaes                                 optimizers/<name>/<name>.hpp (ga and aga: ga/)
+//   ga-sqp, ga-lm   `global` (ga | cmaes: the population phase), that phase's settings, then their own
+//                                                           optimizers/hybrid/ga_sqp.hpp, ga_lm.hpp
 // Bound narrowing over conditions (mfm §5.1) is a procedure, not an optimizer: narrow_bounds() in
 // optimizers/narrowing/narrowing.hpp, with any of these as its inner optimizer.
 //
@@ -38,6 +30,7 @@
 #include "optimizers/hybrid/ga_lm.hpp"
 #include "optimizers/hybrid/ga_sqp.hpp"
 #include "optimizers/pso/pso.hpp"
+#include "optimizers/setting_table.hpp"
 
 namespace dampbench {
 
@@ -61,6 +54,11 @@ bool has_local_stage(const std::string& name);
 /// unknown setting ("ga: unknown setting 'pk' (known: pc, pm, ...)"), a value that is not a number / whole number / known
 /// name (the message names the setting), or settings that the optimizer's validate() rejects.
 OptimizerFactory make_optimizer_factory(const OptimizerSpec& spec);
+
+/// The settings of `name` as `dampbench optimizers` and the guide list them: key, type, default, allowed values and
+/// meaning, from the optimizer's tables (setting_table.hpp); a hybrid's global stage's (ga's and cmaes's) before its
+/// own. InputError for an unknown optimizer.
+std::vector<SettingRow> optimizer_setting_rows(const std::string& name);
 
 /// The settings `name` reads with its default choices (a hybrid's with global = ga), in the order of the "known:"
 /// list of its messages. InputError for an unknown optimizer.

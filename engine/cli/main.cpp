@@ -26,6 +26,7 @@
 #include "engine/cli/lssvm_command.hpp"
 #include "engine/cli/merge_command.hpp"
 #include "engine/cli/models_command.hpp"
+#include "engine/cli/optimizers_command.hpp"
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/run_command.hpp"
 #include "engine/cli/sensitivity_command.hpp"
@@ -75,6 +76,9 @@ std::vector<Command> declare_commands(CLI::App& app, int& threads, std::string& 
   std::vector<Command> commands;
   add_command<std::string>(&app, commands, "models", "list every model with parameter names, units and default bounds",
                            add_models_options, models_command);
+  add_command<std::string>(&app, commands, "optimizers",
+                           "list every optimizer's settings with their types, defaults, allowed values and meanings",
+                           add_optimizers_options, optimizers_command);
   auto* simulate_cmd = add_command<SimulateOptions>(&app, commands, "simulate",
       "force of a model with given parameters under a displacement", add_simulate_options, simulate_command);
   auto* fit_cmd = add_command<FitOptions>(&app, commands, "fit",

@@ -32,11 +32,18 @@ void CmaesSettings::validate() const {
     throw InputError(fmt::format(
         "cmaes: population must be 0 (the default 4 + floor(3 ln n)) or at least 2, got {}", population));
   if (generations < 1) throw InputError(fmt::format("cmaes: iterations must be at least 1, got {}", generations));
-  if (!(sigma0 > 0 && sigma0 <= 1)) throw InputError(fmt::format("cmaes: sigma0 must be in (0, 1], got {}", sigma0));
-  if (!(tolfun >= 0) || !std::isfinite(tolfun))
-    throw InputError(fmt::format("cmaes: tolfun must be a finite number >= 0, got {}", tolfun));
-  if (!(tolx >= 0) || !std::isfinite(tolx))
-    throw InputError(fmt::format("cmaes: tolx must be a finite number >= 0, got {}", tolx));
+  check_ranges("cmaes", cmaes_setting_table(), *this);
+}
+
+const SettingTable<CmaesSettings>& cmaes_setting_table() {
+  static const SettingTable<CmaesSettings> table{
+      {"sigma0", &CmaesSettings::sigma0, {0, 1, true}, "initial step size, as a fraction of every parameter's range"},
+      {"tolfun", &CmaesSettings::tolfun, kNonNegative,
+       "a run stops when its recent best and current values lie within this range (metric units)"},
+      {"tolx", &CmaesSettings::tolx, kNonNegative,
+       "a run stops when its steps fall below this fraction of its initial step size"},
+  };
+  return table;
 }
 
 int cmaes_default_population(int free_parameters) {

@@ -43,6 +43,7 @@
 #include "engine/common/random.hpp"
 #include "engine/identification/optimizer.hpp"
 #include "optimizers/cmaes/strategy.hpp"
+#include "optimizers/setting_table.hpp"
 #include "optimizers/unit_box.hpp"
 
 namespace dampbench {
@@ -68,6 +69,9 @@ struct CmaesSettings {
   /// negative or not finite.
   void validate() const;
 };
+
+/// cmaes's number settings (setting_table.hpp); `restarts` is a choice the registry reads.
+const SettingTable<CmaesSettings>& cmaes_setting_table();
 
 /// One CMA-ES run of the restart sequence.
 struct CmaesRun {

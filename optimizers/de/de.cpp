@@ -33,8 +33,15 @@ void DeSettings::validate() const {
   if (population < 4) throw InputError(fmt::format("de: population must be at least 4, got {}", population));
   if (generations < 1)
     throw InputError(fmt::format("de: iterations (generations) must be at least 1, got {}", generations));
-  if (!(F > 0 && F <= 2)) throw InputError(fmt::format("de: F must be in (0, 2], got {}", F));
-  if (!(CR >= 0 && CR <= 1)) throw InputError(fmt::format("de: CR must be in [0, 1], got {}", CR));
+  check_ranges("de", de_setting_table(), *this);
+}
+
+const SettingTable<DeSettings>& de_setting_table() {
+  static const SettingTable<DeSettings> table{
+      {"F", &DeSettings::F, {0, 2, true}, "differential weight"},
+      {"CR", &DeSettings::CR, kProbability, "crossover rate"},
+  };
+  return table;
 }
 
 De::De(const DeSettings& settings, const Bounds& bounds, std::uint64_t run_key)

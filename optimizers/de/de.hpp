@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "optimizers/population.hpp"
+#include "optimizers/setting_table.hpp"
 
 namespace dampbench {
 
@@ -44,6 +45,9 @@ struct DeSettings {
   /// Throws InputError: population < 4, generations < 1, F outside (0, 2], CR outside [0, 1].
   void validate() const;
 };
+
+/// de's number settings (setting_table.hpp); `strategy` is a choice the registry reads.
+const SettingTable<DeSettings>& de_setting_table();
 
 class De final : public PopulationOptimizer {
  public:

@@ -11,14 +11,18 @@ namespace dampbench {
 
 void AgaSettings::validate() const {
   GeneticSettings::validate("aga");
-  const auto probability = [](const char* name, double v) {
-    if (!(v >= 0 && v <= 1)) throw InputError(fmt::format("aga: {} must be in [0, 1], got {}", name, v));
-  };
-  probability("k1", k1);
-  probability("k2", k2);
-  probability("k3", k3);
-  probability("k4", k4);
-  if (pm_min) probability("pm_min", *pm_min);
+  check_ranges("aga", aga_setting_table(), *this);
+}
+
+const SettingTable<AgaSettings>& aga_setting_table() {
+  static const SettingTable<AgaSettings> table = joined<AgaSettings>(
+      {{"k1", &AgaSettings::k1, kProbability, "pc scale for above-average pairs"},
+       {"k2", &AgaSettings::k2, kProbability, "pm scale for above-average parents"},
+       {"k3", &AgaSettings::k3, kProbability, "pc of below-average pairs"},
+       {"k4", &AgaSettings::k4, kProbability, "pm of below-average parents"},
+       {"pm_min", &AgaSettings::pm_min, kProbability, "floor on pm", "1/(2d) for d free parameters"}},
+      rebased<AgaSettings>(genetic_setting_table()));
+  return table;
 }
 
 namespace {

@@ -37,6 +37,9 @@ struct AgaSettings : GeneticSettings {
   void validate() const;
 };
 
+/// k1 to k4, pm_min, then the genetic operators' settings (setting_table.hpp).
+const SettingTable<AgaSettings>& aga_setting_table();
+
 /// pc of a pair whose lower value is f_pair, given the population's f_min and f_avg (finite mean).
 [[nodiscard]] double aga_crossover_probability(const AgaSettings& s, double f_pair, double f_min, double f_avg);
 /// Per-gene pm of a child whose parent has value f_parent, in a problem of `dim` parameters (floor included).

@@ -23,8 +23,15 @@ GaSettings GaSettings::lssvm() {
 
 void GaSettings::validate() const {
   GeneticSettings::validate("ga");
-  if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga: pc must be in [0, 1], got {}", pc));
-  if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga: pm must be in [0, 1], got {}", *pm));
+  check_ranges("ga", ga_setting_table(), *this);
+}
+
+const SettingTable<GaSettings>& ga_setting_table() {
+  static const SettingTable<GaSettings> table = joined<GaSettings>(
+      {{"pc", &GaSettings::pc, kProbability, "crossover probability per pair"},
+       {"pm", &GaSettings::pm, kProbability, "mutation probability per gene", "1/d for d free parameters"}},
+      rebased<GaSettings>(genetic_setting_table()));
+  return table;
 }
 
 Ga::Ga(const GaSettings& settings, const Bounds& bounds, std::uint64_t run_key)

@@ -40,6 +40,9 @@ struct GaSettings : GeneticSettings {
   void validate() const;
 };
 
+/// pc, pm, then the genetic operators' settings (setting_table.hpp).
+const SettingTable<GaSettings>& ga_setting_table();
+
 class Ga final : public GeneticAlgorithm {
  public:
   Ga(const GaSettings& settings, const Bounds& bounds, std::uint64_t run_key);

@@ -16,16 +16,25 @@ void GeneticSettings::validate(std::string_view algorithm) const {
     throw InputError(fmt::format("{}: population must be at least 4, got {}", algorithm, population));
   if (generations < 1)
     throw InputError(fmt::format("{}: iterations (generations) must be at least 1, got {}", algorithm, generations));
+  check_ranges(algorithm, genetic_setting_table(), *this);  // then the limits that depend on the population
   if (tournament < 2 || tournament > population)
     throw InputError(fmt::format("{}: tournament must be in [2, population = {}], got {}", algorithm, population,
                                  tournament));
   if (elite_count() < 0 || elite_count() > population / 2)
     throw InputError(fmt::format("{}: elites must be in [0, population / 2 = {}], got {}", algorithm, population / 2,
                                  elite_count()));
-  if (!(eta_c >= 0) || !std::isfinite(eta_c))
-    throw InputError(fmt::format("{}: eta_c must be a finite number >= 0, got {}", algorithm, eta_c));
-  if (!(eta_m >= 0) || !std::isfinite(eta_m))
-    throw InputError(fmt::format("{}: eta_m must be a finite number >= 0, got {}", algorithm, eta_m));
+}
+
+const SettingTable<GeneticSettings>& genetic_setting_table() {
+  static const SettingTable<GeneticSettings> table{
+      {"eta_c", &GeneticSettings::eta_c, kNonNegative, "SBX distribution index: larger keeps children nearer their parents"},
+      {"eta_m", &GeneticSettings::eta_m, kNonNegative, "polynomial mutation distribution index"},
+      {"tournament", &GeneticSettings::tournament, whole_at_least(2), "tournament size, at most the population"},
+      {"elites", &GeneticSettings::elites, whole_at_least(0),
+       "best parents kept over the worst offspring each generation, at most half the population",
+       "⌈share × N⌉, at least 1 (ga's share 0.1, aga's 0)"},
+  };
+  return table;
 }
 
 GeneticAlgorithm::GeneticAlgorithm(const GeneticSettings& settings, const Bounds& bounds, std::uint64_t run_key)

@@ -42,6 +42,7 @@
 #include "optimizers/ga/generation_draws.hpp"
 #include "optimizers/ga/operators.hpp"
 #include "optimizers/population.hpp"
+#include "optimizers/setting_table.hpp"
 
 namespace dampbench {
 
@@ -66,6 +67,9 @@ struct GeneticSettings {
   /// outside [0, population / 2], eta_c or eta_m negative or not finite.
   void validate(std::string_view algorithm) const;
 };
+
+/// The operator settings every genetic algorithm reads (setting_table.hpp): eta_c, eta_m, tournament, elites.
+const SettingTable<GeneticSettings>& genetic_setting_table();
 
 /// The generational GA; subclasses choose the rates.
 class GeneticAlgorithm : public PopulationOptimizer {

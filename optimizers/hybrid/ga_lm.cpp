@@ -16,18 +16,22 @@ namespace dampbench {
 void GaLmSettings::validate() const {
   GeneticSettings::validate("ga-lm");
   validate_global();
-  if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga-lm: pc must be in [0, 1], got {}", pc));
-  if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga-lm: pm must be in [0, 1], got {}", *pm));
-  if (lm_iterations < 1) throw InputError(fmt::format("ga-lm: lm_iterations must be at least 1, got {}", lm_iterations));
-  if (!(fd_step > 0 && fd_step <= 0.1)) throw InputError(fmt::format("ga-lm: fd_step must be in (0, 0.1], got {}", fd_step));
-  if (!(ftol >= 0) || !std::isfinite(ftol)) throw InputError(fmt::format("ga-lm: ftol must be a finite number >= 0, got {}", ftol));
-  if (!(xtol >= 0) || !std::isfinite(xtol)) throw InputError(fmt::format("ga-lm: xtol must be a finite number >= 0, got {}", xtol));
-  if (!(gtol >= 0) || !std::isfinite(gtol)) throw InputError(fmt::format("ga-lm: gtol must be a finite number >= 0, got {}", gtol));
-  if (!(lambda0 > 0) || !std::isfinite(lambda0))
-    throw InputError(fmt::format("ga-lm: lambda0 must be a finite number > 0, got {}", lambda0));
-  if (geodesic != 0 && geodesic != 1) throw InputError(fmt::format("ga-lm: geodesic must be 0 or 1, got {}", geodesic));
-  if (!(geodesic_ratio > 0) || !std::isfinite(geodesic_ratio))
-    throw InputError(fmt::format("ga-lm: geodesic_ratio must be a finite number > 0, got {}", geodesic_ratio));
+  check_ranges("ga-lm", rebased<GaLmSettings>(ga_setting_table()), *this);
+  check_ranges("ga-lm", ga_lm_setting_table(), *this);
+}
+
+const SettingTable<GaLmSettings>& ga_lm_setting_table() {
+  static const SettingTable<GaLmSettings> table{
+      {"lm_iterations", &GaLmSettings::lm_iterations, whole_at_least(1), "Levenberg–Marquardt Jacobians at most"},
+      {"fd_step", &GaLmSettings::fd_step, kFdStep, "forward-difference step, as a fraction of each parameter's range"},
+      {"ftol", &GaLmSettings::ftol, kNonNegative, "stop when an accepted step lowers the squared residual by less, relative"},
+      {"xtol", &GaLmSettings::xtol, kNonNegative, "stop when the step in the unit box is below xtol·(‖y‖ + xtol)"},
+      {"gtol", &GaLmSettings::gtol, kNonNegative, "stop when the projected gradient's largest entry is at most gtol"},
+      {"lambda0", &GaLmSettings::lambda0, kPositive, "initial damping, relative to diag(JᵀJ)"},
+      {"geodesic", &GaLmSettings::geodesic, {0, 1, false, false, true}, "1: geodesic acceleration, 0: plain LM"},
+      {"geodesic_ratio", &GaLmSettings::geodesic_ratio, kPositive, "largest accepted 2‖a‖/‖v‖ of the acceleration"},
+  };
+  return table;
 }
 
 namespace {

@@ -71,6 +71,9 @@ struct GaLmSettings : HybridSettings {
   void validate() const;
 };
 
+/// ga-lm's own number settings (setting_table.hpp), read after its global stage's.
+const SettingTable<GaLmSettings>& ga_lm_setting_table();
+
 /// What the LM stage did (for tests and callers that hold the optimizer).
 struct LmReport {
   bool ran = false;           ///< false when the GA best had no finite residuals

@@ -15,14 +15,19 @@ namespace dampbench {
 void GaSqpSettings::validate() const {
   GeneticSettings::validate("ga-sqp");
   validate_global();
-  if (!(pc >= 0 && pc <= 1)) throw InputError(fmt::format("ga-sqp: pc must be in [0, 1], got {}", pc));
-  if (pm && !(*pm >= 0 && *pm <= 1)) throw InputError(fmt::format("ga-sqp: pm must be in [0, 1], got {}", *pm));
+  check_ranges("ga-sqp", rebased<GaSqpSettings>(ga_setting_table()), *this);
   if (!(constraint > 0)) throw InputError(fmt::format("ga-sqp: constraint must be a number > 0 or off, got {}", constraint));
-  if (sqp_iterations < 1)
-    throw InputError(fmt::format("ga-sqp: sqp_iterations must be at least 1, got {}", sqp_iterations));
-  if (!(fd_step > 0 && fd_step <= 0.1)) throw InputError(fmt::format("ga-sqp: fd_step must be in (0, 0.1], got {}", fd_step));
-  if (!(xtol >= 0) || !std::isfinite(xtol)) throw InputError(fmt::format("ga-sqp: xtol must be a finite number >= 0, got {}", xtol));
-  if (!(ftol >= 0) || !std::isfinite(ftol)) throw InputError(fmt::format("ga-sqp: ftol must be a finite number >= 0, got {}", ftol));
+  check_ranges("ga-sqp", ga_sqp_setting_table(), *this);
+}
+
+const SettingTable<GaSqpSettings>& ga_sqp_setting_table() {
+  static const SettingTable<GaSqpSettings> table{
+      {"sqp_iterations", &GaSqpSettings::sqp_iterations, whole_at_least(1), "SLSQP function calls at most"},
+      {"fd_step", &GaSqpSettings::fd_step, kFdStep, "forward-difference step, as a fraction of each parameter's range"},
+      {"xtol", &GaSqpSettings::xtol, kNonNegative, "stop when the step in the unit box is below xtol, relative"},
+      {"ftol", &GaSqpSettings::ftol, kNonNegative, "stop when the metric changes by less than ftol, relative"},
+  };
+  return table;
 }
 
 namespace {

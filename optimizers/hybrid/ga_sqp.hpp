@@ -57,6 +57,10 @@ struct GaSqpSettings : HybridSettings {
   void validate() const;
 };
 
+/// ga-sqp's own number settings but `constraint` (a number or off, which the registry reads), after its global
+/// stage's (setting_table.hpp).
+const SettingTable<GaSqpSettings>& ga_sqp_setting_table();
+
 /// What the SQP stage did (for tests and callers that hold the optimizer).
 struct SqpReport {
   bool ran = false;         ///< false when the GA best was not finite (nothing to start from)

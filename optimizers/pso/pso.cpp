@@ -14,13 +14,23 @@ namespace dampbench {
 void PsoSettings::validate() const {
   if (population < 2) throw InputError(fmt::format("pso: population must be at least 2, got {}", population));
   if (iterations < 1) throw InputError(fmt::format("pso: iterations must be at least 1, got {}", iterations));
-  if (!(inertia >= 0) || !(inertia_end >= 0) || !(cognitive >= 0) || !(social >= 0))
-    throw InputError("pso: inertia, cognitive and social coefficients must be non-negative numbers");
-  if (!(vmax_fraction > 0)) throw InputError(fmt::format("pso: vmax_fraction must be > 0, got {}", vmax_fraction));
+  check_ranges("pso", pso_setting_table(), *this);
   if (variant == PsoVariant::constriction && !(cognitive + social > 4))
     throw InputError(fmt::format(
         "pso: the constriction variant needs phi = cognitive + social > 4 (Clerc & Kennedy 2002), got {}",
         cognitive + social));
+}
+
+const SettingTable<PsoSettings>& pso_setting_table() {
+  static const SettingTable<PsoSettings> table{
+      {"inertia", &PsoSettings::inertia, kNonNegative, "inertia weight w at the first iteration"},
+      {"inertia_end", &PsoSettings::inertia_end, kNonNegative,
+       "w at the last iteration (a linear decrease when it differs from inertia)"},
+      {"cognitive", &PsoSettings::cognitive, kNonNegative, "c1, the pull toward each particle's own best"},
+      {"social", &PsoSettings::social, kNonNegative, "c2, the pull toward the swarm's best"},
+      {"vmax_fraction", &PsoSettings::vmax_fraction, kPositive, "velocity clamp as a fraction of each parameter's range"},
+  };
+  return table;
 }
 
 PsoSettings PsoSettings::constriction() {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "optimizers/population.hpp"
+#include "optimizers/setting_table.hpp"
 
 namespace dampbench {
 
@@ -57,6 +58,9 @@ struct PsoSettings {
   /// for the constriction variant cognitive + social ≤ 4.
   void validate() const;
 };
+
+/// pso's number settings (setting_table.hpp); `variant` is a choice the registry reads.
+const SettingTable<PsoSettings>& pso_setting_table();
 
 class Pso final : public PopulationOptimizer {
  public:

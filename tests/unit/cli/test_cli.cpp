@@ -43,6 +43,24 @@ std::filesystem::path synthetic_spencer_record() {
 
 }  // namespace
 
+// The guide's table of optimizer settings is what `dampbench optimizers` prints (between its two markers), so a
+// setting added, renamed or given another default in the code fails here until the guide says so.
+TEST(Cli, OptimizersListIsTheGuidesTable) {
+  const auto r = run_dampbench("optimizers");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(std::filesystem::path(DAMPBENCH_SOURCE_DIR) / "docs" / "guide.md");
+  const std::string guide((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string begin = "<!-- dampbench optimizers: the command's output, checked by Cli.OptimizersListIsTheGuidesTable -->\n";
+  const std::size_t from = guide.find(begin), to = guide.find("<!-- end of dampbench optimizers -->");
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(guide.substr(from + begin.size(), to - from - begin.size()), r.output)
+      << "regenerate the block with ./build/dampbench optimizers";
+  const auto j = nlohmann::json::parse(run_dampbench("optimizers --format json").output);
+  EXPECT_EQ(j.at("optimizers").at("de").at("settings").at(1).at("key"), "F");
+  EXPECT_EQ(j.at("optimizers").at("de").at("settings").at(1).at("allowed"), "in (0, 2]");
+}
+
 TEST(Cli, ModelsJsonListsEveryFvdModel) {
   const auto r = run_dampbench("models --format json");
   ASSERT_EQ(r.exit_code, 0) << r.output;

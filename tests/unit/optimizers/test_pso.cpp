@@ -60,7 +60,7 @@ TEST(Pso, RejectsNanCoefficients) {
   PsoSettings s;
   s.inertia_end = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(error_of([&] { Pso(s, testing::box(1, 0, 1), 1); }),
-            "pso: inertia, cognitive and social coefficients must be non-negative numbers");
+            "pso: inertia_end must be a finite number >= 0, got nan");
 }
 
 }  // namespace dampbench
