@@ -1,4 +1,4 @@
-// `dampbench lssvm`: LS-SVM damper model (lssvm paper; models/lssvm/lssvm.hpp). Trains on --train records,
+// `dampbench lssvm`: LS-SVM damper model (lssvm paper; engine/lssvm/lssvm.hpp). Trains on --train records,
 // tunes (c, σ) by GA unless both are given, and reports one-step-ahead and free-run metrics on --test records.
 #include "engine/cli/lssvm_command.hpp"
 
@@ -19,7 +19,7 @@
 #include "engine/common/table.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/fit/lssvm_model_file.hpp"
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 
 namespace dampbench::cli {
 namespace {
@@ -93,7 +93,7 @@ lssvm::TuneSettings tune_settings(const LssvmOptions& o) {
   settings.fitness = lssvm::parse_fitness(o.fitness);
   settings.validation_fraction = o.validation;
   // A free-run candidate costs a kernel matrix and a Cholesky solve (~0.2 s at 2 000 rows), where the validation
-  // fitness shares eigendecompositions: PSO 16 × 16 = 256 evaluations (models/lssvm/tuning.cpp).
+  // fitness shares eigendecompositions: PSO 16 × 16 = 256 evaluations (engine/lssvm/tuning.cpp).
   const bool tune_free_run = settings.fitness == lssvm::Fitness::free_run;
   settings.population = o.population.value_or(tune_free_run ? 16 : 50);
   settings.generations = o.generations.value_or(tune_free_run ? 16 : 500);

@@ -18,7 +18,7 @@ namespace dampbench::cli {
 struct LssvmOptions {
   std::vector<std::string> train;  ///< training records
   std::vector<std::string> test;   ///< test records
-  std::string lags;                ///< "d=…,v=…,y=…" lag orders (defaults documented in models/lssvm)
+  std::string lags;                ///< "d=…,v=…,y=…" lag orders (defaults documented in engine/lssvm)
   std::optional<int> max_train;    ///< at most this many training samples, evenly spaced (unset: the default
                                    ///< cap, lssvm_command.cpp; 0: all)
   std::uint64_t seed = 1;

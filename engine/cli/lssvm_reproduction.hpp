@@ -8,7 +8,7 @@
 
 #include "engine/common/table.hpp"
 #include "engine/sweep/reproduction.hpp"
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 
 namespace dampbench::cli {
 

@@ -1,5 +1,5 @@
 #pragma once
-// A trained LS-SVM model (models/lssvm) as a file: what `lssvm --save-model` writes and `evaluate --model-file` and
+// A trained LS-SVM model (engine/lssvm) as a file: what `lssvm --save-model` writes and `evaluate --model-file` and
 // `simulate --model-file` read, so that the model predicts other records without being trained again, with the same
 // bits as the training command's own test predictions. JSON, every number written with 17 significant digits
 // (exact_json_text): the lag orders, c and σ, the inputs' normalization, the normalized training points, the
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 
 namespace dampbench {
 

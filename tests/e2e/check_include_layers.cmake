@@ -15,7 +15,7 @@ set(DAMPBENCH_LAYERS
   "engine/evaluation"     5   # batches of candidates on records, sensitivity, bench workload
   "engine/identification" 6   # optimizer interface, lockstep repeated runs
   "optimizers"            7   # the algorithms and their registry
-  "models/lssvm"          8   # LS-SVM tunes its hyperparameters with an optimizer of the registry
+  "engine/lssvm"          8   # LS-SVM tunes its hyperparameters with an optimizer of the registry
   "datasets"              9   # generators of the synthetic grids (the sweep generates them on first use)
   "engine/fit"            10  # one fit from request to outcome: model by name, records, bounds, runs, evidence
   "engine/sweep"          11  # sweep files, scheduling, the results store, tables from it

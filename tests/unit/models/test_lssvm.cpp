@@ -1,4 +1,4 @@
-// LS-SVM damper model (models/lssvm/lssvm.hpp): the bordered solve and its spectral path against a dense
+// LS-SVM damper model (engine/lssvm/lssvm.hpp): the bordered solve and its spectral path against a dense
 // solve, function recovery, one-step vs free run on a known linear system, the paper's fitness against the
 // held-out one, GA reproducibility over thread counts, and bad input.
 #include <gtest/gtest.h>
@@ -20,7 +20,7 @@
 
 #include "engine/common/random.hpp"
 #include "engine/record/record_options.hpp"
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 #include "tests/test_support.hpp"
 
 namespace dampbench::lssvm {

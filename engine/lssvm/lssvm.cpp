@@ -1,6 +1,6 @@
 // LS-SVM damper model: regressors, normalization, training, one-step and free-run prediction, metrics
-// (models/lssvm/lssvm.hpp).
-#include "models/lssvm/lssvm.hpp"
+// (engine/lssvm/lssvm.hpp).
+#include "engine/lssvm/lssvm.hpp"
 
 #include <algorithm>
 #include <cmath>

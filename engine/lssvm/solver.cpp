@@ -1,5 +1,5 @@
 // RBF kernel, the bordered LS-SVM system by Cholesky, and the spectral factor that reuses one
-// eigendecomposition of K for many c (models/lssvm/lssvm.hpp).
+// eigendecomposition of K for many c (engine/lssvm/lssvm.hpp).
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -10,7 +10,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/common/vector_math.hpp"
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 
 namespace dampbench::lssvm {
 namespace {

@@ -1,4 +1,4 @@
-// Hyperparameters (c, σ) of the LS-SVM model by the project's GA (lssvm paper §3; models/lssvm/lssvm.hpp).
+// Hyperparameters (c, σ) of the LS-SVM model by the project's GA (lssvm paper §3; engine/lssvm/lssvm.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,7 +13,7 @@
 #include "engine/model/batch.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
-#include "models/lssvm/lssvm.hpp"
+#include "engine/lssvm/lssvm.hpp"
 #include "optimizers/registry.hpp"
 
 namespace dampbench::lssvm {
