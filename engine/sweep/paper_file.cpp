@@ -3,6 +3,9 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "engine/model/parameter_law.hpp"
 
 #include "engine/sweep/spec/reader.hpp"
 
@@ -162,12 +165,62 @@ void check_ranking(const Reader& r, const PublishedClaim& c) {
   }
 }
 
+/// The [[laws]] entries: each law parsed, its coefficients exactly the law's names for the parameter, each
+/// condition giving every variable the law reads.
+std::vector<PublishedLaw> read_laws(const Reader& r, const toml::table& root) {
+  std::vector<PublishedLaw> out;
+  const toml::node* node = root.get("laws");
+  if (!node) return out;
+  if (!node->is_array_of_tables()) r.fail(node, "laws", "expected [[laws]] tables");
+  int i = 0;
+  for (const toml::node& n : *node->as_array()) {
+    const std::string key = fmt::format("laws[{}]", i++);
+    const toml::table& t = *n.as_table();
+    r.only_keys(t, key, {"table", "ours", "parameter", "law", "label", "scale", "coefficients", "at"});
+    PublishedLaw p;
+    p.table = r.required_string(t, "table", key);
+    p.ours = r.required_string(t, "ours", key);
+    p.parameter = r.required_string(t, "parameter", key);
+    p.law = r.required_string(t, "law", key);
+    p.label = r.string(t, "label", key).value_or(p.table);
+    p.scale = r.number(t, "scale", key).value_or(1.0);
+    const ParameterLaw law = parse_law(p.law, key + ".law");
+    const std::vector<std::string> names = law.coefficient_names(p.parameter);
+    const toml::array* coefficients = t.get("coefficients") ? t.get("coefficients")->as_array() : nullptr;
+    if (!coefficients) r.fail(&t, key + ".coefficients", "expected coefficients = [[\"name\", number], ...]");
+    for (const toml::node& c : *coefficients) {
+      const toml::array* a = c.as_array();
+      if (!a || a->size() != 2 || !(*a)[0].is_string())
+        r.fail(&c, key + ".coefficients", "expected a coefficient's name and its printed number");
+      p.coefficients.emplace_back(std::string(*(*a)[0].value<std::string>()), r.number((*a)[1], key + ".coefficients"));
+    }
+    std::vector<std::string> given;
+    for (const auto& c : p.coefficients) given.push_back(c.first);
+    if (given != names)
+      r.fail(coefficients, key + ".coefficients",
+             fmt::format("expected the coefficients of {} = {} in order: {}", p.parameter, p.law, fmt::join(names, ", ")));
+    const toml::array* at = t.get("at") ? t.get("at")->as_array() : nullptr;
+    if (!at || at->empty()) r.fail(&t, key + ".at", "expected at = [{ I = 0, amp = 0.01, freq = 1 }, ...]");
+    for (const toml::node& c : *at) {
+      const toml::table* vars = c.as_table();
+      if (!vars) r.fail(&c, key + ".at", "expected a table of operating variables");
+      std::map<std::string, double> values;
+      for (const auto& [name, value] : *vars) values[std::string(name.str())] = r.number(value, key + ".at");
+      for (const std::string& v : law.variables())
+        if (!values.contains(v)) r.fail(&c, key + ".at", fmt::format("the law reads {}, which this condition lacks", v));
+      p.at.push_back(std::move(values));
+    }
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 }  // namespace
 
 PaperFile parse_paper_file(std::string_view text, const std::string& path) {
   const Reader r(path);
   const toml::table root = spec_file::parse_toml(text, path);
-  r.only_keys(root, "", {"paper", "title", "source", "tolerance_rel", "tables", "claims"});
+  r.only_keys(root, "", {"paper", "title", "source", "tolerance_rel", "tables", "claims", "laws"});
   PaperFile out;
   out.paper = r.required_string(root, "paper", "");
   out.title = r.required_string(root, "title", "");
@@ -176,6 +229,7 @@ PaperFile parse_paper_file(std::string_view text, const std::string& path) {
   if (!(out.tolerance_rel >= 0)) r.fail(root.get("tolerance_rel"), "tolerance_rel", "expected a number >= 0");
   out.tables = read_tables(r, root);
   out.claims = read_claims(r, root, out.tables);
+  out.laws = read_laws(r, root);
   for (const auto& c : out.claims)
     if (!c.tables.empty()) check_ranking(r, c);
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 // A paper's file of published numbers (datasets/papers/<paper>.toml; its keys: engine/sweep/reproduction.hpp), read
 // and checked against itself: a claim's ranking or largest row must be the one the paper's own numbers give.
+#include <map>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -40,11 +41,22 @@ struct PublishedClaim {
   double margin = 0;                          ///< ours: differences within it (in the column's unit) are ties
 };
 
+/// One [[laws]] entry: a law the paper prints with its coefficients (mfm eqs. 10-11), set beside our regression of
+/// the same parameter by the values both give at the conditions `at`, since a product's factors share a free scale
+/// and their coefficients alone cannot be compared.
+struct PublishedLaw {
+  std::string table, ours, parameter, law, label;
+  double scale = 1;  ///< the printed law × scale = the parameter in our unit (eq. 10's × 10⁻³)
+  std::vector<std::pair<std::string, double>> coefficients;  ///< by our coefficient names, as printed
+  std::vector<std::map<std::string, double>> at;             ///< operating variables of each condition compared
+};
+
 struct PaperFile {
   std::string paper, title, source;
   double tolerance_rel = 0.1;  ///< numbers within it of the paper's hold
   std::vector<PublishedTable> tables;
   std::vector<PublishedClaim> claims;  ///< point into `tables` (move the file whole, never copy it)
+  std::vector<PublishedLaw> laws;
 };
 
 /// The file's text parsed; InputError naming `path`, the line and the key for anything malformed.

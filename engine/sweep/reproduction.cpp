@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <cstdio>
 #include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "engine/model/parameter_law.hpp"
 #include "engine/sweep/paper_file.hpp"
 #include "engine/sweep/spec/reader.hpp"
 
@@ -345,6 +347,78 @@ ReproductionItem ours_claim_item(const PublishedClaim& c, const std::vector<Tabl
   return item;
 }
 
+/// Our regression of `parameter` in table `t` (columns Parameter, Law, Coefficient, Value, "Not identifiable at"):
+/// its law, its coefficients by name and whether the records determined it at none of the conditions.
+struct OurLaw {
+  std::string law;
+  std::map<std::string, double> coefficients;
+  bool determined_nowhere = false;
+};
+std::optional<OurLaw> our_law(const Table& t, const std::string& parameter) {
+  const std::size_t name = column_index(t, "Parameter"), law = column_index(t, "Law"),
+                    coefficient = column_index(t, "Coefficient"), value = column_index(t, "Value"),
+                    undetermined = column_index(t, "Not identifiable at");
+  const std::size_t columns = t.columns.size();
+  if (name >= columns || law >= columns || coefficient >= columns || value >= columns) return std::nullopt;
+  std::optional<OurLaw> out;
+  bool in = false;
+  for (const auto& row : t.rows) {
+    if (row.size() < columns) continue;
+    if (!row[name].text.empty()) in = row[name].text == parameter;
+    if (!in) continue;
+    if (!out) {
+      out = OurLaw{row[law].text, {}, false};
+      int a = -1, b = -2;  // "‡ 112 of 112": not determined at every condition
+      if (undetermined < columns && std::sscanf(row[undetermined].text.c_str(), "‡ %d of %d", &a, &b) == 2) out->determined_nowhere = a == b;
+    }
+    if (row[value].value) out->coefficients[row[coefficient].text] = *row[value].value;
+  }
+  return out;
+}
+
+/// A [[laws]] entry: the paper's law and our regression of the same parameter evaluated at each condition.
+ReproductionItem law_item(const PublishedLaw& p, const std::vector<Table>& ours, double tolerance,
+                          const std::string& not_comparable) {
+  ReproductionItem item{p.table, fmt::format("{}: {} = {}", p.label, p.parameter, p.law), {}, {}, "", "", p.table};
+  const Table* t = find_table(ours, p.ours);
+  const std::optional<OurLaw> mine = t ? our_law(*t, p.parameter) : std::nullopt;
+  if (!mine) {
+    item.verdict = "not-comparable";
+    item.detail = fmt::format("this run wrote no regression of {} in a table '{}'", p.parameter, p.ours);
+    return item;
+  }
+  const ParameterLaw mine_law = parse_law(mine->law, p.ours);
+  std::vector<double> mine_coefficients, paper_coefficients;
+  for (const std::string& c : mine_law.coefficient_names(p.parameter)) {
+    const auto it = mine->coefficients.find(c);
+    if (it == mine->coefficients.end()) {
+      item.verdict = "not-comparable";
+      item.detail = fmt::format("table '{}' has no coefficient {}", p.ours, c);
+      return item;
+    }
+    mine_coefficients.push_back(it->second);
+  }
+  const ParameterLaw paper_law = parse_law(p.law, p.table);
+  for (const auto& c : p.coefficients) paper_coefficients.push_back(c.second);
+  for (const auto& at : p.at) {
+    std::vector<std::string> where;
+    for (const std::string& v : paper_law.variables()) where.push_back(fmt::format("{}={:g}", v, at.at(v)));
+    const std::string label = fmt::format("{} at {}", p.parameter, fmt::join(where, ", "));
+    item.paper_values.emplace_back(label, p.scale * paper_law.evaluate(paper_coefficients.data(), at));
+    item.values.emplace_back(label, mine_law.evaluate(mine_coefficients.data(), at));
+    if (mine->determined_nowhere) item.not_determined.push_back(label);
+  }
+  if (!not_comparable.empty()) {
+    item.verdict = "not-comparable";
+    item.detail = not_comparable;
+    return item;
+  }
+  item.detail = fmt::format("the two laws' values at {} conditions (a product's factors share a free scale, so its "
+                            "coefficients alone are not compared)", p.at.size());
+  judge_numbers(item, tolerance);  // not-comparable when the records determine our parameter nowhere
+  return item;
+}
+
 bool recovery_check(const Reproduction& r) { return r.data.data == "synthetic" && r.data.truth_is_compared_model; }
 
 std::string data_sentence(const ReproductionSpec& d) {
@@ -393,6 +467,8 @@ Reproduction reproduce_text(const ReproductionSpec& spec, std::string_view text,
                           "not-comparable", spec.numbers_not_comparable, p.table};
     out.items.push_back(std::move(item));
   }
+  for (const auto& p : paper.laws)
+    out.items.push_back(law_item(p, ours, out.tolerance_rel, spec.numbers_not_comparable));
   return out;
 }
 

@@ -19,6 +19,10 @@
 //                 rise on every row, lowest first (magnitude = true: their absolute values); margin (in the column's
 //                 unit, default 0): a row within it is neither way, and a verdict with such rows and none the other
 //                 way is `differs`
+//   [[laws]]    table ("eq. 10"), ours (our regression table: Parameter, Law, Coefficient, Value), parameter, law
+//               (as --laws writes it), scale, coefficients = [["A_I0", 6.578], ...] in the law's order, at = the
+//               conditions [{ I = 0, amp = 0.01, freq = 1 }, ...]: both laws' values there are compared, since a
+//               product's factors share a free scale (our parameter determined at no condition: shown, not judged)
 // Verdicts (fixed vocabulary):
 //   holds           same ranking (a claim) and every number within tolerance_rel of the paper's (or the same
 //                   ranking alone, said so, when the numbers are not comparable)

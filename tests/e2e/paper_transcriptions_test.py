@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The papers' numbers in datasets/papers/*.toml are the ones the papers print.
 
-Every number of every [[tables]] row of each paper file must occur in the text of the paper the file's `source`
+Every number of every [[tables]] row and [[laws]] coefficient of each paper file must occur in the text of the paper the file's `source`
 names (`seed <id>`, the file <id>.txt of SEEDS_DIR): as a decimal ("1.270", "-0.334"), as a mantissa times a power
 of ten ("2.065 \\times 10^{-3}", "6.079×10^3") or as a term of a parenthesized sum times a power of ten
 ("(1.870 + 2.240I) \\times 10^3" holds 1870 and 2240), or with a decimal comma ("5,703381", "2,03E+00": a comma
@@ -44,6 +44,7 @@ def transcribed(paper_file):
     if not seed:
         sys.exit(f"{paper_file}: source names no seed ('seed <id>, Tables ...')")
     numbers = [(t["table"], row[0], value) for t in data.get("tables", []) for row in t["rows"] for value in row[1:]]
+    numbers += [(law["table"], name, value) for law in data.get("laws", []) for name, value in law["coefficients"]]
     return seed.group(1), numbers
 
 

@@ -207,6 +207,57 @@ TEST(Reproduction, TablesNamedNotComparableAreShownWithTheirReasonAndTheRestJudg
       << r.items[0].detail;
 }
 
+// [[laws]]: the paper's printed law and our regression of the same parameter, compared by their values at the given
+// conditions. Paper: k = (2 + 1·I)(1 + 0.5·amp) × 10 at I = 0 and 2, amp = 1: 30 and 60. Ours: k = (2.1 + 1·I)(1 +
+// 0.5·amp) scaled by 10 in its first factor instead, i.e. (21 + 10 I)(1 + 0.5 amp): 31.5 and 61.5, within 10 %.
+Table law_table(double k_I0, const std::string& undetermined = "none") {
+  Table t{"reg", "reg", {"Parameter", "Law", "Coefficient", "Value", "Not identifiable at"}, {}};
+  t.rows.push_back({Cell("k"), Cell("prod(poly(I,1),poly(amp,1))"), Cell("k_I0"), number_cell(k_I0), Cell(undetermined)});
+  t.rows.push_back({Cell(""), Cell(""), Cell("k_I1"), number_cell(10), Cell("")});
+  t.rows.push_back({Cell(""), Cell(""), Cell("k_amp0"), number_cell(1), Cell("")});
+  t.rows.push_back({Cell(""), Cell(""), Cell("k_amp1"), number_cell(0.5), Cell("")});
+  t.rows.push_back({Cell("other"), Cell("poly(I,1)"), Cell("other_I0"), number_cell(99), Cell("none")});
+  return t;
+}
+const std::string kLaw = "[[laws]]\ntable = \"eq. 9\"\nours = \"reg\"\nparameter = \"k\"\nlaw = \"prod(poly(I,1),poly(amp,1))\"\n"
+                         "scale = 10\ncoefficients = [[\"k_I0\", 2], [\"k_I1\", 1], [\"k_amp0\", 1], [\"k_amp1\", 0.5]]\n"
+                         "at = [{ I = 0, amp = 1 }, { I = 2, amp = 1 }]\n";
+
+TEST(Reproduction, APrintedLawIsComparedByItsValuesAtTheConditions) {
+  const std::vector<Table> base{ours("a", 0.105, 0.19), ours("b", 0.31, 0.38)};
+  auto with = [&](const Table& t) {
+    std::vector<Table> all = base;
+    all.push_back(t);
+    return reproduce(paper_file(kLaw), all).items.back();
+  };
+  const ReproductionItem near = with(law_table(21));
+  ASSERT_EQ(near.values.size(), 2u);
+  EXPECT_EQ(near.values[1].first, "k at I=2, amp=1");
+  EXPECT_DOUBLE_EQ(near.paper_values[0].second, 30);  // the printed law × scale
+  EXPECT_DOUBLE_EQ(near.paper_values[1].second, 60);
+  EXPECT_DOUBLE_EQ(near.values[0].second, 31.5);
+  EXPECT_DOUBLE_EQ(near.values[1].second, 61.5);
+  EXPECT_EQ(near.verdict, "holds") << near.detail;
+  EXPECT_EQ(with(law_table(30)).verdict, "differs");  // (30 + 10 I)·1.5: 45 against 30
+  // Our coefficient determined at no condition: shown, not judged.
+  const ReproductionItem nowhere = with(law_table(30, "‡ 3 of 3"));
+  EXPECT_EQ(nowhere.verdict, "not-comparable") << nowhere.detail;
+  EXPECT_EQ(nowhere.not_determined.size(), 2u);
+  EXPECT_EQ(with(law_table(30, "‡ 2 of 3")).verdict, "differs");
+  // No regression of k in our tables.
+  Table other = law_table(21);
+  other.rows.erase(other.rows.begin(), other.rows.begin() + 4);
+  EXPECT_EQ(with(other).verdict, "not-comparable");
+  // Coefficients that are not the law's, in its order, are refused naming them.
+  std::string wrong = kLaw;
+  wrong.replace(wrong.find("[\"k_I1\", 1], "), 13, "");
+  const std::string message = testing::error_of([&] { (void)reproduce(paper_file(wrong), base); });
+  EXPECT_NE(message.find("expected the coefficients of k = prod(poly(I,1),poly(amp,1)) in order: k_I0, k_I1, k_amp0, "
+                         "k_amp1"),
+            std::string::npos)
+      << message;
+}
+
 // A regression table names each coefficient in a later column, its first column only on a law's first row
 // (Parameter, Law, Coefficient, Value): `row_key` names the column whose text labels the rows.
 TEST(Reproduction, RowsAreFoundByTheColumnRowKeyNames) {
