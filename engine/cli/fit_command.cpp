@@ -18,7 +18,6 @@
 #include "engine/fit/law_selection.hpp"
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/model_file_of_fit.hpp"
-#include "engine/fit/record_start.hpp"
 
 namespace dampbench::cli {
 
@@ -155,19 +154,6 @@ void print_operating(const FitRecords& records) {
     std::cout << fmt::format("- {}: {}\n", s.name, line);
   }
   std::cout << "\n";
-}
-
-/// `--laws auto`: chooses the laws (engine/fit/law_selection.hpp), fits them, and makes `prepared` and `spec`
-/// describe the chosen model, so that the tables, the report and the model file show it.
-FitOutcome fit_with_chosen_laws(PreparedFit& prepared, FitSpec& spec, HeldOutPlan& held_out, LawSelection& selection) {
-  LawSearch search = law_search(prepared, prepared.request());
-  search.record_fits = held_out.record_fits.get();  // the folds reuse each record's own fit
-  search.progress = tell_stderr;
-  ResolvedModel fitted;
-  FitOutcome outcome = fit_with_auto_laws(search, fitted, selection);
-  prepared.model = std::move(fitted);
-  spec.model.laws = selection.laws;
-  return outcome;
 }
 
 nlohmann::ordered_json selection_json(const LawSelection& s) {
@@ -313,18 +299,10 @@ FitRun run_fit_options(const FitOptions& o) {
   check_format(o.format);
   check_output_folder("--report", o.report);  // before the fit, not after it
   check_output_folder("--save-model", o.save_model);
-  FitRun run{o.fit, prepare_fit(o.fit), {}, {}, {}};
-  PreparedFit& prepared = run.prepared;
-  HeldOutPlan held_out_plan = plan_held_out(prepared, o.fit.data, o.held_out);  // bad input before the fit
-  held_out_plan.progress = tell_stderr;
-  FitRequest seeded = prepared.request();
-  seeded.progress = held_out_plan.progress;
-  seed_from_record_fits(prepared, seeded, held_out_plan.record_fits.get(), held_out_plan.progress);
-  run.outcome = prepared.auto_laws ? fit_with_chosen_laws(prepared, run.spec, held_out_plan, run.selection)
-                                   : run_fit(seeded);
+  FitRun run = fit_and_predict(o.fit, o.held_out, tell_stderr);
+  const PreparedFit& prepared = run.prepared;
   const FitOutcome& fit = run.outcome;
   const FitRequest request = prepared.request();
-  if (o.held_out.any()) run.held_out = run_held_out(prepared, fit, held_out_plan);
   if (!o.report.empty()) {
     const FitTables tables = fit_tables(prepared, fit, o.fit.metric);
     FitReport report{prepared.model.model, prepared.plan.optimizer,

@@ -7,9 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/fit/held_out.hpp"
-#include "engine/fit/law_selection.hpp"
-#include "engine/fit/prepared_fit.hpp"
+#include "engine/fit/fit_entry.hpp"
 
 namespace CLI {
 class App;
@@ -25,14 +23,8 @@ struct FitOptions {
   std::string save_model;     ///< model file of the best run (engine/fit/model_file.hpp; "" = none)
 };
 
-/// A finished fit as `dampbench fit` makes it, before it is printed.
-struct FitRun {
-  FitSpec spec;                     ///< the options' spec; with --laws auto, the laws chosen
-  PreparedFit prepared;             ///< the model (with --laws auto: the chosen one), plan and records
-  FitOutcome outcome;
-  LawSelection selection;           ///< with --laws auto
-  std::optional<HeldOut> held_out;  ///< with --predict or --folds
-};
+/// A finished fit as `dampbench fit` makes it (engine/fit/fit_entry.hpp), before it is printed.
+using FitRun = FitResult;
 
 void add_fit_options(CLI::App* cmd, FitOptions& options);
 
