@@ -9,7 +9,7 @@
 
 #include "engine/cli/cli_options.hpp"
 #include "engine/cli/fit_held_out.hpp"
-#include "engine/cli/report_command.hpp"
+#include "engine/cli/fit_report.hpp"
 #include "engine/common/error.hpp"
 #include "engine/common/statistics.hpp"
 #include "engine/common/table.hpp"
