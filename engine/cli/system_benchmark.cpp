@@ -10,7 +10,7 @@
 
 #include "datasets/synthetic/bouc_wen_benchmark.hpp"
 #include "engine/cli/evaluate_command.hpp"
-#include "engine/cli/fit_command.hpp"
+#include "engine/cli/fit_run.hpp"
 #include "engine/common/table.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/sweep/spec/reader.hpp"

@@ -1,4 +1,4 @@
-// fit: the command line's fit (engine/cli/fit_command.hpp, run_fit_options and fit_json) on Records, with the
+// fit: the command line's fit (engine/cli/fit_run.hpp, run_fit_options and fit_json) on Records, with the
 // interpreter released while it runs; the result is the JSON that `dampbench fit --format json` prints.
 #include <optional>
 #include <string>
@@ -6,7 +6,7 @@
 
 #include <pybind11/stl.h>
 
-#include "engine/cli/fit_command.hpp"
+#include "engine/cli/fit_run.hpp"
 #include "python/src/bindings.hpp"
 
 namespace dampbench::python {
