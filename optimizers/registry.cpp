@@ -241,7 +241,8 @@ namespace {
 template <class S>
 std::vector<SettingRow> hybrid_rows(const SettingTable<S>& own, std::vector<SettingRow> extra = {}) {
   std::vector<SettingRow> rows{listed(kHybridGlobal)};
-  for (SettingRow row : listed(rebased<S>(ga_setting_table()), S{})) {
+  const S defaults{};
+  for (SettingRow row : listed<GaSettings>(ga_setting_table(), defaults)) {
     row.meaning = "with global = ga: " + row.meaning;
     rows.push_back(std::move(row));
   }
@@ -253,7 +254,7 @@ std::vector<SettingRow> hybrid_rows(const SettingTable<S>& own, std::vector<Sett
     rows.push_back(std::move(row));
   }
   rows.insert(rows.end(), extra.begin(), extra.end());
-  for (SettingRow& row : listed(own, S{})) rows.push_back(std::move(row));
+  for (SettingRow& row : listed(own, defaults)) rows.push_back(std::move(row));
   return rows;
 }
 

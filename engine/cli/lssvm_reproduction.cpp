@@ -34,21 +34,21 @@ std::vector<Table> lssvm_reproduction_tables(const LssvmRunFigures& run) {
                  "LS-SVM maximum relative errors (max |e| / max |F_measured| of the record)",
                  {"record", "one-step max rel [%]", "free-run max rel [%]"},
                  {}};
-  std::vector<const LssvmRecordErrors*> rows;
-  for (const LssvmRecordErrors& r : run.records) rows.push_back(&r);
-  rows.push_back(&run.all);
-  // A relative error is each record's own (its largest error over its largest force); "largest" is the largest of
-  // them, as the paper's largest figure is of its four.
-  double largest_one = 0, largest_free = 0;
-  for (const LssvmRecordErrors* r : rows) {
-    const lssvm::ErrorMetrics &one = r->one_step, &free = r->free_run;
-    errors.rows.push_back({r->name, number_cell(one.mae), number_cell(one.max_abs), number_cell(one.mse),
+  const auto error_row = [&](const LssvmRecordErrors& r) {
+    const lssvm::ErrorMetrics &one = r.one_step, &free = r.free_run;
+    errors.rows.push_back({r.name, number_cell(one.mae), number_cell(one.max_abs), number_cell(one.mse),
                            number_cell(free.mae), number_cell(free.max_abs), number_cell(free.mse)});
-    if (r == &run.all) continue;
-    relative.rows.push_back({r->name, number_cell(100 * one.max_rel), number_cell(100 * free.max_rel)});
-    largest_one = std::max(largest_one, 100 * one.max_rel);
-    largest_free = std::max(largest_free, 100 * free.max_rel);
+  };
+  // A relative error is each record's own (its largest error over its largest force); "largest" is the largest of
+  // them, as the paper's largest figure is of its four. The pooled errors in N are the row "all".
+  double largest_one = 0, largest_free = 0;
+  for (const LssvmRecordErrors& r : run.records) {
+    error_row(r);
+    relative.rows.push_back({r.name, number_cell(100 * r.one_step.max_rel), number_cell(100 * r.free_run.max_rel)});
+    largest_one = std::max(largest_one, 100 * r.one_step.max_rel);
+    largest_free = std::max(largest_free, 100 * r.free_run.max_rel);
   }
+  error_row(run.all);
   relative.rows.push_back({"largest", number_cell(largest_one), number_cell(largest_free)});
   tables.push_back(std::move(errors));
   tables.push_back(std::move(relative));

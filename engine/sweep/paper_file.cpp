@@ -5,8 +5,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "engine/model/parameter_law.hpp"
-
 #include "engine/sweep/spec/reader.hpp"
 
 namespace dampbench::sweep {
@@ -184,7 +182,8 @@ std::vector<PublishedLaw> read_laws(const Reader& r, const toml::table& root) {
     p.law = r.required_string(t, "law", key);
     p.label = r.string(t, "label", key).value_or(p.table);
     p.scale = r.number(t, "scale", key).value_or(1.0);
-    const ParameterLaw law = parse_law(p.law, key + ".law");
+    p.parsed = parse_law(p.law, key + ".law");
+    const ParameterLaw& law = p.parsed;
     const std::vector<std::string> names = law.coefficient_names(p.parameter);
     const toml::array* coefficients = t.get("coefficients") ? t.get("coefficients")->as_array() : nullptr;
     if (!coefficients) r.fail(&t, key + ".coefficients", "expected coefficients = [[\"name\", number], ...]");

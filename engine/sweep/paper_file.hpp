@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/model/parameter_law.hpp"
+
 namespace dampbench::sweep {
 
 /// One [[tables]] entry of a paper file.
@@ -46,6 +48,7 @@ struct PublishedClaim {
 /// and their coefficients alone cannot be compared.
 struct PublishedLaw {
   std::string table, ours, parameter, law, label;
+  ParameterLaw parsed;  ///< `law` parsed
   double scale = 1;  ///< the printed law × scale = the parameter in our unit (eq. 10's × 10⁻³)
   std::vector<std::pair<std::string, double>> coefficients;  ///< by our coefficient names, as printed
   std::vector<std::map<std::string, double>> at;             ///< operating variables of each condition compared

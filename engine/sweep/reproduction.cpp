@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <cstdio>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
@@ -398,7 +398,7 @@ ReproductionItem law_item(const PublishedLaw& p, const std::vector<Table>& ours,
     }
     mine_coefficients.push_back(it->second);
   }
-  const ParameterLaw paper_law = parse_law(p.law, p.table);
+  const ParameterLaw& paper_law = p.parsed;
   for (const auto& c : p.coefficients) paper_coefficients.push_back(c.second);
   for (const auto& at : p.at) {
     std::vector<std::string> where;

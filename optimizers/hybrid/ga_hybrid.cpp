@@ -21,8 +21,10 @@ std::unique_ptr<Optimizer> make_global(const HybridSettings& s, const Bounds& bo
 
 }  // namespace
 
-void HybridSettings::validate_global() const {
+void HybridSettings::validate_shared(std::string_view hybrid) const {
+  GeneticSettings::validate(hybrid);
   if (global == GlobalStage::cmaes) cmaes_of(*this).validate();
+  check_ranges<GaSettings>(hybrid, ga_setting_table(), *this);
 }
 
 GaHybrid::GaHybrid(const HybridSettings& settings, const Bounds& bounds, std::uint64_t run_key)

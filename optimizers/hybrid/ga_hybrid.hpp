@@ -14,6 +14,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/identification/optimizer.hpp"
@@ -32,8 +33,9 @@ struct HybridSettings : GaSettings {
   /// above), whatever these two hold.
   CmaesSettings cmaes;
 
-  /// With global == cmaes, the cmaes settings' validate() with the hybrid's population and generations.
-  void validate_global() const;
+  /// What both hybrids check alike, in `hybrid`'s name: the GA's budget and operators, pc and pm (ga's table), and
+  /// with global == cmaes the cmaes settings' validate() with the hybrid's population and generations.
+  void validate_shared(std::string_view hybrid) const;
 };
 
 /// Lowest finite value seen and where (what a local phase hands back).

@@ -14,9 +14,7 @@
 namespace dampbench {
 
 void GaLmSettings::validate() const {
-  GeneticSettings::validate("ga-lm");
-  validate_global();
-  check_ranges("ga-lm", rebased<GaLmSettings>(ga_setting_table()), *this);
+  validate_shared("ga-lm");
   check_ranges("ga-lm", ga_lm_setting_table(), *this);
 }
 

@@ -13,9 +13,7 @@
 namespace dampbench {
 
 void GaSqpSettings::validate() const {
-  GeneticSettings::validate("ga-sqp");
-  validate_global();
-  check_ranges("ga-sqp", rebased<GaSqpSettings>(ga_setting_table()), *this);
+  validate_shared("ga-sqp");
   if (!(constraint > 0)) throw InputError(fmt::format("ga-sqp: constraint must be a number > 0 or off, got {}", constraint));
   check_ranges("ga-sqp", ga_sqp_setting_table(), *this);
 }

@@ -161,8 +161,9 @@ TEST(OptimizerRegistry, ListedSettingsAreTheOnesReadAndTheirRangesAreChecked) {
       }
       char* end = nullptr;
       std::strtod(row.default_value.c_str(), &end);
-      if (!row.default_value.empty() && *end == 0)
+      if (!row.default_value.empty() && *end == 0) {
         EXPECT_EQ(spec_error(spec(row.default_value)), "no error") << where << " = its default " << row.default_value;
+      }
       const std::string bad = outside(row.allowed);
       if (bad.empty()) continue;  // ga-sqp's constraint: a number > 0 or off, checked by its own message
       EXPECT_NE(spec_error(spec(bad)).find(row.key + " must be " + row.allowed), std::string::npos)
