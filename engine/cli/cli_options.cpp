@@ -48,6 +48,22 @@ ModelChoice command_line_model(const std::string& model, const std::string& laws
   return c;
 }
 
+LoadedModel load_named_model(const ModelByName& o, const std::string& command) {
+  if (!o.model_file.empty()) {
+    if (!o.model.empty() || !o.fixture.empty() || !o.laws.empty() || !o.params.empty())
+      throw InputError(command + ": --model-file gives the model, its laws and coefficients: drop --model, --fixture, "
+                                 "--laws and --params");
+    return load_model_file(o.model_file);
+  }
+  if (o.model.empty() == o.fixture.empty())
+    throw InputError(command + ": give exactly one of --model M or --fixture NAME (or --model-file FILE)");
+  // A fixture is a law model already: --laws applies to --model only.
+  LoadedModel m;
+  m.model = resolve_model(o.fixture.empty() ? command_line_model(o.model, o.laws) : command_line_model("", "", "", o.fixture));
+  m.params = parse_params(*m.model.model, o.params, m.model.defaults);
+  return m;
+}
+
 std::vector<double> parse_params(const Model& model, const std::string& text, const std::vector<double>& defaults) {
   std::vector<double> values = defaults.empty() ? std::vector<double>(model.dim(), std::nan("")) : defaults;
   for (const auto& [name, value] : parse_key_values(text, "--params"))

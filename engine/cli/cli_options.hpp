@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/model/model.hpp"
 #include "engine/record/record_options.hpp"
@@ -27,6 +28,13 @@ ModelChoice command_line_model(const std::string& model, const std::string& laws
 
 /// Every parameter of the model from "name=value,..." (SI); all required unless `defaults` gives them.
 std::vector<double> parse_params(const Model& model, const std::string& text, const std::vector<double>& defaults = {});
+
+/// A model with its parameters as `simulate` and `structure` take it: --model-file, or --model (or --fixture) with
+/// --laws and --params. InputError "<command>: ..." for both or neither.
+struct ModelByName {
+  std::string model_file, model, fixture, laws, params;
+};
+LoadedModel load_named_model(const ModelByName& names, const std::string& command);
 
 /// InputError unless `format` is md or json.
 void check_format(const std::string& format);

@@ -31,6 +31,7 @@
 #include "engine/cli/run_command.hpp"
 #include "engine/cli/sensitivity_command.hpp"
 #include "engine/cli/simulate_command.hpp"
+#include "engine/cli/structure_command.hpp"
 #include "engine/cli/table_command.hpp"
 #include "engine/cli/verify_command.hpp"
 #include "engine/common/error.hpp"
@@ -81,6 +82,9 @@ std::vector<Command> declare_commands(CLI::App& app, int& threads, std::string& 
                            add_optimizers_options, optimizers_command);
   auto* simulate_cmd = add_command<SimulateOptions>(&app, commands, "simulate",
       "force of a model with given parameters under a displacement", add_simulate_options, simulate_command);
+  add_command<StructureOptions>(&app, commands, "structure",
+      "an identified damper in a building under an earthquake: peaks and their reductions, energies, time histories",
+      add_structure_options, structure_command);
   auto* fit_cmd = add_command<FitOptions>(&app, commands, "fit",
       "identify a model's parameters on a record with repeated optimizer runs", add_fit_options, fit_command);
   auto* run_cmd = add_command<RunOptions>(&app, commands, "run",

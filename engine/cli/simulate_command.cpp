@@ -34,6 +34,9 @@ void add_simulate_options(CLI::App* c, SimulateOptions& sim) {
   c->add_option("--noise-rel", sim.noise_rel, "Gaussian noise, std = R x RMS(force)");
   c->add_option("--seed", sim.seed, "noise seed");
   c->add_option("-o,--output", sim.output, "output CSV (t,x,v,a,F in SI; t,y,u for a system record), or a MATLAB file (.mat: one variable per column); default stdout");
+  c->add_option("--fixed-step", sim.fixed_step,
+                "N: step the model sample by sample with N fixed RK4 sub-steps per interval (the scheme of a "
+                "controller, a structure and the C export); default: the batch kernel's sub-steps, which follow the record");
   c->add_flag("--states", sim.states, "a structure model (sys.*): also write its velocity v, acceleration a and hysteretic force z");
 }
 
@@ -47,28 +50,6 @@ void add_noise(std::vector<double>& force, double noise_rel, std::uint64_t seed)
   RandomStream rng(hash_key({seed, hash_name("simulate-noise")}));
   for (double& f : force) f += noise_std * rng.normal();
 }
-
-/// The model and its parameters from --model-file, or from --model/--fixture, --laws and --params.
-LoadedModel simulated_model(const SimulateOptions& o) {
-  LoadedModel m;
-  if (!o.model_file.empty()) {
-    if (!o.model.empty() || !o.fixture.empty() || !o.laws.empty() || !o.params.empty())
-      throw InputError("simulate: --model-file gives the model, its laws and coefficients: drop --model, --fixture, "
-                       "--laws and --params");
-    return load_model_file(o.model_file);
-  }
-  if (o.model.empty() == o.fixture.empty())
-    throw InputError("simulate: give exactly one of --model M or --fixture NAME (or --model-file FILE)");
-  // A fixture is a law model already: --laws applies to --model only.
-  m.model = resolve_model(o.fixture.empty() ? command_line_model(o.model, o.laws)
-                                            : command_line_model("", "", "", o.fixture));
-  m.params = parse_params(*m.model.model, o.params, m.model.defaults);
-  return m;
-}
-
-}  // namespace
-
-namespace {
 
 /// An LS-SVM model file (lssvm --save-model): its free run on a record whose first lag samples give the measured
 /// forces it starts from (engine/fit/lssvm_model_file.hpp).
@@ -96,7 +77,7 @@ Simulation run_simulate(const SimulateOptions& o) {
   if (!(o.noise_rel >= 0) || !std::isfinite(o.noise_rel))
     throw InputError(fmt::format("--noise-rel: expected a number >= 0, got {}", o.noise_rel));
   if (!o.model_file.empty() && is_lssvm_model_file(o.model_file)) return simulate_lssvm(o);
-  const LoadedModel loaded = simulated_model(o);
+  const LoadedModel loaded = load_named_model({o.model_file, o.model, o.fixture, o.laws, o.params}, "simulate");
   const Model& model = *loaded.model.model;
   Simulation sim;
   if (o.record) sim.data = *o.record;
@@ -107,7 +88,10 @@ Simulation run_simulate(const SimulateOptions& o) {
   const Signals signals = prepare_signals(sim.data);
   check_record(model, signals);
   if (!o.model_file.empty()) sim.extrapolated = fitted_range_of(loaded).outside(signals.law_variables);
-  sim.force = model.simulate(loaded.params, signals);
+  if (o.fixed_step < 0)
+    throw InputError(fmt::format("--fixed-step: expected a whole number of sub-steps >= 1, got {}", o.fixed_step));
+  sim.force = o.fixed_step > 0 ? simulate_stepped(model, loaded.params, signals, o.fixed_step)
+                               : model.simulate(loaded.params, signals);
   sim.response = structure_response(model, loaded.params, signals);
   if (o.noise_rel > 0) add_noise(sim.force, o.noise_rel, o.seed);
   return sim;

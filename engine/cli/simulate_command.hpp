@@ -27,7 +27,10 @@ struct SimulateOptions {
   double noise_rel = 0;
   std::uint64_t seed = 1;
   std::string output;  ///< CSV path; stdout when empty
-  bool states = false;  ///< a structure model: also write ẏ, ÿ and z (the file is then no longer a record to load)
+  bool states = false;
+  /// RK4 sub-steps per sample interval, fixed: the model stepped sample by sample (engine/model/stepper.hpp),
+  /// the scheme `export` builds in; 0 runs the batch kernel, whose sub-steps follow the record.
+  int fixed_step = 0;  ///< a structure model: also write ẏ, ÿ and z (the file is then no longer a record to load)
 };
 
 /// A displacement and the model's force under it, as `dampbench simulate` prints them.

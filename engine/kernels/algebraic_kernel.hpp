@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "engine/kernels/lane_kernel.hpp"
+#include "engine/kernels/law_stepper.hpp"
 
 namespace dampbench {
 
@@ -31,6 +32,10 @@ class AlgebraicKernel {
   using Sample = decltype(prepare(std::declval<const Signals&>(), 0));
 
  public:
+  /// The law stepped one sample at a time (Model::stepper).
+  template <class L>
+  using Stepper = AlgebraicLawStepper<L>;
+
   AlgebraicKernel(const LawLanes<Law, W>& p, const Signals& data) : p_(p), data_(data) {
     if (data.sgn_v.size() != data.size())  // laws read the invariant columns of prepare_signals
       throw std::logic_error("signals '" + data.name + "' were not built by prepare_signals");

@@ -328,6 +328,13 @@ class KernelModel final : public Model {
     if constexpr (kStates) return Kernel::reference(params, data);
     else return std::nullopt;
   }
+
+  /// The kernel's law stepped sample by sample (engine/kernels/law_stepper.hpp), where the kernel names one.
+  [[nodiscard]] std::unique_ptr<ModelStepper> stepper() const override {
+    if constexpr (requires { typename Kernel::template Stepper<Law>; })
+      return std::make_unique<typename Kernel::template Stepper<Law>>();
+    else return nullptr;
+  }
 };
 
 }  // namespace dampbench

@@ -32,6 +32,7 @@
 
 #include "engine/kernels/lane_kernel.hpp"
 #include "engine/kernels/cvode_integrator.hpp"
+#include "engine/kernels/law_stepper.hpp"
 
 namespace dampbench {
 
@@ -85,6 +86,9 @@ class OdeKernel {
   /// engine/evaluation/lane_blocks.hpp): four dependent RK4 stages per sub-step leave the CPU waiting at kLanes
   /// lanes, and wider blocks give it independent work (docs/performance.md has the measurements).
   static constexpr bool kWideBlocks = true;
+  /// The law stepped one sample at a time (Model::stepper).
+  template <class L>
+  using Stepper = OdeLawStepper<L>;
   static constexpr bool kStrokeDriven = [] {
     if constexpr (requires { Law::kStrokeDriven; }) return Law::kStrokeDriven;
     else return false;

@@ -178,6 +178,46 @@ std::vector<double> LawModel::base_parameters(std::span<const double> c, const S
   return p;
 }
 
+std::vector<double> LawModel::base_parameters(std::span<const double> c,
+                                              const std::map<std::string, double>& variables) const {
+  for (const auto& v : law_variables())
+    if (!variables.count(v))
+      throw InputError(fmt::format("{}: no value of the operating variable '{}' its laws need", id_, v));
+  std::vector<double> p(laws_.size());
+  base_values(c.data(), variables, p.data());
+  return p;
+}
+
+namespace {
+
+/// A law model stepped sample by sample: its laws evaluated at each set_parameters' variables, the base stepped.
+class LawStepper final : public ModelStepper {
+ public:
+  LawStepper(const LawModel& model, std::unique_ptr<ModelStepper> base) : model_(model), base_(std::move(base)) {}
+  void set_parameters(std::span<const double> coefficients, const std::map<std::string, double>& variables) override {
+    base_->set_parameters(model_.base_parameters(coefficients, variables), variables);
+  }
+  void reset() override { base_->reset(); }
+  [[nodiscard]] double force(double x, double v, double a) const override { return base_->force(x, v, a); }
+  void advance(double x0, double v0, double x1, double v1, double dt, int substeps) override {
+    base_->advance(x0, v0, x1, v1, dt, substeps);
+  }
+  [[nodiscard]] std::vector<double> states() const override { return base_->states(); }
+  void set_states(std::span<const double> states) override { base_->set_states(states); }
+
+ private:
+  const LawModel& model_;
+  std::unique_ptr<ModelStepper> base_;
+};
+
+}  // namespace
+
+std::unique_ptr<ModelStepper> LawModel::stepper() const {
+  auto base = base_.stepper();
+  if (!base) return nullptr;
+  return std::make_unique<LawStepper>(*this, std::move(base));
+}
+
 void LawModel::check_variables(const Signals& data) const {
   const auto params = base_.parameters();
   for (std::size_t j = 0; j < laws_.size(); ++j) {

@@ -52,6 +52,12 @@ class LawModel final : public Model {
 
   /// The base model's parameters for these coefficients under the record's operating variables.
   [[nodiscard]] std::vector<double> base_parameters(std::span<const double> coefficients, const Signals& data) const;
+  /// The same under operating variables by name; InputError naming a variable a law needs and `variables` lack.
+  [[nodiscard]] std::vector<double> base_parameters(std::span<const double> coefficients,
+                                                    const std::map<std::string, double>& variables) const;
+  /// The base model's stepper with the laws evaluated at the variables each set_parameters gives (a command that
+  /// changes between steps changes the base parameters there; the states carry on).
+  [[nodiscard]] std::unique_ptr<ModelStepper> stepper() const override;
   /// Throws InputError if the record lacks a variable some law needs.
   void check_variables(const Signals& data) const;
   /// The operating variables its laws read, sorted, each once.

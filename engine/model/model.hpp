@@ -1,6 +1,7 @@
 #pragma once
 // The model interface (docs/design.md, "Data flow"): a model names its parameters with SI units and default
 // bounds, cites its paper and equation, and evaluates a block of candidates at once.
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "engine/model/batch.hpp"
 #include "engine/model/metrics.hpp"
+#include "engine/model/stepper.hpp"
 #include "engine/record/signals.hpp"
 
 namespace dampbench {
@@ -125,6 +127,10 @@ class Model {
   /// displacement y (the "force" of simulate and the metrics is then y [m]). False for rig models, which take the
   /// displacement x and compute the force F. A model is only evaluated on records of its own kind.
   [[nodiscard]] virtual bool is_system() const { return false; }
+
+  /// The model stepped one sample at a time (engine/model/stepper.hpp), with the batch kernels' equations in
+  /// fixed RK4 sub-steps; nullptr for a model that cannot be (structure models, LS-SVM).
+  [[nodiscard]] virtual std::unique_ptr<ModelStepper> stepper() const { return nullptr; }
 
   /// The force computed by the reference integrator (SUNDIALS CVODE, BDF, tight tolerances) for models
   /// with internal states; nullopt for algebraic models, whose force is exact.
