@@ -30,6 +30,7 @@
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/run_command.hpp"
 #include "engine/cli/sensitivity_command.hpp"
+#include "engine/cli/inverse_command.hpp"
 #include "engine/cli/simulate_command.hpp"
 #include "engine/cli/structure_command.hpp"
 #include "engine/cli/table_command.hpp"
@@ -85,6 +86,9 @@ std::vector<Command> declare_commands(CLI::App& app, int& threads, std::string& 
   add_command<StructureOptions>(&app, commands, "structure",
       "an identified damper in a building under an earthquake: peaks and their reductions, energies, time histories",
       add_structure_options, structure_command);
+  add_command<InverseOptions>(&app, commands, "inverse",
+      "the command (I, V, phi) that makes an identified damper give a desired force, or the on/off rule",
+      add_inverse_options, inverse_command);
   auto* fit_cmd = add_command<FitOptions>(&app, commands, "fit",
       "identify a model's parameters on a record with repeated optimizer runs", add_fit_options, fit_command);
   auto* run_cmd = add_command<RunOptions>(&app, commands, "run",

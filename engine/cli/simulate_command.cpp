@@ -85,7 +85,9 @@ Simulation run_simulate(const SimulateOptions& o) {
   else sim.data = make_sine(parse_sine_option(o.sine));
   // A file's loader applies --set itself; a sine or a given record take it here.
   if (o.input.path.empty() && !o.input.set.empty()) set_operating(sim.data, o.input.set);
-  const Signals signals = prepare_signals(sim.data);
+  Signals signals = prepare_signals(sim.data);
+  if (o.fixed_step > 0)  // a stepped model follows a varying column sample by sample
+    for (const auto& [name, column] : signals.operating_signals) signals.operating_refused.erase(name);
   check_record(model, signals);
   if (!o.model_file.empty()) sim.extrapolated = fitted_range_of(loaded).outside(signals.law_variables);
   if (o.fixed_step < 0)

@@ -238,12 +238,14 @@ void read_operating_column(const char* name, const std::vector<double>& column, 
   const double spread = *hi - *lo, scale = std::max(std::fabs(m), kConstantFloor);
   data.operating[name] = m;
   data.operating_source[name] = "column mean";
-  if (!(spread <= kConstantSpreadRel * scale))
+  if (!(spread <= kConstantSpreadRel * scale)) {
+    data.operating_signals[name] = column;
     data.operating_refused[name] = fmt::format(
         "{}: column {} varies over the test (min {:.6g}, max {:.6g}: spread {:.3g} is {:.3g} % of max(|mean|, {:g}), "
-        "more than the {:g} % a constant value may vary); a time-varying {} is out of scope: laws take one constant "
-        "value per record",
-        data.source, name, *lo, *hi, spread, 100 * spread / scale, kConstantFloor, 100 * kConstantSpreadRel, name);
+        "more than the {:g} % a constant value may vary); fits and batch evaluations take one constant value per "
+        "record; simulate --fixed-step and inverse follow the column sample by sample",
+        data.source, name, *lo, *hi, spread, 100 * spread / scale, kConstantFloor, 100 * kConstantSpreadRel);
+  }
 }
 
 /// x, F, v and a of a rig record, computing v and a when the file lacks them.

@@ -1,0 +1,124 @@
+// The commands that run an identified damper outside a fit: simulate --fixed-step (a varying current column),
+// inverse, structure. Their outputs, their files and their messages for bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/test_support.hpp"
+
+namespace dampbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// ±10 mm at 1 Hz, 1 kHz, two cycles; with a current column that steps from `low` to `high` halfway when given.
+fs::path sine_record(const fs::path& dir, const std::string& name, bool with_current, double low = 0.2, double high = 0.8) {
+  std::string text = with_current ? "t,x,I\n" : "t,x\n";
+  for (int k = 0; k <= 2000; ++k) {
+    const double t = k / 1000.0, x = 0.01 * std::sin(2 * M_PI * t);
+    text += with_current ? fmt::format("{},{},{}\n", t, x, k < 1000 ? low : high) : fmt::format("{},{}\n", t, x);
+  }
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::vector<std::vector<double>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream s(line);
+    for (std::string field; std::getline(s, field, ',');) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(ControlCli, FixedStepFollowsAVaryingCurrentColumnWhichTheBatchPathRefuses) {
+  const auto dir = testing::test_temp_dir("control_cli");
+  const auto record = sine_record(dir, "step_current.csv", true);
+  auto r = run_dampbench("simulate --fixture mfm.table3 --input " + record.string() + " -o " + (dir / "batch.csv").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("simulate --fixed-step and inverse follow the column sample by sample"), std::string::npos) << r.output;
+  r = run_dampbench("simulate --fixture mfm.table3 --fixed-step 4 --input " + record.string() + " -o " + (dir / "stepped.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The same record at constant 0.2 A and 0.8 A: the stepped force is the first's until the step, and the
+  // second's hysteresis loop afterwards (the state carries over, so only once the loop has settled).
+  const auto low = sine_record(dir, "low.csv", true, 0.2, 0.2), high = sine_record(dir, "high.csv", true, 0.8, 0.8);
+  ASSERT_EQ(run_dampbench("simulate --fixture mfm.table3 --fixed-step 4 --input " + low.string() + " -o " + (dir / "low_F.csv").string()).exit_code, 0);
+  ASSERT_EQ(run_dampbench("simulate --fixture mfm.table3 --fixed-step 4 --input " + high.string() + " -o " + (dir / "high_F.csv").string()).exit_code, 0);
+  const auto stepped = read_csv(dir / "stepped.csv"), at_low = read_csv(dir / "low_F.csv"), at_high = read_csv(dir / "high_F.csv");
+  ASSERT_EQ(stepped.size(), 2001U);
+  // (column F; the command at sample 1000 holds after it; the constant record's current is its column's mean,
+  // 0.2 up to rounding)
+  for (int k = 0; k <= 1000; ++k) ASSERT_NEAR(stepped[k][4], at_low[k][4], 1e-9 * std::fabs(at_low[k][4]) + 1e-9) << k;
+  for (int k = 1900; k <= 2000; ++k) EXPECT_NEAR(stepped[k][4], at_high[k][4], 1e-3 * std::fabs(at_high[k][4]) + 1e-6) << k;
+}
+
+TEST(ControlCli, InverseFindsTheConstantCurrentOfAForceRecord) {
+  const auto dir = testing::test_temp_dir("control_cli_inverse");
+  const auto motion = sine_record(dir, "motion.csv", true, 0.4, 0.4);
+  ASSERT_EQ(run_dampbench("simulate --fixture mfm.table3 --fixed-step 4 --input " + motion.string() + " -o " +
+                          (dir / "desired.csv").string()).exit_code, 0);
+  auto r = run_dampbench_json("inverse --fixture mfm.table3 --data " + (dir / "desired.csv").string() +
+                              " --range I=0:1 --format json -o " + (dir / "command.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_GT(j["share_reachable"].get<double>(), 0.99);
+  EXPECT_LT(j["tracking_error"].get<double>(), 1e-6);
+  const auto rows = read_csv(dir / "command.csv");  // t, I, F_desired, F_model, reachable
+  int moving = 0, found = 0;
+  for (const auto& row : rows) {
+    const double v = 0.02 * M_PI * std::cos(2 * M_PI * row[0]);
+    if (std::fabs(v) < 0.02 || row[0] > 1.998) continue;
+    ++moving;
+    found += std::fabs(row[1] - 0.4) < 1e-3;
+  }
+  EXPECT_GT(found, 0.95 * moving) << found << " of " << moving;
+  r = run_dampbench("inverse --fixture mfm.table3 --data " + (dir / "desired.csv").string() + " --range I=1");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--range: expected VARIABLE=LOW:HIGH"), std::string::npos) << r.output;
+  r = run_dampbench("inverse --model fvd.linear_viscous --params m=0,C=1000 --data " + (dir / "desired.csv").string() + " --range I=0:1");
+  EXPECT_NE(r.output.find("has no law in I"), std::string::npos) << r.output;
+}
+
+TEST(ControlCli, StructureWritesPeaksEnergiesAndTimeHistories) {
+  const auto dir = testing::test_temp_dir("control_cli_structure");
+  const auto ground = dir / "pulse.csv";
+  {
+    std::ofstream out(ground);
+    out << "t,ag\n";
+    for (int k = 0; k <= 400; ++k) out << k / 100.0 << "," << (k < 100 ? 2.0 * std::sin(2 * M_PI * 3.0 * k / 100.0) : 0.0) << "\n";
+  }
+  const std::string building = std::string(DAMPBENCH_SOURCE_DIR) + "/datasets/buildings/utfsm_case_1.toml";
+  auto r = run_dampbench_json("structure --model fvd.linear_viscous --params m=0,C=20000 --building " + building +
+                              " --ground " + ground.string() + " --format json -o " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_LT(j["damped"]["peak_drift_m"][0].get<double>(), j["bare"]["peak_drift_m"][0].get<double>());
+  EXPECT_LT(j["damped"]["energy_balance_error"].get<double>(), 1e-9);
+  EXPECT_GT(j["damped"]["energy_J"]["damper"].get<double>(), 0.0);
+  const auto rows = read_csv(dir / "structure.csv");  // t, ag, u1-3, drift1-3, abs_acc1-3, F, command
+  ASSERT_GT(rows.size(), 100U);
+  EXPECT_EQ(rows.front().size(), 13U);
+  EXPECT_TRUE(fs::exists(dir / "structure.md"));
+  r = run_dampbench("structure --model fvd.linear_viscous --params m=0,C=20000 --building " + building +
+                    " --ground " + (dir / "missing.csv").string());
+  EXPECT_NE(r.output.find("missing.csv: cannot read the ground-motion file"), std::string::npos) << r.output;
+  r = run_dampbench("structure --model fvd.linear_viscous --params m=0,C=20000 --building " + building + " --ground " +
+                    ground.string() + " --control on-off --command I=0:1");
+  EXPECT_NE(r.output.find("has no law in I"), std::string::npos) << r.output;
+}
+
+}  // namespace dampbench
