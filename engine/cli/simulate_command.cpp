@@ -11,6 +11,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/fit/fit.hpp"
+#include "engine/model/stepped_simulation.hpp"
 #include "engine/fit/lssvm_model_file.hpp"
 #include "engine/fit/model_file.hpp"
 #include "engine/fit/resolve_model.hpp"

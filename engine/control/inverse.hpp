@@ -1,5 +1,5 @@
 #pragma once
-// The inverse of an identified damper model (issue 63 item 4; lssvm names "inverse model control" as its next
+// The inverse of an identified damper model (lssvm names "inverse model control" as its next
 // step): the command (I, V or phi) that makes the model give a desired force, sample by sample. The model's states
 // are carried forward with the command found for each interval; the command holds over the interval that starts at
 // its sample (a controller's zero-order hold), chosen so that the force at the interval's end is the desired one.

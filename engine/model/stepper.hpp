@@ -1,7 +1,7 @@
 #pragma once
 // A model stepped one sample at a time, for what runs a model without knowing the whole record in advance: a
-// structure whose motion depends on the damper's force (engine/structure), a controller, `simulate --fixed-step`
-// and the C export that reproduces it. The scheme is the batch kernels' with no adaptivity: classical
+// structure whose motion depends on the damper's force (engine/structure), an inverse model (engine/control),
+// `simulate --fixed-step`. The scheme is the batch kernels' with no adaptivity: classical
 // Runge–Kutta (RK4) in a fixed number of sub-steps per sample interval, the inputs (x, v) linear between the
 // samples, states at zero at rest. The batch kernels choose their sub-steps from the whole record (its stroke,
 // peak velocity and each candidate's stiffness), which a step-by-step caller cannot know.
@@ -11,11 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/record/signals.hpp"
 
 namespace dampbench {
-
-class Model;
 
 class ModelStepper {
  public:
@@ -36,13 +33,5 @@ class ModelStepper {
   [[nodiscard]] virtual std::vector<double> states() const = 0;
   virtual void set_states(std::span<const double> states) = 0;
 };
-
-/// The force of `model` at `params` over a rig record, stepped sample by sample with `substeps` RK4 sub-steps per
-/// interval (`simulate --fixed-step`); NaN from the first sample whose states are not finite. A variable with a
-/// column in the record (Dataset::operating_signals) takes its value at sample k over the interval from k to k + 1
-/// (zero-order hold) and at sample 0 for the first force; the others keep their constant values. InputError for a
-/// model that cannot be stepped (a structure model, a model without a stepper) or substeps < 1.
-std::vector<double> simulate_stepped(const Model& model, std::span<const double> params, const Signals& data,
-                                     int substeps);
 
 }  // namespace dampbench

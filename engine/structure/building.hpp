@@ -1,5 +1,5 @@
 #pragma once
-// A building of lumped storey masses for a damper to act in (issue 63 item 6): masses, a condensed lateral
+// A building of lumped storey masses for a damper to act in: masses, a condensed lateral
 // stiffness matrix and modal damping ratios, as the UTFSM damper's own study gives its three reference buildings
 // (../shared/data/README.md, "earthquakes/"). The damping matrix is the classical one with those ratios,
 // C = M·Φ·diag(2ζᵢωᵢ)·Φᵀ·M for mass-normalized modes Φ (Chopra, Dynamics of Structures, §11.4).

@@ -1,6 +1,7 @@
 #include "engine/structure/seismic.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -55,120 +56,177 @@ std::unique_ptr<ModelStepper> damper_stepper(const Damper& damper, const std::op
   return stepper;
 }
 
-}  // namespace
+/// The building's matrices and Newmark's average-acceleration step for its time step: K_eff = K + (2/dt)·C +
+/// (4/dt²)·M factored once, and g = K_eff⁻¹·e_d, the end-of-step displacements per newton of damper force.
+struct NewmarkBuilding {
+  NewmarkBuilding(const Building& b, double step_s)
+      : dt(step_s), d(b.damper_storey - 1), m(b.mass_kg), M(b.mass_kg.asDiagonal()), K(b.stiffness_N_m),
+        C(modes_of(b).damping_N_s_m), k_eff(K + (2.0 / dt) * C + (4.0 / (dt * dt)) * M),
+        g(k_eff.solve(Eigen::VectorXd::Unit(b.storeys(), d))) {}
 
-SeismicResponse simulate_seismic(const SeismicRun& run) {
-  const Building& b = run.building;
-  check_building(b, b.name);
+  /// The state at a step's end: u = u_free − g·F, with ü and u̇ from Newmark's rule.
+  struct State {
+    Eigen::VectorXd u, v, a;
+  };
+  /// u at the step's end under ground acceleration ag1 and no damper force.
+  [[nodiscard]] Eigen::VectorXd free_end(const State& s, double ag1) const {
+    return k_eff.solve(-m * ag1 + M * ((4.0 / (dt * dt)) * s.u + (4.0 / dt) * s.v + s.a) + C * ((2.0 / dt) * s.u + s.v));
+  }
+  [[nodiscard]] State end(const State& s, const Eigen::VectorXd& u1) const {
+    const Eigen::VectorXd du = u1 - s.u;
+    return {u1, (2.0 / dt) * du - s.v, (4.0 / (dt * dt)) * du - (4.0 / dt) * s.v - s.a};
+  }
+  /// The damper storey's (x, v, a) at the step's end for a damper force F.
+  [[nodiscard]] std::array<double, 3> storey_end(const State& s, const Eigen::VectorXd& u_free, double F) const {
+    const double dx = u_free[d] - g[d] * F - s.u[d];
+    return {s.u[d] + dx, (2.0 / dt) * dx - s.v[d], (4.0 / (dt * dt)) * dx - (4.0 / dt) * s.v[d] - s.a[d]};
+  }
+
+  double dt;
+  int d;
+  Eigen::VectorXd m;  // M·1
+  Eigen::MatrixXd M, K, C;
+  Eigen::LLT<Eigen::MatrixXd> k_eff;
+  Eigen::VectorXd g;
+};
+
+/// The damper inside the steps: its stepper, the variables it runs at and the command of the on/off rule.
+class SteppedDamper {
+ public:
+  explicit SteppedDamper(const SeismicRun& run) : run_(run) {
+    if (!run.damper) return;
+    stepper_ = damper_stepper(*run.damper, run.control);
+    variables_ = run.damper->variables;
+    if (run.control) variables_[run.control->variable] = command_ = run.control->low;
+    stepper_->set_parameters(run.damper->params, variables_);
+    stepper_->reset();
+  }
+  [[nodiscard]] bool present() const { return stepper_ != nullptr; }
+  [[nodiscard]] double command() const { return command_; }
+
+  /// The force at rest under ground acceleration ag (x = v = 0; the storey's a = −ag − F/m_d).
+  double at_rest(const NewmarkBuilding& nb, double ag, int& unconverged) {
+    if (!stepper_) return 0.0;
+    return solve_force(0.0, [&](double f) { return stepper_->force(0.0, 0.0, -ag - f / nb.m[nb.d]); }, unconverged);
+  }
+  /// The on/off rule's command from the state at a step's start and the damper's force F there.
+  void choose_command(const NewmarkBuilding::State& s, double F) {
+    if (!stepper_ || !run_.control) return;
+    const OnOffControl& c = *run_.control;
+    Eigen::VectorXd z(2 * s.u.size());
+    z << s.u, s.v;
+    const double desired = -c.gain.dot(z);
+    const double next = desired * F > 0 && std::fabs(desired) > std::fabs(F) ? c.high : c.low;
+    if (next == command_) return;
+    command_ = variables_[c.variable] = next;
+    stepper_->set_parameters(run_.damper->params, variables_);
+  }
+  /// The force at the step's end that the building's motion and the damper agree on, with the damper's states
+  /// left at it.
+  double end_force(const NewmarkBuilding& nb, const NewmarkBuilding::State& s, const Eigen::VectorXd& u_free, double F,
+                   int& unconverged) {
+    if (!stepper_) return 0.0;
+    const std::vector<double> saved = stepper_->states();
+    const auto force_at = [&](double f) {
+      const auto [x, v, a] = nb.storey_end(s, u_free, f);
+      stepper_->set_states(saved);
+      stepper_->advance(s.u[nb.d], s.v[nb.d], x, v, nb.dt, run_.damper->substeps);
+      return stepper_->force(x, v, a);
+    };
+    const double F1 = solve_force(F, force_at, unconverged);
+    (void)force_at(F1);
+    return F1;
+  }
+
+ private:
+  const SeismicRun& run_;
+  std::unique_ptr<ModelStepper> stepper_;
+  std::map<std::string, double> variables_;
+  double command_ = std::nan("");
+};
+
+void check_run(const SeismicRun& run) {
+  check_building(run.building, run.building.name);
   if (!(run.step_s > 0) || !std::isfinite(run.step_s))
     throw InputError(fmt::format("--step: expected a time step > 0 s, got {}", run.step_s));
   if (run.output_every < 1) throw InputError(fmt::format("output every: expected >= 1 step, got {}", run.output_every));
   if (run.ground.t_s.size() < 2) throw InputError("structure: the ground motion has fewer than two samples");
-  const int n = b.storeys(), d = b.damper_storey - 1;
-  const double dt = run.step_s;
-  const Modes modes = modes_of(b);
-  const Eigen::VectorXd& m = b.mass_kg;
-  const Eigen::MatrixXd M = m.asDiagonal();
-  const Eigen::MatrixXd& K = b.stiffness_N_m;
-  const Eigen::MatrixXd& C = modes.damping_N_s_m;
-  const Eigen::LLT<Eigen::MatrixXd> k_eff(K + (2.0 / dt) * C + (4.0 / (dt * dt)) * M);
-  const Eigen::VectorXd g = k_eff.solve(Eigen::VectorXd::Unit(n, d));  // u's response to a unit damper force
+}
 
-  std::unique_ptr<ModelStepper> damper;
-  std::map<std::string, double> variables;
-  if (run.damper) {
-    damper = damper_stepper(*run.damper, run.control);
-    variables = run.damper->variables;
-    if (run.control) variables[run.control->variable] = run.control->low;
-    damper->set_parameters(run.damper->params, variables);
-    damper->reset();
+/// The time histories' rows and the peaks.
+struct Recorder {
+  Recorder(SeismicResponse& r, int storeys, std::size_t rows) : r(r), n(storeys) {
+    r.u_m.setZero(static_cast<Eigen::Index>(rows), n);
+    r.drift_m = r.abs_acc_m_s2 = r.u_m;
+    r.peak_u_m = r.peak_drift_m = r.peak_abs_acc_m_s2 = Eigen::VectorXd::Zero(n);
   }
-  double command = run.control ? run.control->low : std::nan("");
-
-  SeismicResponse r;
-  const std::size_t steps = static_cast<std::size_t>(std::floor(run.ground.duration_s() / dt + 1e-9));
-  const std::size_t rows = steps / static_cast<std::size_t>(run.output_every) + 1;
-  r.u_m.setZero(static_cast<Eigen::Index>(rows), n);
-  r.drift_m = r.abs_acc_m_s2 = r.u_m;
-  r.peak_u_m = r.peak_drift_m = r.peak_abs_acc_m_s2 = Eigen::VectorXd::Zero(n);
-
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(n), v = u, a = u;
-  const double t0 = run.ground.t_s.front();
-  double ag = run.ground.at(t0);
-  // At rest: the damper's force at x = v = 0 (a law may have a static part, Spencer's k1·(0 − x0)), with the
-  // storey's acceleration a = −ag − F/m_d of the equation of motion (fvd's m·a term).
-  double F = 0;
-  if (damper) F = solve_force(0.0, [&](double f) { return damper->force(0.0, 0.0, -ag - f / m[d]); }, r.unconverged_steps);
-  a = -Eigen::VectorXd::Ones(n) * ag;
-  a[d] -= F / m[d];
-  const Eigen::VectorXd m_ones = m;  // M·1
-  double max_input = 0;
-  std::size_t high_steps = 0;
-
-  const auto record = [&](std::size_t row, double t) {
-    const auto i = static_cast<Eigen::Index>(row);
+  void peaks(const NewmarkBuilding::State& s, double ag, double F) const {
+    for (int i = 0; i < n; ++i) {
+      r.peak_u_m[i] = std::max(r.peak_u_m[i], std::fabs(s.u[i]));
+      r.peak_drift_m[i] = std::max(r.peak_drift_m[i], std::fabs(s.u[i] - (i > 0 ? s.u[i - 1] : 0.0)));
+      r.peak_abs_acc_m_s2[i] = std::max(r.peak_abs_acc_m_s2[i], std::fabs(s.a[i] + ag));
+    }
+    r.peak_force_N = std::max(r.peak_force_N, std::fabs(F));
+  }
+  void row(std::size_t k, double t, const NewmarkBuilding::State& s, double ag, double F, double command) const {
+    const auto i = static_cast<Eigen::Index>(k);
     r.t_s.push_back(t);
     r.ag_m_s2.push_back(ag);
     r.force_N.push_back(F);
     r.command.push_back(command);
-    r.u_m.row(i) = u.transpose();
-    for (int s = 0; s < n; ++s) {
-      r.drift_m(i, s) = u[s] - (s > 0 ? u[s - 1] : 0.0);
-      r.abs_acc_m_s2(i, s) = a[s] + ag;
+    r.u_m.row(i) = s.u.transpose();
+    for (int j = 0; j < n; ++j) {
+      r.drift_m(i, j) = s.u[j] - (j > 0 ? s.u[j - 1] : 0.0);
+      r.abs_acc_m_s2(i, j) = s.a[j] + ag;
     }
-  };
-  record(0, t0);
+  }
+  SeismicResponse& r;
+  int n;
+};
+
+}  // namespace
+
+SeismicResponse simulate_seismic(const SeismicRun& run) {
+  check_run(run);
+  const NewmarkBuilding nb(run.building, run.step_s);
+  SteppedDamper damper(run);
+  const int n = run.building.storeys();
+  const double dt = run.step_s, t0 = run.ground.t_s.front();
+  const auto steps = static_cast<std::size_t>(std::floor(run.ground.duration_s() / dt + 1e-9));
+  const auto every = static_cast<std::size_t>(run.output_every);
+  SeismicResponse r;
+  const Recorder recorder(r, n, steps / every + 1);
+  // At rest: the damper's force at x = v = 0 (a law may have a static part, Spencer's k1·(0 − x0)) and the
+  // accelerations of the equation of motion under it.
+  double ag = run.ground.at(t0);
+  double F = damper.at_rest(nb, ag, r.unconverged_steps);
+  NewmarkBuilding::State s{Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), -Eigen::VectorXd::Ones(n) * ag};
+  s.a[nb.d] -= F / nb.m[nb.d];
+  double max_input = 0;
+  std::size_t high_steps = 0;
+  recorder.row(0, t0, s, ag, F, damper.command());
   for (std::size_t step = 0; step < steps; ++step) {
     const double t1 = t0 + static_cast<double>(step + 1) * dt, ag1 = run.ground.at(t1);
-    if (damper && run.control) {  // the command for this step, from the state at its start
-      Eigen::VectorXd z(2 * n);
-      z << u, v;
-      const double desired = -run.control->gain.dot(z);
-      const double next = desired * F > 0 && std::fabs(desired) > std::fabs(F) ? run.control->high : run.control->low;
-      if (next != command) {
-        command = variables[run.control->variable] = next;
-        damper->set_parameters(run.damper->params, variables);
-      }
-      high_steps += command == run.control->high;
-    }
-    const Eigen::VectorXd rhs = -m_ones * ag1 + M * ((4.0 / (dt * dt)) * u + (4.0 / dt) * v + a) + C * ((2.0 / dt) * u + v);
-    const Eigen::VectorXd u_free = k_eff.solve(rhs);  // u at the step's end without the damper's force
-    double F1 = 0;
-    if (damper) {
-      const std::vector<double> saved = damper->states();
-      const auto force_at = [&](double f) {
-        const double x = u_free[d] - g[d] * f, dx = x - u[d];
-        const double vx = (2.0 / dt) * dx - v[d], ax = (4.0 / (dt * dt)) * dx - (4.0 / dt) * v[d] - a[d];
-        damper->set_states(saved);
-        damper->advance(u[d], v[d], x, vx, dt, run.damper->substeps);
-        return damper->force(x, vx, ax);
-      };
-      F1 = solve_force(F, force_at, r.unconverged_steps);
-      (void)force_at(F1);  // the damper's states at the force the building takes
-    }
-    const Eigen::VectorXd u1 = u_free - g * F1, du = u1 - u;
-    const Eigen::VectorXd v1 = (2.0 / dt) * du - v;
-    const Eigen::VectorXd a1 = (4.0 / (dt * dt)) * du - (4.0 / dt) * v - a;
-    r.energy.input_J -= du.dot(m_ones) * 0.5 * (ag + ag1);
-    r.energy.structural_J += du.dot(C * (0.5 * (v + v1)));
-    r.energy.damper_J += du[d] * 0.5 * (F + F1);
+    damper.choose_command(s, F);
+    high_steps += run.control && damper.command() == run.control->high;
+    const Eigen::VectorXd u_free = nb.free_end(s, ag1);
+    const double F1 = damper.end_force(nb, s, u_free, F, r.unconverged_steps);
+    const NewmarkBuilding::State s1 = nb.end(s, u_free - nb.g * F1);
+    const Eigen::VectorXd du = s1.u - s.u;
+    r.energy.input_J -= du.dot(nb.m) * 0.5 * (ag + ag1);
+    r.energy.structural_J += du.dot(nb.C * (0.5 * (s.v + s1.v)));
+    r.energy.damper_J += du[nb.d] * 0.5 * (F + F1);
     max_input = std::max(max_input, std::fabs(r.energy.input_J));
-    u = u1, v = v1, a = a1, F = F1, ag = ag1;
-    for (int s = 0; s < n; ++s) {
-      r.peak_u_m[s] = std::max(r.peak_u_m[s], std::fabs(u[s]));
-      r.peak_drift_m[s] = std::max(r.peak_drift_m[s], std::fabs(u[s] - (s > 0 ? u[s - 1] : 0.0)));
-      r.peak_abs_acc_m_s2[s] = std::max(r.peak_abs_acc_m_s2[s], std::fabs(a[s] + ag));
-    }
-    r.peak_force_N = std::max(r.peak_force_N, std::fabs(F));
-    if ((step + 1) % static_cast<std::size_t>(run.output_every) == 0) record((step + 1) / run.output_every, t1);
+    s = s1, F = F1, ag = ag1;
+    recorder.peaks(s, ag, F);
+    if ((step + 1) % every == 0) recorder.row((step + 1) / every, t1, s, ag, F, damper.command());
   }
   r.steps = static_cast<int>(steps);
   r.high_share = steps > 0 && run.control ? static_cast<double>(high_steps) / static_cast<double>(steps) : 0.0;
-  r.energy.kinetic_J = 0.5 * v.dot(M * v);
-  r.energy.strain_J = 0.5 * u.dot(K * u);
+  r.energy.kinetic_J = 0.5 * s.v.dot(nb.M * s.v);
+  r.energy.strain_J = 0.5 * s.u.dot(nb.K * s.u);
   const Energies& e = r.energy;
-  const double out = e.structural_J + e.damper_J + e.kinetic_J + e.strain_J;
-  r.energy.balance_error = max_input > 0 ? std::fabs(e.input_J - out) / max_input : 0.0;
+  r.energy.balance_error = max_input > 0 ? std::fabs(e.input_J - (e.structural_J + e.damper_J + e.kinetic_J + e.strain_J)) / max_input : 0.0;
   return r;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // A building under a ground-acceleration record with an identified damper between the ground and one storey
-// (issue 63 item 6). The building steps by Newmark's average-acceleration rule (γ = 1/2, β = 1/4: unconditionally
+//. The building steps by Newmark's average-acceleration rule (γ = 1/2, β = 1/4: unconditionally
 // stable, no numerical damping) in storey displacements relative to the ground,
 //   M·ü + C·u̇ + K·u = −M·1·ag − e_d·F,
 // and the damper's states step with it (engine/model/stepper.hpp, fixed RK4 sub-steps on the step's motion). Its

@@ -9,7 +9,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/random.hpp"
 #include "engine/control/inverse.hpp"
-#include "engine/model/stepper.hpp"
+#include "engine/model/stepped_simulation.hpp"
 #include "models/fixtures.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"

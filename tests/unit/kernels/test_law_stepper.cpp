@@ -8,7 +8,7 @@
 
 #include "engine/common/error.hpp"
 #include "engine/model/law_model.hpp"
-#include "engine/model/stepper.hpp"
+#include "engine/model/stepped_simulation.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "engine/model/stepper.hpp"
+#include "engine/model/stepped_simulation.hpp"
 
 #include <cmath>
 #include <limits>
@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
-#include "engine/model/model.hpp"
 
 namespace dampbench {
 
