@@ -74,7 +74,9 @@ InverseRun run_inverse(const InverseOptions& o) {
   r.settings.law = o.law == "on-off" ? control::InverseLaw::on_off : control::InverseLaw::inverse;
   r.settings.substeps = o.substeps;
   r.model = load_named_model(o.damper, "inverse");
-  r.record = load_record(o.data, true);
+  r.record = o.record ? *o.record : load_record(o.data, true);
+  if (o.record && !o.data.set.empty()) set_operating(r.record, o.data.set);
+  control::check_commanded_variable(*r.model.model.model, r.settings.variable, "inverse");
   Signals signals = prepare_signals(r.record);
   signals.operating_refused.erase(r.settings.variable);  // the command replaces any column of it
   signals.operating_signals.erase(r.settings.variable);

@@ -2,6 +2,7 @@
 // `dampbench inverse`: the command (I, V or phi) that makes an identified damper give a desired force over a
 // motion (engine/control/inverse.hpp), with the tracking error where the force is reachable and the shares of the
 // samples at either end of the range.
+#include <optional>
 #include <string>
 
 #include "engine/cli/cli_options.hpp"
@@ -16,6 +17,7 @@ namespace dampbench::cli {
 struct InverseOptions {
   ModelByName damper;
   RecordOptions data;          ///< t, x, v and the desired force F
+  std::optional<Dataset> record;  ///< a record already loaded, instead of data.path (the Python module's)
   std::string range;           ///< "I=0:1"
   std::string law = "inverse"; ///< inverse or on-off
   int substeps = 4;

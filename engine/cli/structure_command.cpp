@@ -11,6 +11,7 @@
 #include "engine/common/error.hpp"
 #include "engine/common/key_values.hpp"
 #include "engine/common/text_file.hpp"
+#include "engine/cli/structure_plot.hpp"
 #include "engine/structure/lqr.hpp"
 
 namespace dampbench::cli {
@@ -31,7 +32,7 @@ void add_structure_options(CLI::App* c, StructureOptions& o) {
   c->add_option("--command", o.command, "on-off: the commanded variable and its range, e.g. I=0:1");
   c->add_option("--lqr-r", o.lqr_r, "on-off: R of the LQR cost (Q weighs twice the building's energy) [J/N^2] (default 1e-6)");
   c->add_option("--output-every", o.output_every, "building steps between rows of structure.csv (default 8)");
-  c->add_option("-o,--output", o.output, "folder for structure.csv (time histories), structure.json and structure.md");
+  c->add_option("-o,--output", o.output, "folder for structure.csv (time histories), structure.svg (their plot), structure.json and structure.md");
   c->add_option("--format", o.format, "md or json on stdout (default md)");
 }
 
@@ -180,6 +181,11 @@ int structure_command(const StructureOptions& o) {
     write_text_file((dir / "structure.csv").string(), time_history_csv(r));
     write_text_file((dir / "structure.json").string(), json);
     write_text_file((dir / "structure.md").string(), md);
+    const std::string title = fmt::format("{} under {} (x {}), {}", r.run.building.name, r.run.ground.name, o.scale,
+                                          r.run.control ? "on/off" : "passive");
+    write_text_file((dir / "structure.svg").string(),
+                    structure_svg(title, r.run.building.damper_storey, r.bare, r.damped,
+                                  r.run.control ? r.run.control->variable : ""));
   }
   std::cout << (o.format == "json" ? json + "\n" : md);
   return 0;

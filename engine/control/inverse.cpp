@@ -9,18 +9,23 @@
 #include "engine/model/law_model.hpp"
 
 namespace dampbench::control {
+
+void check_commanded_variable(const Model& model, const std::string& variable, const std::string& command) {
+  const auto* laws = dynamic_cast<const LawModel*>(&model);
+  const auto names = laws ? laws->law_variables() : std::vector<std::string>{};
+  if (std::find(names.begin(), names.end(), variable) == names.end())
+    throw InputError(fmt::format("{}: model {} has no law in {}, so no command in {} changes its force (fit it with "
+                                 "laws in {}, e.g. --laws \"c0=poly({},1)\")",
+                                 command, model.id(), variable, variable, variable, variable));
+}
+
 namespace {
 
 void check(const Model& model, const Signals& data, const InverseSettings& s) {
   if (!(s.low < s.high) || !std::isfinite(s.low) || !std::isfinite(s.high))
     throw InputError(fmt::format("--range: expected {}=LOW:HIGH with LOW < HIGH, got {}:{}", s.variable, s.low, s.high));
   if (s.substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", s.substeps));
-  const auto* laws = dynamic_cast<const LawModel*>(&model);
-  const auto names = laws ? laws->law_variables() : std::vector<std::string>{};
-  if (std::find(names.begin(), names.end(), s.variable) == names.end())
-    throw InputError(fmt::format("inverse: model {} has no law in {}, so no command in {} changes its force (fit it with "
-                                 "laws in {}, e.g. --laws \"c0=poly({},1)\")",
-                                 model.id(), s.variable, s.variable, s.variable, s.variable));
+  check_commanded_variable(model, s.variable, "inverse");
   if (!data.has_force())
     throw InputError(fmt::format("inverse: record '{}' has no force column: it must hold the desired force F", data.name));
   for (std::size_t k = 0; k < data.size(); ++k)

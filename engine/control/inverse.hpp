@@ -31,6 +31,10 @@ struct InverseResult {
   double share_reachable = 0;     ///< of the samples after the first
 };
 
+/// InputError unless `model` has a law in `variable`, so that a command in it changes the force; `command` names the
+/// command in the message.
+void check_commanded_variable(const Model& model, const std::string& variable, const std::string& command);
+
 /// The command for the desired force data.F_N over the motion data.x, v, a. InputError for a record without a
 /// force column or with a non-finite desired force (naming the sample), a range without low < high, a model that
 /// cannot be stepped or has no law in the variable.

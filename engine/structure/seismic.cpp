@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
-#include "engine/model/law_model.hpp"
+#include "engine/control/inverse.hpp"
 
 namespace dampbench::structure {
 namespace {
@@ -44,12 +44,7 @@ std::unique_ptr<ModelStepper> damper_stepper(const Damper& damper, const std::op
     throw InputError(fmt::format("structure: {} cannot be stepped sample by sample (a structure model or LS-SVM)",
                                  damper.model->id()));
   if (control) {
-    const auto* laws = dynamic_cast<const LawModel*>(damper.model);
-    const auto names = laws ? laws->law_variables() : std::vector<std::string>{};
-    if (std::find(names.begin(), names.end(), control.value().variable) == names.end())
-      throw InputError(fmt::format("structure: the damper model {} has no law in {}, the commanded variable: fit it with "
-                                   "laws in {} (fit --laws \"...=poly({},1)\")",
-                                   damper.model->id(), control->variable, control->variable, control->variable));
+    control::check_commanded_variable(*damper.model, control->variable, "structure");
     if (!(control->low <= control->high))
       throw InputError(fmt::format("--command: expected low <= high, got {}:{}", control->low, control->high));
   }

@@ -16,7 +16,7 @@ def _model_args(model, params, laws, model_file):
 
 def simulate(model=None, params=None, *, t=None, x=None, record=None, sine=None, laws=None, fixture=None,
              model_file=None, noise_rel=0.0, seed=1, set=None, units=None, columns=None, transform=None,
-             average_cycles=None, conditions=None, threads=None, isa=None):
+             average_cycles=None, conditions=None, fixed_step=0, threads=None, isa=None):
     """The force of a model under a displacement, as `dampbench simulate` computes it (the same bits).
 
     The model: `model` (an id of models()) with `params`, or `fixture` (a published law fixture, e.g.
@@ -34,6 +34,8 @@ def simulate(model=None, params=None, *, t=None, x=None, record=None, sine=None,
         the command line's "amp=0.01,freq=2,cycles=3,fs=1000".
     set: {"I": 0.5} operating variables (I [A], V [V], phi [deg], amp [m], freq [Hz]) for the model's laws.
     noise_rel: Gaussian noise of std noise_rel x RMS(F) added to F, from `seed`. threads and isa as in fit.
+    fixed_step: N > 0 steps the model sample by sample with N fixed RK4 sub-steps per interval (`simulate
+    --fixed-step N`), following a record's varying I, V or phi column.
 
     Returns {"t", "x", "v", "a", "F"}: numpy arrays in SI (s, m, m/s, m/s^2, N), what the command line prints as
     CSV. The interpreter is released while the engine works. Errors raise UsageError or DataError with the
@@ -65,7 +67,35 @@ def simulate(model=None, params=None, *, t=None, x=None, record=None, sine=None,
     loader = loader_args(**file_options, **record_options, set=set) if path else loader_args(set=set)
     return _core.simulate(**_model_args(model, params, laws, model_file), fixture=fixture or "", record=rec,
                           path=path, loader=loader, sine=key_values(sine, "sine"), noise_rel=float(noise_rel),
-                          seed=seed, threads=threads, isa=isa)
+                          seed=seed, fixed_step=int(fixed_step), threads=threads, isa=isa)
+
+
+def inverse(model=None, params=None, *, record, range, law="inverse", laws=None, fixture=None, model_file=None,
+            substeps=4, set=None, units=None, columns=None, transform=None, average_cycles=None, conditions=None):
+    """The command that makes a damper model give a desired force, as `dampbench inverse` computes it.
+
+    The model as in simulate (model_file, or model/fixture with laws and params); it needs a law in the commanded
+    variable. record: a Record or a file path (loader options as load_record) holding the motion and the desired
+    force F. range: "I=0:1" (the variable and its limits). law: "inverse" (the command whose force is the desired
+    one, the nearer limit where it is out of reach) or "on-off". substeps: the model's fixed RK4 sub-steps per
+    sample interval.
+
+    Returns {"t", "command", "F_desired", "F_model", "reachable"} (arrays; the command holds from its sample to
+    the next) and "variable", "share_reachable", "share_at_low", "share_at_high", "tracking_error" (relative RMS
+    over the reachable samples).
+    """
+    path, rec = "", None
+    if isinstance(record, Record):
+        rec = record
+    elif isinstance(record, (str, os.PathLike)):
+        path = os.fspath(record)
+    else:
+        raise UsageError(f"inverse: record: expected a Record or a file path, got {type(record).__name__}")
+    file_options = dict(units=units, columns=columns, transform=transform, average_cycles=average_cycles,
+                        conditions=conditions)
+    loader = loader_args(**file_options, set=set) if path else loader_args(set=set)
+    return _core.inverse(**_model_args(model, params, laws, model_file), fixture=fixture or "", record=rec,
+                         path=path, loader=loader, range=range, law=law, substeps=int(substeps))
 
 
 def evaluate(model=None, params=None, records=None, *, laws=None, model_file=None, isa=None, units=None,

@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "engine/cli/evaluate_command.hpp"
+#include "engine/cli/inverse_command.hpp"
 #include "engine/cli/models_command.hpp"
 #include "engine/cli/simulate_command.hpp"
 #include "engine/common/error.hpp"
@@ -57,7 +58,7 @@ void bind_simulate_function(py::module_& m) {
       [](const std::string& model, const std::string& fixture, const std::string& laws, const std::string& params,
          const std::string& model_file, std::optional<Dataset> record, const std::string& path,
          const std::vector<std::string>& loader, const std::string& sine, double noise_rel, std::uint64_t seed,
-         std::optional<int> threads, std::optional<std::string> isa) {
+         int fixed_step, std::optional<int> threads, std::optional<std::string> isa) {
         cli::SimulateOptions o;
         o.model = model;
         o.fixture = fixture;
@@ -69,6 +70,7 @@ void bind_simulate_function(py::module_& m) {
         o.sine = sine;
         o.noise_rel = noise_rel;
         o.seed = seed;
+        o.fixed_step = fixed_step;
         std::atomic<bool> stop{false};  // a simulation runs to its end: Ctrl-C is raised after it
         cli::Simulation sim;
         run_released([&] { sim = cli::run_simulate(o); }, stop, {threads, isa});
@@ -76,7 +78,40 @@ void bind_simulate_function(py::module_& m) {
       },
       py::arg("model"), py::arg("fixture"), py::arg("laws"), py::arg("params"), py::arg("model_file"),
       py::arg("record"), py::arg("path"), py::arg("loader"), py::arg("sine"), py::arg("noise_rel"), py::arg("seed"),
-      py::arg("threads"), py::arg("isa"));
+      py::arg("fixed_step"), py::arg("threads"), py::arg("isa"));
+}
+
+void bind_inverse_function(py::module_& m) {
+  m.def(
+      "inverse",
+      [](const std::string& model, const std::string& fixture, const std::string& laws, const std::string& params,
+         const std::string& model_file, std::optional<Dataset> record, const std::string& path,
+         const std::vector<std::string>& loader, const std::string& range, const std::string& law, int substeps) {
+        cli::InverseOptions o;
+        o.damper = {model_file, model, fixture, laws, params};
+        o.record = std::move(record);
+        o.data = loader_options(path, loader);
+        o.range = range;
+        o.law = law;
+        o.substeps = substeps;
+        std::atomic<bool> stop{false};
+        cli::InverseRun r;
+        run_released([&] { r = cli::run_inverse(o); }, stop, {std::nullopt, std::nullopt});
+        py::dict out;
+        out["t"] = to_numpy(r.record.t_s);
+        out["command"] = to_numpy(r.result.command);
+        out["F_desired"] = to_numpy(r.record.F_N);
+        out["F_model"] = to_numpy(r.result.force_N);
+        out["reachable"] = std::vector<bool>(r.result.reachable);
+        out["variable"] = r.settings.variable;
+        out["share_reachable"] = r.result.share_reachable;
+        out["share_at_low"] = r.result.share_at_low;
+        out["share_at_high"] = r.result.share_at_high;
+        out["tracking_error"] = r.result.tracking_error;
+        return out;
+      },
+      py::arg("model"), py::arg("fixture"), py::arg("laws"), py::arg("params"), py::arg("model_file"),
+      py::arg("record"), py::arg("path"), py::arg("loader"), py::arg("range"), py::arg("law"), py::arg("substeps"));
 }
 
 void bind_evaluate_function(py::module_& m) {
@@ -108,6 +143,7 @@ void bind_evaluate_function(py::module_& m) {
 
 void bind_simulate(py::module_& m) {
   bind_simulate_function(m);
+  bind_inverse_function(m);
   bind_evaluate_function(m);
   m.def(
       "models",

@@ -279,3 +279,24 @@ def test_every_listed_setting_is_one_fit_knows(exe):
         _, message = cli_error(exe, "fit", "--model", "fvd.linear_viscous", "--data", FVD_RECORD, "--optimizer", name,
                                "--optimizer-settings", "zz=1", "--runs", "1", "--pop", "4", "--iters", "2")
         assert message.endswith(f"(known: {', '.join(entry['settings'])})"), message
+
+
+# inverse and fixed-step simulation ------------------------------------------------------------------------------
+
+def test_inverse_finds_the_current_of_a_fixed_step_simulation_as_the_command_line(exe, tmp_path):
+    t = np.linspace(0.0, 2.0, 2001)
+    x = 0.01 * np.sin(2 * np.pi * t)
+    stepped = dampbench.simulate(fixture="mfm.table3", t=t, x=x, set={"I": 0.4}, fixed_step=4)
+    desired = dampbench.record(t, x, stepped["F"], v=stepped["v"], a=stepped["a"], name="desired")
+    out = dampbench.inverse(fixture="mfm.table3", record=desired, range="I=0:1")
+    assert out["variable"] == "I"
+    assert out["share_reachable"] > 0.99 and out["tracking_error"] < 1e-6
+    moving = np.abs(stepped["v"][1:]) > 0.02  # where the piston moves, the force determines the current
+    assert np.all(np.abs(out["command"][:-1][moving] - 0.4) < 1e-3)
+    csv = tmp_path / "desired.csv"
+    np.savetxt(csv, np.column_stack([t, x, stepped["v"], stepped["a"], stepped["F"]]), delimiter=",",
+               header="t,x,v,a,F", comments="", fmt="%.17g")
+    cli = cli_json(exe, "inverse", "--fixture", "mfm.table3", "--data", csv, "--range", "I=0:1")
+    assert cli["share_reachable"] == out["share_reachable"] and cli["tracking_error"] == out["tracking_error"]
+    with pytest.raises(dampbench.UsageError, match="has no law in V"):
+        dampbench.inverse(fixture="mfm.table3", record=desired, range="V=0:1")

@@ -113,6 +113,11 @@ TEST(ControlCli, StructureWritesPeaksEnergiesAndTimeHistories) {
   ASSERT_GT(rows.size(), 100U);
   EXPECT_EQ(rows.front().size(), 13U);
   EXPECT_TRUE(fs::exists(dir / "structure.md"));
+  std::ifstream svg(dir / "structure.svg");
+  const std::string page((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("<svg"), std::string::npos);
+  EXPECT_EQ(std::count(page.begin(), page.end(), '\n'), 1);  // one page, one line
+  EXPECT_NE(page.find("storey 1 drift, bare [mm]"), std::string::npos);
   r = run_dampbench("structure --model fvd.linear_viscous --params m=0,C=20000 --building " + building +
                     " --ground " + (dir / "missing.csv").string());
   EXPECT_NE(r.output.find("missing.csv: cannot read the ground-motion file"), std::string::npos) << r.output;
