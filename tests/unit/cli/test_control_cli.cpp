@@ -2,6 +2,7 @@
 // inverse, structure. Their outputs, their files and their messages for bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -124,6 +125,54 @@ TEST(ControlCli, StructureWritesPeaksEnergiesAndTimeHistories) {
   r = run_dampbench("structure --model fvd.linear_viscous --params m=0,C=20000 --building " + building + " --ground " +
                     ground.string() + " --control on-off --command I=0:1");
   EXPECT_NE(r.output.find("has no law in I"), std::string::npos) << r.output;
+}
+
+TEST(ControlCli, ExamplesBuildingTableIsTheCommandsOutput) {
+  const std::string root = DAMPBENCH_SOURCE_DIR, shared = DAMPBENCH_SHARED_DATA_DIR;
+  const std::string ground = shared + "/earthquakes/el_centro.csv", record = shared + "/utfsm-mr-damper/10mm1Hz0x5A.txt";
+  if (!fs::exists(ground) || !fs::exists(record)) GTEST_SKIP() << "shared data absent: " << ground;
+  std::ifstream in(root + "/docs/examples.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string base = "structure --model-file " + root + "/datasets/models/utfsm_spencer_I.json --building " + root +
+                           "/datasets/buildings/utfsm_case_1.toml --ground " + ground + " --format json ";
+  const std::vector<std::pair<std::string, std::string>> runs{
+      {"passive, 0 A", "--set I=0"}, {"passive, 1 A", "--set I=1"},
+      {"on/off, 0–1 A (LQR, R = 1e-6)", "--control on-off --command I=0:1"}};
+  for (const auto& [label, args] : runs) {
+    const auto r = run_dampbench_json(base + args);
+    ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
+    const auto j = nlohmann::json::parse(r.output);
+    const auto& bare = j["bare"];
+    const auto& damped = j["damped"];
+    const double drift0 = bare["peak_drift_m"][0], drift = damped["peak_drift_m"][0];
+    const double acc0 = bare["peak_absolute_acceleration_m_s2"][2], acc = damped["peak_absolute_acceleration_m_s2"][2];
+    const double share = damped["energy_J"]["damper"].get<double>() / damped["energy_J"]["input"].get<double>();
+    const std::string bare_row = fmt::format("| bare building | {:.3f} | | {:.3f} | | | |", 1e3 * drift0, acc0);
+    const std::string row = fmt::format("| {} | {:.3f} | {:.1f} % | {:.3f} | {:.1f} % | {:.0f} | {:.1f} % |", label,
+                                        1e3 * drift, 100 * (1 - drift / drift0), acc, 100 * (1 - acc / acc0),
+                                        damped["peak_damper_force_N"].get<double>(), 100 * share);
+    EXPECT_NE(doc.find(bare_row), std::string::npos) << bare_row;
+    EXPECT_NE(doc.find(row), std::string::npos) << row;
+    if (j["damper"].contains("command"))
+      EXPECT_NE(doc.find(fmt::format("keeps 1 A on {:.0f} % of the steps", 100 * damped["high_command_share"].get<double>())),
+                std::string::npos);
+  }
+  // The inverse example: its reachable share and the median and quartiles of the current found.
+  const auto dir = testing::test_temp_dir("control_cli_examples");
+  const auto r = run_dampbench_json("inverse --model-file " + root + "/datasets/models/utfsm_spencer_I.json --range I=0:1 --data " +
+                                    record + " --columns t,x,v,F --units x=mm,v=mm/s --format json -o " +
+                                    (dir / "command.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
+  std::vector<double> found;
+  for (const auto& row : read_csv(dir / "command.csv"))
+    if (row[4] > 0) found.push_back(row[1]);
+  std::sort(found.begin(), found.end());
+  const auto quantile = [&](double q) { return found[static_cast<std::size_t>(q * static_cast<double>(found.size() - 1))]; };
+  const std::string text = fmt::format("{:.1f} % of the samples are reachable and the current found has median {:.3f} A\n"
+                                       "(quartiles {:.3f}–{:.3f} A)",
+                                       100 * nlohmann::json::parse(r.output)["share_reachable"].get<double>(), quantile(0.5),
+                                       quantile(0.25), quantile(0.75));
+  EXPECT_NE(doc.find(text), std::string::npos) << text;
 }
 
 }  // namespace dampbench
