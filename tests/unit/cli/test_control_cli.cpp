@@ -1,5 +1,6 @@
 // The commands that run an identified damper outside a fit: simulate --fixed-step (a varying current column),
-// inverse, structure. Their outputs, their files and their messages for bad input.
+// inverse, structure. Their outputs, their files, their messages for bad input, and the figures docs/examples.md
+// and README.md quote from them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -138,6 +139,7 @@ TEST(ControlCli, ExamplesBuildingTableIsTheCommandsOutput) {
   const std::vector<std::pair<std::string, std::string>> runs{
       {"passive, 0 A", "--set I=0"}, {"passive, 1 A", "--set I=1"},
       {"on/off, 0–1 A (LQR, R = 1e-6)", "--control on-off --command I=0:1"}};
+  std::vector<double> reductions;  // of the storey-1 peak drift, for README's bullet
   for (const auto& [label, args] : runs) {
     const auto r = run_dampbench_json(base + args);
     ASSERT_EQ(r.exit_code, 0) << r.output << r.errors;
@@ -151,12 +153,18 @@ TEST(ControlCli, ExamplesBuildingTableIsTheCommandsOutput) {
     const std::string row = fmt::format("| {} | {:.3f} | {:.1f} % | {:.3f} | {:.1f} % | {:.0f} | {:.1f} % |", label,
                                         1e3 * drift, 100 * (1 - drift / drift0), acc, 100 * (1 - acc / acc0),
                                         damped["peak_damper_force_N"].get<double>(), 100 * share);
+    reductions.push_back(100 * (1 - drift / drift0));
     EXPECT_NE(doc.find(bare_row), std::string::npos) << bare_row;
     EXPECT_NE(doc.find(row), std::string::npos) << row;
     if (j["damper"].contains("command"))
       EXPECT_NE(doc.find(fmt::format("keeps 1 A on {:.0f} % of the steps", 100 * damped["high_command_share"].get<double>())),
                 std::string::npos);
   }
+  std::ifstream readme_file(root + "/README.md");
+  const std::string readme((std::istreambuf_iterator<char>(readme_file)), std::istreambuf_iterator<char>());
+  const std::string bullet = fmt::format("cuts El Centro's peak drift by {:.1f} % at 1 A ({:.1f} % at 0 A; on/off {:.1f} %)",
+                                         reductions[1], reductions[0], reductions[2]);
+  EXPECT_NE(readme.find(bullet), std::string::npos) << bullet;
   // The inverse example: its reachable share and the median and quartiles of the current found.
   const auto dir = testing::test_temp_dir("control_cli_examples");
   const auto r = run_dampbench_json("inverse --model-file " + root + "/datasets/models/utfsm_spencer_I.json --range I=0:1 --data " +
