@@ -30,6 +30,7 @@
 #include "engine/cli/report_command.hpp"
 #include "engine/cli/run_command.hpp"
 #include "engine/cli/sensitivity_command.hpp"
+#include "engine/cli/export_command.hpp"
 #include "engine/cli/inverse_command.hpp"
 #include "engine/cli/simulate_command.hpp"
 #include "engine/cli/structure_command.hpp"
@@ -89,6 +90,9 @@ std::vector<Command> declare_commands(CLI::App& app, int& threads, std::string& 
   add_command<InverseOptions>(&app, commands, "inverse",
       "the command (I, V, phi) that makes an identified damper give a desired force, or the on/off rule",
       add_inverse_options, inverse_command);
+  add_command<ExportOptions>(&app, commands, "export",
+      "an identified model as dependency-free C99 (dampbench_model.h/.c) for a controller or a real-time target",
+      add_export_options, export_command);
   auto* fit_cmd = add_command<FitOptions>(&app, commands, "fit",
       "identify a model's parameters on a record with repeated optimizer runs", add_fit_options, fit_command);
   auto* run_cmd = add_command<RunOptions>(&app, commands, "run",

@@ -64,6 +64,12 @@ class LawModel final : public Model {
   [[nodiscard]] std::vector<std::string> law_variables() const;
 
   [[nodiscard]] const Model& base() const { return base_; }
+  /// The law of each base parameter (in the base's order) and the index of its first coefficient (what the C export
+  /// writes out); the gauge's tied base parameter (−1: none) and the base parameters it is the sum of.
+  [[nodiscard]] const std::vector<ParameterLaw>& laws() const { return laws_; }
+  [[nodiscard]] int coefficient_offset(int base_parameter) const { return offsets_[static_cast<std::size_t>(base_parameter)]; }
+  [[nodiscard]] int gauge_tied() const { return gauge_tied_; }
+  [[nodiscard]] const std::vector<int>& gauge_sum_of() const { return gauge_sum_of_; }
 
  private:
   /// Applies the base model's gauge unless `laws` name its tied parameter (then the user has chosen the states'

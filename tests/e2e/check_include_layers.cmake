@@ -14,6 +14,7 @@ set(DAMPBENCH_LAYERS
   "models"                4   # model families written with the kernels, their registry and fixtures
   "engine/evaluation"     5   # batches of candidates on records, sensitivity, bench workload
   "engine/control"        5   # the inverse of a damper model: the command for a desired force
+  "engine/export"         5   # an identified model as C99 source
   "engine/structure"      5   # a building under an earthquake with a stepped damper, LQR gains
   "engine/identification" 6   # optimizer interface, lockstep repeated runs
   "optimizers"            7   # the algorithms and their registry

@@ -1,0 +1,24 @@
+#pragma once
+// `dampbench export`: an identified model as a dependency-free C99 pair for a controller or a real-time target
+// (engine/export/c_export.hpp).
+#include <string>
+
+#include "engine/cli/cli_options.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace dampbench::cli {
+
+struct ExportOptions {
+  ModelByName model;
+  std::string lang = "c";
+  int substeps = 4;     ///< RK4 sub-steps per dbm_step
+  std::string output;   ///< folder for dampbench_model.h and dampbench_model.c
+};
+
+void add_export_options(CLI::App* cmd, ExportOptions& options);
+int export_command(const ExportOptions& options);
+
+}  // namespace dampbench::cli
