@@ -63,7 +63,8 @@ InverseResult inverse_command(const Model& model, std::span<const double> params
     const double desired = data.F_N[k], dt = data.t_s[k] - data.t_s[k - 1];
     const auto force_with = [&](double c) {  // the force at sample k with command c over the interval
       command_at(c);
-      stepper->set_states(saved);
+      if (k == 1) stepper->reset();  // at rest with the first command: a driver lag starts at u(0) = c(0)
+      else stepper->set_states(saved);
       stepper->advance(data.x_m[k - 1], data.v_m_s[k - 1], data.x_m[k], data.v_m_s[k], dt, s.substeps);
       return stepper->force(data.x_m[k], data.v_m_s[k], a(k));
     };
@@ -86,6 +87,11 @@ InverseResult inverse_command(const Model& model, std::span<const double> params
       } else {
         c = std::fabs(f_lo) <= std::fabs(f_hi) ? s.low : s.high;
       }
+    }
+    if (k == 1) {  // the force at rest under the first command
+      command_at(c);
+      stepper->reset();
+      r.force_N[0] = stepper->force(data.x_m[0], data.v_m_s[0], a(0));
     }
     r.force_N[k] = force_with(c);  // the states carried forward with the command chosen
     r.command[k - 1] = c;

@@ -23,7 +23,7 @@ struct InverseSettings {
 };
 
 struct InverseResult {
-  std::vector<double> command;    ///< at each sample, held until the next one
+  std::vector<double> command;    ///< at each sample, held until the next one (the first also at rest: u(0) = c(0))
   std::vector<double> force_N;    ///< the model's force with that command (the forward simulation)
   std::vector<bool> reachable;    ///< whether the desired force lay between the forces at the range's ends
   double tracking_error = 0;      ///< sqrt(Σ(F − F_d)² / Σ F_d²) over the reachable samples after the first

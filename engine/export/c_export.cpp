@@ -134,17 +134,14 @@ std::string helpers_for(const std::string& body) {
   return out;
 }
 
-/// RK4 over one dbm_step: the arithmetic of OdeLawStepper::advance.
+/// RK4 over an interval in n sub-steps (the arithmetic of OdeLawStepper::advance), dbm_step without and with driver
+/// lags (LawStepper::advance: u exact over each sub-step, the laws at its middle), dbm_init and dbm_force.
 constexpr const char* kStep = R"c(
-double dbm_step(dbm_state *st, double x, double v, const double *vars, double dt) {
-  double p[DBM_NPARAMS];
-  const double x0 = st->s[DBM_NSTATES - 2], v0 = st->s[DBM_NSTATES - 1];
-  const double inv = 1.0 / DBM_SUBSTEPS, h = dt * inv, dx = x - x0, dv = v - v0;
-  double *y = st->s;
+static void dbm_advance(const double *p, double x0, double v0, double x1, double v1, double dt, int n, double *y) {
+  const double inv = 1.0 / n, h = dt * inv, dx = x1 - x0, dv = v1 - v0;
   double t[DBM_NSTATES], k1[DBM_NSTATES], k2[DBM_NSTATES], k3[DBM_NSTATES], k4[DBM_NSTATES];
   int i, j;
-  dbm_parameters(vars, p);
-  for (i = 0; i < DBM_SUBSTEPS && DBM_MODEL_STATES > 0; ++i) {
+  for (i = 0; i < n && DBM_MODEL_STATES > 0; ++i) {
     const double a = i * inv, m = (i + 0.5) * inv, b = (i + 1) * inv;
     dbm_rhs(p, x0 + a * dx, v0 + a * dv, y, k1);
     for (j = 0; j < DBM_MODEL_STATES; ++j) t[j] = y[j] + 0.5 * h * k1[j];
@@ -155,25 +152,83 @@ double dbm_step(dbm_state *st, double x, double v, const double *vars, double dt
     dbm_rhs(p, x0 + b * dx, v0 + b * dv, t, k4);
     for (j = 0; j < DBM_MODEL_STATES; ++j) y[j] += (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
   }
+}
+
+#if DBM_NLAGS > 0
+/* vars with each lagged variable at u[] */
+static void dbm_lagged(const double *vars, const double *u, double *seen) {
+  int j;
+  for (j = 0; j < DBM_NVARS; ++j) seen[j] = vars[j];
+  for (j = 0; j < DBM_NLAGS; ++j) seen[dbm_lag_var[j]] = u[j];
+}
+#endif
+
+double dbm_step(dbm_state *st, double x, double v, const double *vars, double dt) {
+  double p[DBM_NPARAMS];
+  const double x0 = st->s[DBM_NSTATES - 2], v0 = st->s[DBM_NSTATES - 1];
+#if DBM_NLAGS > 0
+  const double inv = 1.0 / DBM_SUBSTEPS, h = dt * inv, dx = x - x0, dv = v - v0;
+  double *u = st->s + DBM_MODEL_STATES, middle[DBM_NLAGS], seen[DBM_NVARS];
+  int i, j;
+  for (i = 0; i < DBM_SUBSTEPS; ++i) {
+    const double a = i * inv, b = (i + 1) * inv;
+    for (j = 0; j < DBM_NLAGS; ++j) {
+      const double c = vars[dbm_lag_var[j]];
+      middle[j] = c + (u[j] - c) * exp(-(0.5 * h) / dbm_lag_tau[j]);
+      u[j] = c + (u[j] - c) * exp(-h / dbm_lag_tau[j]);
+    }
+    dbm_lagged(vars, middle, seen);
+    dbm_parameters(seen, p);
+    dbm_advance(p, x0 + a * dx, v0 + a * dv, x0 + b * dx, v0 + b * dv, h, 1, st->s);
+  }
+  dbm_lagged(vars, u, seen);
+  dbm_parameters(seen, p);
+#else
+  dbm_parameters(vars, p);
+  dbm_advance(p, x0, v0, x, v, dt, DBM_SUBSTEPS, st->s);
+#endif
   st->s[DBM_NSTATES - 2] = x;
   st->s[DBM_NSTATES - 1] = v;
-  return dbm_model_force(p, x, v, y);
+  return dbm_model_force(p, x, v, st->s);
 }
 
 void dbm_init(dbm_state *st, double x, double v, const double *vars) {
   int j;
   (void)vars;
   for (j = 0; j < DBM_NSTATES; ++j) st->s[j] = 0.0;
+#if DBM_NLAGS > 0
+  for (j = 0; j < DBM_NLAGS; ++j) st->s[DBM_MODEL_STATES + j] = vars[dbm_lag_var[j]]; /* u(0) = c(0) */
+#endif
   st->s[DBM_NSTATES - 2] = x;
   st->s[DBM_NSTATES - 1] = v;
 }
 
 double dbm_force(const dbm_state *st, double x, double v, const double *vars) {
   double p[DBM_NPARAMS];
+#if DBM_NLAGS > 0
+  double seen[DBM_NVARS];
+  dbm_lagged(vars, st->s + DBM_MODEL_STATES, seen);
+  dbm_parameters(seen, p);
+#else
   dbm_parameters(vars, p);
+#endif
   return dbm_model_force(p, x, v, st->s);
 }
 )c";
+
+/// DBM_NLAGS and, with lags, the variable index and τ of each (the τ of a free lag is its fitted coefficient).
+std::string lags_c(const LawModel* law, std::span<const double> params, const std::vector<std::string>& variables) {
+  if (!law || law->lags().empty()) return "#define DBM_NLAGS 0\n\n";
+  std::string index, tau;
+  for (const auto& lag : law->lags()) {
+    const auto i = std::find(variables.begin(), variables.end(), lag.variable) - variables.begin();
+    index += fmt::format("{}{}", index.empty() ? "" : ", ", i);
+    tau += fmt::format("{}{}", tau.empty() ? "" : ", ", number(law->lag_tau(lag, params)));
+  }
+  return fmt::format("#define DBM_NLAGS {}\nstatic const int dbm_lag_var[DBM_NLAGS] = {{ {} }};\n"
+                     "static const double dbm_lag_tau[DBM_NLAGS] = {{ {} }}; /* s */\n\n",
+                     law->lags().size(), index, tau);
+}
 
 }  // namespace
 
@@ -209,7 +264,8 @@ CSource export_c(const Model& model, std::span<const double> params, int substep
 #define DBM_NVARS {}
 #define DBM_VAR_NAMES {{ {} }}
 #define DBM_MODEL_STATES {}
-#define DBM_NSTATES (DBM_MODEL_STATES + 2) /* the model's states, then x and v of the last call */
+#define DBM_NLAGGED {}
+#define DBM_NSTATES (DBM_MODEL_STATES + DBM_NLAGGED + 2) /* the model's states, the lagged variables, x and v */
 #define DBM_SUBSTEPS {}
 
 typedef struct {{ double s[DBM_NSTATES]; }} dbm_state;
@@ -223,7 +279,7 @@ double dbm_force(const dbm_state *st, double x, double v, const double *vars);
 
 #endif
 )c",
-                                  variables.size(), names.empty() ? "0" : names, cm.states, substeps);
+                                  variables.size(), names.empty() ? "0" : names, cm.states, law ? law->lags().size() : 0, substeps);
   const std::string body =
       "static void dbm_parameters(const double *vars, double *p) {\n  double prod = 1.0;\n  (void)vars;\n  (void)prod;\n" +
       parameters_c(model, params, variables) + "}\n\n" +
@@ -231,7 +287,8 @@ double dbm_force(const dbm_state *st, double x, double v, const double *vars);
       "  (void)p;\n  (void)x;\n  (void)v;\n  (void)y;\n  (void)dy;\n" + cm.rhs + "}\n\n" +
       "static double dbm_model_force(const double *p, double x, double v, const double *y) {\n" + cm.force + "}\n" + kStep;
   out.source = head + "#include <math.h>\n\n#include \"dampbench_model.h\"\n\n" +
-               fmt::format("#define DBM_NPARAMS {}\n\n", base.dim()) + helpers_for(body) + "\n" + body;
+               fmt::format("#define DBM_NPARAMS {}\n", base.dim()) + lags_c(law, params, variables) + helpers_for(body) + "\n" +
+               body;
   return out;
 }
 

@@ -118,7 +118,14 @@ std::vector<ParameterInfo> coefficient_infos(const ParameterInfo& p, const Param
 
 LawModel::LawModel(const Model& base, std::map<std::string, ParameterLaw> laws, std::string id, std::string citation)
     : base_(base), id_(std::move(id)), citation_(std::move(citation)) {
-  for (const auto& [name, law] : laws) (void)base.parameter_index(name);  // unknown names throw
+  std::map<std::string, ParameterLaw> lag_laws;
+  for (auto it = laws.begin(); it != laws.end();) {  // tau_<variable> is a driver lag unless the base has such a parameter
+    const bool lag = it->first.rfind("tau_", 0) == 0 &&
+                     std::none_of(base.parameters().begin(), base.parameters().end(),
+                                  [&](const ParameterInfo& p) { return p.name == it->first; });
+    if (lag) lag_laws.insert(*it), it = laws.erase(it);
+    else (void)base.parameter_index((it++)->first);  // unknown names throw
+  }
   apply_gauge(base, laws);
   std::string law_list;
   for (const auto& p : base.parameters()) {
@@ -129,10 +136,33 @@ LawModel::LawModel(const Model& base, std::map<std::string, ParameterLaw> laws, 
     laws_.push_back(law);
     if (it != laws.end() && !(gauge_ && p.name == gauge_->tied)) law_list += fmt::format("{}{}={}", law_list.empty() ? "" : ";", p.name, law.text());
   }
+  take_lags(lag_laws, law_list);
   if (id_.empty()) id_ = fmt::format("{}[{}]", base.id(), law_list);
   if (citation_.empty()) citation_ = std::string(base.citation());
   law_text_ = fmt::format("{} with {}", base.law(), law_list);
   if (gauge_) law_text_ += fmt::format(" (gauge {})", gauge_->meaning);
+}
+
+void LawModel::take_lags(std::map<std::string, ParameterLaw>& lag_laws, std::string& law_list) {
+  const auto used = law_variables();
+  for (const auto& [name, law] : lag_laws) {
+    DriverLag lag;
+    lag.variable = name.substr(4);
+    if (std::find(used.begin(), used.end(), lag.variable) == used.end())
+      throw InputError(fmt::format("{}: a driver lag of {}, which no law uses (laws in: {})", name, lag.variable,
+                                   used.empty() ? "none" : fmt::format("{}", fmt::join(used, ", "))));
+    if (law.kind == ParameterLaw::Kind::free) {
+      lag.coefficient = static_cast<int>(coefficients_.size());
+      // 0.1 ms (a current amplifier) to 0.2 s (a slow valve) for the driver's time constant.
+      coefficients_.push_back({name, "s", 1e-4, 0.2, "s"});
+    } else if (law.kind == ParameterLaw::Kind::fixed && law.fixed_value >= 0) {
+      lag.fixed_tau_s = law.fixed_value;
+    } else {
+      throw InputError(fmt::format("{}: expected free or a time constant >= 0 s, got '{}'", name, law.text()));
+    }
+    law_list += fmt::format("{}{}={}", law_list.empty() ? "" : ";", name, law.text());
+    lags_.push_back(lag);
+  }
 }
 
 void LawModel::apply_gauge(const Model& base, std::map<std::string, ParameterLaw>& laws) {
@@ -191,23 +221,74 @@ std::vector<double> LawModel::base_parameters(std::span<const double> c,
 namespace {
 
 /// A law model stepped sample by sample: its laws evaluated at each set_parameters' variables, the base stepped.
+/// With driver lags, the laws see the lagged u of each commanded variable: over a sub-step of length h under the
+/// held command c, u moves exactly as c + (u − c)·e^(−t/τ); the base takes one RK4 sub-step with the laws at u of
+/// the sub-step's middle, and the force at a sample sees u there. The C export (engine/export) does the same.
 class LawStepper final : public ModelStepper {
  public:
-  LawStepper(const LawModel& model, std::unique_ptr<ModelStepper> base) : model_(model), base_(std::move(base)) {}
+  LawStepper(const LawModel& model, std::unique_ptr<ModelStepper> base)
+      : model_(model), base_(std::move(base)), lagged_(model.lags().size(), 0.0), tau_(model.lags().size(), 0.0) {}
   void set_parameters(std::span<const double> coefficients, const std::map<std::string, double>& variables) override {
-    base_->set_parameters(model_.base_parameters(coefficients, variables), variables);
+    coefficients_.assign(coefficients.begin(), coefficients.end());
+    commanded_ = variables;
+    for (std::size_t i = 0; i < tau_.size(); ++i) {
+      tau_[i] = model_.lag_tau(model_.lags()[i], coefficients);
+      if (!(tau_[i] >= 0)) throw InputError(fmt::format("{}: the driver lag's tau must be >= 0 s, got {}", model_.id(), tau_[i]));
+    }
+    apply(lagged_);
   }
-  void reset() override { base_->reset(); }
+  void reset() override {
+    base_->reset();
+    for (std::size_t i = 0; i < lagged_.size(); ++i) lagged_[i] = command(i);  // u(0) = c(0)
+    apply(lagged_);
+  }
   [[nodiscard]] double force(double x, double v, double a) const override { return base_->force(x, v, a); }
   void advance(double x0, double v0, double x1, double v1, double dt, int substeps) override {
-    base_->advance(x0, v0, x1, v1, dt, substeps);
+    if (lagged_.empty()) return base_->advance(x0, v0, x1, v1, dt, substeps);
+    const double inv = 1.0 / substeps, h = dt * inv, dx = x1 - x0, dv = v1 - v0;
+    std::vector<double> middle(lagged_.size());
+    for (int i = 0; i < substeps; ++i) {
+      const double a = i * inv, b = (i + 1) * inv;
+      for (std::size_t j = 0; j < lagged_.size(); ++j) {
+        const double c = command(j);
+        middle[j] = c + (lagged_[j] - c) * std::exp(-(0.5 * h) / tau_[j]);
+        lagged_[j] = c + (lagged_[j] - c) * std::exp(-h / tau_[j]);
+      }
+      apply(middle);
+      base_->advance(x0 + a * dx, v0 + a * dv, x0 + b * dx, v0 + b * dv, h, 1);
+    }
+    apply(lagged_);
   }
-  [[nodiscard]] std::vector<double> states() const override { return base_->states(); }
-  void set_states(std::span<const double> states) override { base_->set_states(states); }
+  [[nodiscard]] std::vector<double> states() const override {
+    auto out = base_->states();
+    out.insert(out.end(), lagged_.begin(), lagged_.end());
+    return out;
+  }
+  void set_states(std::span<const double> states) override {
+    const std::size_t own = states.size() - lagged_.size();
+    base_->set_states(states.first(own));
+    std::copy(states.begin() + static_cast<std::ptrdiff_t>(own), states.end(), lagged_.begin());
+    apply(lagged_);
+  }
 
  private:
+  [[nodiscard]] double command(std::size_t lag) const {
+    const auto it = commanded_.find(model_.lags()[lag].variable);
+    return it == commanded_.end() ? std::nan("") : it->second;
+  }
+  /// The base's parameters with each lagged variable at u[i] (the commanded values without lags).
+  void apply(const std::vector<double>& u) {
+    if (coefficients_.empty()) return;
+    std::map<std::string, double> seen = commanded_;
+    for (std::size_t i = 0; i < u.size(); ++i) seen[model_.lags()[i].variable] = u[i];
+    base_->set_parameters(model_.base_parameters(coefficients_, seen), seen);
+  }
+
   const LawModel& model_;
   std::unique_ptr<ModelStepper> base_;
+  std::vector<double> coefficients_;
+  std::map<std::string, double> commanded_;
+  std::vector<double> lagged_, tau_;  // u and τ of each lag
 };
 
 }  // namespace

@@ -13,6 +13,16 @@
 
 namespace dampbench {
 
+/// The driver's lag of a commanded variable (Spencer et al. 1997; fdsp eq. 7 with η = 1/τ): the laws see u with
+/// u̇ = (c(t) − u)/τ instead of the command c, u(0) = c(0). Given in the laws as `tau_I=free` (τ a coefficient, in
+/// seconds) or `tau_I=0.02` (fixed). Under a constant command u stays c, so the batch kernels, which take one value
+/// per record, are exact without it; a model stepped sample by sample (engine/model/stepper.hpp) integrates it.
+struct DriverLag {
+  std::string variable;
+  int coefficient = -1;   ///< τ's index among the coefficients, or −1 when fixed
+  double fixed_tau_s = 0;
+};
+
 class LawModel final : public Model {
  public:
   /// `laws` maps base parameter names to laws; parameters without a law stay free constants.
@@ -70,11 +80,20 @@ class LawModel final : public Model {
   [[nodiscard]] int coefficient_offset(int base_parameter) const { return offsets_[static_cast<std::size_t>(base_parameter)]; }
   [[nodiscard]] int gauge_tied() const { return gauge_tied_; }
   [[nodiscard]] const std::vector<int>& gauge_sum_of() const { return gauge_sum_of_; }
+  /// The driver lags of its commanded variables (none for most law models).
+  [[nodiscard]] const std::vector<DriverLag>& lags() const { return lags_; }
+  /// τ [s] of a lag for these coefficients.
+  [[nodiscard]] double lag_tau(const DriverLag& lag, std::span<const double> coefficients) const {
+    return lag.coefficient >= 0 ? coefficients[static_cast<std::size_t>(lag.coefficient)] : lag.fixed_tau_s;
+  }
 
  private:
   /// Applies the base model's gauge unless `laws` name its tied parameter (then the user has chosen the states'
   /// scale); the tied parameter gets a fixed law (no coefficient) whose value base_values overwrites.
   void apply_gauge(const Model& base, std::map<std::string, ParameterLaw>& laws);
+  /// Takes the `tau_<variable>` entries out of `laws` (names the base does not have) and appends a free τ's
+  /// coefficient; InputError for a lag of a variable no law uses or a τ that is not free or a number >= 0.
+  void take_lags(std::map<std::string, ParameterLaw>& laws, std::string& law_list);
   /// The base parameter's info with the gauge's unit.
   [[nodiscard]] ParameterInfo gauged_info(const ParameterInfo& p) const;
   /// The base parameters of one candidate's coefficients `c` under operating variables `v`, into p[0, base dim).
@@ -90,6 +109,7 @@ class LawModel final : public Model {
   std::optional<StateGauge> gauge_;
   int gauge_tied_ = -1;                 ///< base index of the gauge's tied parameter (−1: no gauge)
   std::vector<int> gauge_sum_of_;       ///< base indices it is the sum of
+  std::vector<DriverLag> lags_;
   std::string id_, citation_, law_text_;
 };
 

@@ -2,7 +2,8 @@
 """`dampbench export --lang c` compiles and steps as `dampbench simulate --fixed-step` does.
 
 For Bouc-Wen, Spencer, the magic formula, Bingham, mfm Table 3's Spencer with laws in I under a current that steps
-(vars held over each step), and a gauged Bouc-Wen with poly and sat laws: the exported pair is compiled with gcc and
+(vars held over each step), a gauged Bouc-Wen with poly and sat laws, and Spencer and the magic formula behind a
+driver lag (tau_I free and fixed): the exported pair is compiled with gcc and
 clang (-std=c99 -Wall -Wextra -Werror -pedantic), driven over the motion `simulate --fixed-step 4` used (its x and
 v), and each force must be within 1e-9 of the largest force of the record. Then the driver times Spencer's step at
 1/4096 s (printed, never asserted: figures go to docs/performance.md). A model the exporter does not cover leaves no
@@ -75,6 +76,11 @@ CASES = [  # name, model arguments, whether the record has a current column
     ("bouc_wen_gauged", ["--model", "mrd.bouc_wen", "--laws", "alpha=poly(I,1);c0=sat(I)", "--params",
                          "c0_Ia=800,c0_Ib=2500,c0_Ix0=0.4,k0=900,x0=0,alpha_I0=150,alpha_I1=900,beta=150,gamma=250,n=1.3"],
      True),
+    ("spencer_lag", ["--model", "mrd.spencer", "--laws", "c0=poly(I,1);alpha=poly(I,1);tau_I=free", "--params",
+                     "c0_I0=2000,c0_I1=6000,c1=1e5,k0=500,k1=300,x0=0,alpha_I0=200,alpha_I1=1200,beta=300,gamma=500,"
+                     "n=1.5,tau_I=0.02"], True),
+    ("magic_formula_lag", ["--model", "mrd.magic_formula", "--laws", "D=poly(I,1);tau_I=0.01", "--params",
+                           "A=0.05,B=100,C=1.5,D_I0=300,D_I1=1200,E=-1,k_c=500,k=1000,f0=10"], True),
 ]
 
 

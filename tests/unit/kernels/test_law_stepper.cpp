@@ -88,6 +88,32 @@ TEST(LawStepper, LawModelsFollowTheVariablesOfEachStep) {
   EXPECT_THROW(stepper->set_parameters(c, {{"V", 1.0}}), InputError);
 }
 
+TEST(LawStepper, DriverLagFollowsTheFirstOrderResponseToACommandStep) {
+  // C = 1000 + 2000·I N·s/m with a lag of τ = 50 ms behind a current that steps from 0 to 1 A at sample 200:
+  // the laws see u(t) = 1 − e^(−(t − t_step)/τ), so F = (1000 + 2000·u)·v at every sample (the exact response, as
+  // a viscous law has no state of its own).
+  const Model& base = find_model("fvd.linear_viscous");
+  const LawModel law(base, parse_laws("C=poly(I,1);tau_I=0.05", "test"));
+  ASSERT_EQ(law.dim(), 3);  // m, C_I0, C_I1: a fixed tau is no coefficient
+  Signals data = testing::sine_signals(0.01, 1.0, 1, 1000, {{"I", 0.5}});
+  std::vector<double> current(data.size(), 0.0);
+  for (std::size_t k = 200; k < current.size(); ++k) current[k] = 1.0;
+  data.operating_signals["I"] = current;
+  const auto force = simulate_stepped(law, named(law, {{"m", 0.0}, {"C_I0", 1000.0}, {"C_I1", 2000.0}}), data, 4);
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    const double u = k <= 200 ? 0.0 : 1.0 - std::exp(-(data.t_s[k] - data.t_s[200]) / 0.05);
+    ASSERT_NEAR(force[k], (1000.0 + 2000.0 * u) * data.v_m_s[k], 1e-9 * 3000.0 * 0.0629) << "sample " << k;
+  }
+  // A free tau is a coefficient in seconds; a lag of a variable no law uses, or a negative tau, is refused.
+  const LawModel free_tau(base, parse_laws("C=poly(I,1);tau_I=free", "test"));
+  EXPECT_EQ(free_tau.parameters().back().name, "tau_I");
+  EXPECT_EQ(free_tau.parameters().back().unit, "s");
+  EXPECT_NE(testing::error_of([&] { LawModel(base, parse_laws("C=poly(I,1);tau_V=free", "test")); }).find("which no law uses"),
+            std::string::npos);
+  EXPECT_NE(testing::error_of([&] { LawModel(base, parse_laws("C=poly(I,1);tau_I=-1", "test")); }).find(">= 0 s"),
+            std::string::npos);
+}
+
 TEST(LawStepper, SavedStatesReplayTheSameBits) {
   const Model& m = find_model("mrd.bouc_wen");
   auto stepper = m.stepper();

@@ -112,8 +112,10 @@ TEST(OperatingSources, ATimeVaryingCurrentIsRefusedForLaws) {
   EXPECT_NEAR(varying.operating.at("I"), 0.5, 1e-12);  // kept for tables
   ASSERT_TRUE(varying.operating_refused.count("I"));
   const std::string why = varying.operating_refused.at("I");
-  for (const char* part : {"step.csv", "column I varies", "min 0.4", "max 0.6", "spread 0.2", "40 %", "out of scope"})
+  for (const char* part : {"step.csv", "column I varies", "min 0.4", "max 0.6", "spread 0.2", "40 %",
+                           "fits and batch evaluations take one constant value per record"})
     EXPECT_NE(why.find(part), std::string::npos) << part << " in: " << why;
+  EXPECT_EQ(varying.operating_signals.at("I"), step);  // the column, for a model stepped sample by sample
   const Dataset near_zero = parse_rig(record_text("", "I", {0, 0.01, 0, 0, 0, 0, 0, 0, 0, 0}));
   EXPECT_TRUE(near_zero.operating_refused.count("I"));
   const Dataset quiet_zero = parse_rig(record_text("", "I", {0, 0.004, 0, 0, 0, 0, 0, 0, 0, 0}));
