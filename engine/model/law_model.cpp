@@ -136,6 +136,7 @@ LawModel::LawModel(const Model& base, std::map<std::string, ParameterLaw> laws, 
     laws_.push_back(law);
     if (it != laws.end() && !(gauge_ && p.name == gauge_->tied)) law_list += fmt::format("{}{}={}", law_list.empty() ? "" : ";", p.name, law.text());
   }
+  find_law_variables();
   take_lags(lag_laws, law_list);
   if (id_.empty()) id_ = fmt::format("{}[{}]", base.id(), law_list);
   if (citation_.empty()) citation_ = std::string(base.citation());
@@ -230,7 +231,7 @@ class LawStepper final : public ModelStepper {
       : model_(model), base_(std::move(base)), lagged_(model.lags().size(), 0.0), tau_(model.lags().size(), 0.0) {}
   void set_parameters(std::span<const double> coefficients, const std::map<std::string, double>& variables) override {
     coefficients_.assign(coefficients.begin(), coefficients.end());
-    commanded_ = variables;
+    commanded_ = seen_ = variables;
     for (std::size_t i = 0; i < tau_.size(); ++i) {
       tau_[i] = model_.lag_tau(model_.lags()[i], coefficients);
       if (!(tau_[i] >= 0)) throw InputError(fmt::format("{}: the driver lag's tau must be >= 0 s, got {}", model_.id(), tau_[i]));
@@ -279,15 +280,15 @@ class LawStepper final : public ModelStepper {
   /// The base's parameters with each lagged variable at u[i] (the commanded values without lags).
   void apply(const std::vector<double>& u) {
     if (coefficients_.empty()) return;
-    std::map<std::string, double> seen = commanded_;
-    for (std::size_t i = 0; i < u.size(); ++i) seen[model_.lags()[i].variable] = u[i];
-    base_->set_parameters(model_.base_parameters(coefficients_, seen), seen);
+    // seen_ holds the given variables (set_parameters) with the lagged ones overwritten here: no map per sub-step
+    for (std::size_t i = 0; i < u.size(); ++i) seen_[model_.lags()[i].variable] = u[i];
+    base_->set_parameters(model_.base_parameters(coefficients_, seen_), seen_);
   }
 
   const LawModel& model_;
   std::unique_ptr<ModelStepper> base_;
   std::vector<double> coefficients_;
-  std::map<std::string, double> commanded_;
+  std::map<std::string, double> commanded_, seen_;  // the variables given, and those the laws see (lagged)
   std::vector<double> lagged_, tau_;  // u and τ of each lag
 };
 
@@ -313,13 +314,12 @@ void LawModel::check_variables(const Signals& data) const {
   }
 }
 
-std::vector<std::string> LawModel::law_variables() const {
-  std::vector<std::string> out;
+void LawModel::find_law_variables() {
+  law_variables_.clear();
   for (const auto& law : laws_)
-    for (const auto& v : law.variables()) out.push_back(v);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+    for (const auto& v : law.variables()) law_variables_.push_back(v);
+  std::sort(law_variables_.begin(), law_variables_.end());
+  law_variables_.erase(std::unique(law_variables_.begin(), law_variables_.end()), law_variables_.end());
 }
 
 const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const {

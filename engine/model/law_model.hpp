@@ -71,7 +71,7 @@ class LawModel final : public Model {
   /// Throws InputError if the record lacks a variable some law needs.
   void check_variables(const Signals& data) const;
   /// The operating variables its laws read, sorted, each once.
-  [[nodiscard]] std::vector<std::string> law_variables() const;
+  [[nodiscard]] const std::vector<std::string>& law_variables() const { return law_variables_; }
 
   [[nodiscard]] const Model& base() const { return base_; }
   /// The law of each base parameter (in the base's order) and the index of its first coefficient (what the C export
@@ -94,6 +94,7 @@ class LawModel final : public Model {
   /// Takes the `tau_<variable>` entries out of `laws` (names the base does not have) and appends a free τ's
   /// coefficient; InputError for a lag of a variable no law uses or a τ that is not free or a number >= 0.
   void take_lags(std::map<std::string, ParameterLaw>& laws, std::string& law_list);
+  void find_law_variables();
   /// The base parameter's info with the gauge's unit.
   [[nodiscard]] ParameterInfo gauged_info(const ParameterInfo& p) const;
   /// The base parameters of one candidate's coefficients `c` under operating variables `v`, into p[0, base dim).
@@ -110,6 +111,7 @@ class LawModel final : public Model {
   int gauge_tied_ = -1;                 ///< base index of the gauge's tied parameter (−1: no gauge)
   std::vector<int> gauge_sum_of_;       ///< base indices it is the sum of
   std::vector<DriverLag> lags_;
+  std::vector<std::string> law_variables_;  ///< sorted, each once (find_law_variables)
   std::string id_, citation_, law_text_;
 };
 
