@@ -64,6 +64,26 @@ LoadedModel load_named_model(const ModelByName& o, const std::string& command) {
   return m;
 }
 
+void add_model_by_name_options(CLI::App* c, ModelByName& o) {
+  c->add_option("--model-file", o.model_file, "the identified model (fit --save-model)");
+  c->add_option("--model", o.model, "a model id instead of --model-file (with --laws and --params)");
+  c->add_option("--fixture", o.fixture, "a published law fixture instead of --model-file");
+  c->add_option("--laws", o.laws, "laws on --model's parameters, e.g. 'c0=poly(I,1)'");
+  c->add_option("--params", o.params, "--model's parameter (or law coefficient) values in SI, name=value,...");
+}
+
+CommandRange parse_command_range(const std::string& text, std::string_view option) {
+  const auto eq = text.find('=');
+  const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
+  if (eq == std::string::npos || colon == std::string::npos || eq == 0)
+    throw InputError(fmt::format("{}: expected VARIABLE=LOW:HIGH, e.g. I=0:1, got '{}'", option, text));
+  CommandRange r;
+  r.variable = std::string(trim(std::string_view(text).substr(0, eq)));
+  r.low = parse_number(std::string_view(text).substr(eq + 1, colon - eq - 1), fmt::format("{}'s low value", option));
+  r.high = parse_number(std::string_view(text).substr(colon + 1), fmt::format("{}'s high value", option));
+  return r;
+}
+
 std::vector<double> parse_params(const Model& model, const std::string& text, const std::vector<double>& defaults) {
   std::vector<double> values = defaults.empty() ? std::vector<double>(model.dim(), std::nan("")) : defaults;
   for (const auto& [name, value] : parse_key_values(text, "--params"))

@@ -35,6 +35,16 @@ struct ModelByName {
   std::string model_file, model, fixture, laws, params;
 };
 LoadedModel load_named_model(const ModelByName& names, const std::string& command);
+/// Declares --model-file, --model, --fixture, --laws and --params into `names` (inverse, structure, export).
+void add_model_by_name_options(CLI::App* cmd, ModelByName& names);
+
+/// A commanded variable and its range, from "I=0:1" (inverse --range, structure --command). InputError naming
+/// `option` for another form; the order of LOW and HIGH is checked by whoever uses them.
+struct CommandRange {
+  std::string variable;
+  double low = 0, high = 0;
+};
+CommandRange parse_command_range(const std::string& text, std::string_view option);
 
 /// InputError unless `format` is md or json.
 void check_format(const std::string& format);

@@ -13,11 +13,7 @@
 namespace dampbench::cli {
 
 void add_export_options(CLI::App* c, ExportOptions& o) {
-  c->add_option("--model-file", o.model.model_file, "the identified model (fit --save-model)");
-  c->add_option("--model", o.model.model, "a model id instead of --model-file (with --params)");
-  c->add_option("--fixture", o.model.fixture, "a published law fixture instead of --model-file");
-  c->add_option("--laws", o.model.laws, "laws on --model's parameters, e.g. 'c0=poly(I,1)'");
-  c->add_option("--params", o.model.params, "--model's parameter values in SI, name=value,...");
+  add_model_by_name_options(c, o.model);
   c->add_option("--lang", o.lang, "c (default; C99, no dependency but libm)");
   c->add_option("--substeps", o.substeps, "fixed RK4 sub-steps per step, as simulate --fixed-step (default 4)");
   c->add_option("-o,--output", o.output, "folder for dampbench_model.h and dampbench_model.c")->required();

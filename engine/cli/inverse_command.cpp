@@ -7,18 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/common/error.hpp"
-#include "engine/common/key_values.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/fit/fit.hpp"
 
 namespace dampbench::cli {
 
 void add_inverse_options(CLI::App* c, InverseOptions& o) {
-  c->add_option("--model-file", o.damper.model_file, "the identified damper (fit --save-model), with laws in the command");
-  c->add_option("--model", o.damper.model, "a model id instead of --model-file (with --laws and --params)");
-  c->add_option("--fixture", o.damper.fixture, "a published law fixture instead of --model-file");
-  c->add_option("--laws", o.damper.laws, "laws on --model's parameters, e.g. 'c0=poly(I,1)'");
-  c->add_option("--params", o.damper.params, "--model's coefficient values in SI, name=value,...");
+  add_model_by_name_options(c, o.damper);
   c->add_option("--data", o.data.path, "record of the motion and the desired force: t, x (v, a) and F")->required();
   add_data_options(c, o.data);
   c->add_option("--range", o.range, "the commanded variable and its range, e.g. I=0:1")->required();
@@ -29,18 +24,6 @@ void add_inverse_options(CLI::App* c, InverseOptions& o) {
 }
 
 namespace {
-
-control::InverseSettings parse_range(const std::string& text) {
-  const auto eq = text.find('=');
-  const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
-  if (eq == std::string::npos || colon == std::string::npos || eq == 0)
-    throw InputError(fmt::format("--range: expected VARIABLE=LOW:HIGH, e.g. I=0:1, got '{}'", text));
-  control::InverseSettings s;
-  s.variable = std::string(trim(text.substr(0, eq)));
-  s.low = parse_number(text.substr(eq + 1, colon - eq - 1), "--range's low value");
-  s.high = parse_number(text.substr(colon + 1), "--range's high value");
-  return s;
-}
 
 std::string summary_markdown(const InverseRun& r) {
   const auto& x = r.result;
@@ -70,7 +53,8 @@ InverseRun run_inverse(const InverseOptions& o) {
   if (o.law != "inverse" && o.law != "on-off")
     throw InputError(fmt::format("--law: expected inverse or on-off, got '{}'", o.law));
   InverseRun r;
-  r.settings = parse_range(o.range);
+  const CommandRange range = parse_command_range(o.range, "--range");
+  r.settings = {range.variable, range.low, range.high};
   r.settings.law = o.law == "on-off" ? control::InverseLaw::on_off : control::InverseLaw::inverse;
   r.settings.substeps = o.substeps;
   r.model = load_named_model(o.damper, "inverse");

@@ -17,11 +17,7 @@
 namespace dampbench::cli {
 
 void add_structure_options(CLI::App* c, StructureOptions& o) {
-  c->add_option("--model-file", o.damper.model_file, "the identified damper (fit --save-model)");
-  c->add_option("--model", o.damper.model, "a model id instead of --model-file (with --params)");
-  c->add_option("--fixture", o.damper.fixture, "a published law fixture instead of --model-file");
-  c->add_option("--laws", o.damper.laws, "laws on --model's parameters, e.g. 'c0=poly(I,1)'");
-  c->add_option("--params", o.damper.params, "--model's parameter values in SI, name=value,...");
+  add_model_by_name_options(c, o.damper);
   c->add_option("--building", o.building, "building TOML file (datasets/buildings/utfsm_case_1.toml, ...)")->required();
   c->add_option("--ground", o.ground, "ground acceleration CSV with columns t [s] and ag [m/s^2]")->required();
   c->add_option("--scale", o.scale, "factor on the ground acceleration (default 1)");
@@ -37,20 +33,6 @@ void add_structure_options(CLI::App* c, StructureOptions& o) {
 }
 
 namespace {
-
-/// "I=0:1" → (I, 0, 1).
-structure::OnOffControl parse_command(const std::string& text) {
-  const auto eq = text.find('=');
-  const auto colon = text.find(':', eq == std::string::npos ? 0 : eq);
-  if (eq == std::string::npos || colon == std::string::npos || eq == 0)
-    throw InputError(fmt::format("--command: expected VARIABLE=LOW:HIGH, e.g. I=0:1, got '{}'", text));
-  structure::OnOffControl c;
-  c.variable = std::string(trim(text.substr(0, eq)));
-  c.low = parse_number(text.substr(eq + 1, colon - eq - 1), "--command's low value");
-  c.high = parse_number(text.substr(colon + 1), "--command's high value");
-  if (!(c.low <= c.high)) throw InputError(fmt::format("--command: expected LOW <= HIGH, got '{}'", text));
-  return c;
-}
 
 double reduction_percent(double bare, double damped) { return bare > 0 ? 100.0 * (1.0 - damped / bare) : std::nan(""); }
 
@@ -154,7 +136,9 @@ StructureResult run_structure(const StructureOptions& o) {
   for (const auto& [name, value] : parse_key_values(o.set, "--set")) damper.variables[name] = parse_number(value, "--set " + name);
   r.damper_id = std::string(damper.model->id());
   if (o.control == "on-off") {
-    auto control = parse_command(o.command);
+    const CommandRange command = parse_command_range(o.command, "--command");
+    if (!(command.low <= command.high)) throw InputError(fmt::format("--command: expected LOW <= HIGH, got '{}'", o.command));
+    structure::OnOffControl control{command.variable, command.low, command.high, {}};
     const structure::Modes modes = structure::modes_of(r.run.building);
     const auto gain = structure::lqr_gain(structure::state_space(r.run.building, modes),
                                           structure::energy_weight(r.run.building), o.lqr_r);

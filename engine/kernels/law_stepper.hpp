@@ -83,9 +83,8 @@ class OdeLawStepper final : public ModelStepper {
  public:
   void set_parameters(std::span<const double> params, const std::map<std::string, double>& variables) override {
     p_ = stepper_lanes<Law>(params);
-    SampleSignals sample;
-    sample.set_variables(variables);
-    ctx_ = Law::context(sample.signals());
+    sample_.set_variables(variables);
+    ctx_ = Law::context(sample_.signals());
   }
   void reset() override { y_.fill(0.0); }
   [[nodiscard]] double force(double x, double v, double) const override { return Law::force(p_, 0, ctx_, x, v, y_.data()); }
@@ -118,6 +117,7 @@ class OdeLawStepper final : public ModelStepper {
       Law::rhs(p_, 0, ctx_, x, v, y, dy);
   }
   LawLanes<Law, 1> p_{};
+  SampleSignals sample_;  // kept: a lagged law model sets the parameters at every sub-step
   typename Law::Context ctx_{};
   std::array<double, S> y_{};
 };
