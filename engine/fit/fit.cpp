@@ -25,7 +25,7 @@ FitOutcome run_fit(const FitRequest& request) {
   const Model& model = *request.model->model;
   for (const Signals* r : request.records) check_record(model, *r);
   FitOutcome out;
-  out.bounds = request.model->bounds_for(request.records);
+  out.bounds = request.box ? *request.box : request.model->bounds_for(request.records);
   if (!request.start.empty()) {
     if (static_cast<int>(request.start.size()) != model.dim())
       throw InputError(fmt::format("fit: a start point of {} values for {} parameters", request.start.size(), model.dim()));

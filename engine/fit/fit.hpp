@@ -30,6 +30,9 @@ struct FitRequest {
   bool assess_failed_fit = false;
   /// A start point for the search (Bounds::start), in the model's parameter order; empty: none.
   std::vector<double> start;
+  /// The box to search instead of the model's box for these records (a sweep's narrowed bounds,
+  /// engine/fit/record_narrowing.hpp); absent: ResolvedModel::bounds_for.
+  std::optional<Bounds> box;
   /// Restarts until the runs converge (auto_budget.hpp), its optimizer the one `optimizer` makes; absent: the
   /// fixed budget of `optimizer` and `settings`.
   std::optional<AutoBudget> auto_budget;

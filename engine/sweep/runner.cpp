@@ -82,8 +82,9 @@ struct GroupFit {
   FitOutcome outcome;
   ResolvedModel chosen;  ///< laws = "auto": the chosen law model (engine/fit/law_selection.hpp); else empty
   std::string laws;      ///< its laws (GroupRecord::laws)
-  /// laws = "auto" or start = "per-file": what the records' own fits (and the choice) cost before the joint fit
+  /// laws = "auto", start = "per-file" or narrow: what the records' own fits (and the choice) cost before the joint fit
   PreFitEffort pre_fit;
+  std::string note;  ///< narrow: what the narrowing did (GroupRecord::message)
   [[nodiscard]] const Model& model(const Model& part_model) const { return chosen.model ? *chosen.model : part_model; }
 };
 
@@ -148,6 +149,14 @@ GroupFit fit_group(const Plan& plan, const GroupRef& g, const std::vector<const 
     search.record_fits = caches.record_fits;
     request.start = start_from_record_fits(search, entry, *request.model->model, &out.pre_fit);
   }
+  if (entry.narrow) {  // the mfm paper's bound narrowing over the group's records (engine/fit/record_narrowing.hpp)
+    NarrowedStart narrowed =
+        narrowed_start(entry, *request.model->model, records, opt.spec, request.settings, *entry.narrow);
+    request.box = std::move(narrowed.box);
+    request.start = std::move(narrowed.start);
+    out.pre_fit += narrowed.effort;
+    out.note = std::move(narrowed.summary);
+  }
   if (entry.hold) {  // from another group's fit (engine/sweep/held_fit.hpp)
     out.chosen = held_model(plan, g, [&](long long i) { return held_values(plan, i, caches); }, out.laws);
     request.model = &out.chosen;
@@ -183,6 +192,7 @@ GroupRecord run_group(const Plan& plan, long long index, RecordFitCache* record_
     rec.candidate_samples = id.candidate_samples + group_fit.pre_fit.candidate_samples;
     rec.evaluations = group_fit.pre_fit.evaluations;
     if (fit.auto_budget) rec.message = fit.auto_budget->summary();
+    if (!group_fit.note.empty()) rec.message += (rec.message.empty() ? "" : "; ") + group_fit.note;
     for (int r = 0; r < g.runs; ++r) {
       rec.evaluations += id.runs[r].evaluations;
       rec.run_results.push_back(run_record(r, id.runs[r]));

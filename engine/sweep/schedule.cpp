@@ -43,6 +43,7 @@ double estimated_cost(const Plan& plan, const GroupRef& g) {
   // the base model's coefficients.
   if (chooses_laws(entry)) return 3 * one_fit + law_choice_simulations(dim) * samples * dim;
   if (entry.start == "per-file") return 2 * one_fit;  // each record's own fit, then the joint fit
+  if (entry.narrow) return (entry.narrow->rounds + 1) * one_fit;  // each round's per-record fits, then the joint fit
   return one_fit;
 }
 

@@ -14,7 +14,9 @@
 //   metric = "nrmse" [of_abs]             or metrics = ["nrmse", "rmse"]: each optimized in its own tasks
 //   models = ["mrd.bingham", ...]         ids (or law fixtures), or [[models]] tables:
 //       name, model | fixture, laws = "c0=poly(I,1);n=2" | "auto", bounds = "c0=0:1e4,...", optimizers = ["ga"],
-//       start = "per-file"; laws = "auto" chooses each group's laws as `fit --laws auto` does (engine/fit/law_selection.hpp)
+//       start = "per-file"; laws = "auto" chooses each group's laws as `fit --laws auto` does (engine/fit/law_selection.hpp);
+//       narrow = { rounds = 3, from = "default" | "wide" }: the box of the mfm paper's bound narrowing over the group's
+//       records (engine/fit/record_narrowing.hpp)
 //   [bounds] "model name" = "p=lo:hi,..." (the fvd preset's form)
 //   [optimizer] or [[optimizers]]:         label [name], name [pso], population [50], iterations [100],
 //       runs, settings = { pc = 0.6 }, max_evaluations, target, stall_iterations
@@ -45,6 +47,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/fit/record_narrowing.hpp"
 #include "engine/fit/resolve_model.hpp"
 #include "engine/model/bounds.hpp"
 #include "engine/identification/identification.hpp"
@@ -85,6 +88,9 @@ struct ModelSpec : ModelChoice {
   /// Parameters held at another model's fit; `laws` then also fixes them, at placeholders (the middle of their
   /// default bounds) that each group replaces by the fit's values (GroupRecord::laws keeps them).
   std::optional<HoldSpec> hold;
+  /// `narrow = { rounds = 3, from = "default" }`: the law model searches the box of the mfm paper's bound narrowing
+  /// over the group's records, from the laws fitted to its last round (engine/fit/record_narrowing.hpp).
+  std::optional<NarrowingSpec> narrow;
 };
 
 struct OptimizerEntry {

@@ -1,5 +1,7 @@
 // Models: ids, law fixtures or [[models]] tables, with the [bounds] table; every model is built once here so
 // that a bad law, bound or name is reported before anything runs.
+#include <cmath>
+
 #include "engine/sweep/held_fit.hpp"
 #include "engine/sweep/spec/reader.hpp"
 #include "models/fixtures.hpp"
@@ -37,6 +39,31 @@ void read_hold(const Reader& r, const toml::node& n, const std::string& key, Mod
   });
 }
 
+/// `narrow = { rounds, from }` (NarrowingSpec): a law model of poly(VAR,1) and shared parameters, not with another
+/// start or a hold.
+void read_narrow(const Reader& r, const toml::node& n, const std::string& key, ModelSpec& m) {
+  if (!n.is_table()) r.fail(&n, key, "expected { rounds = 3, from = \"default\" | \"wide\" }");
+  const toml::table& t = *n.as_table();
+  r.only_keys(t, key, {"rounds", "from"});
+  NarrowingSpec s;
+  const double rounds = r.number(t, "rounds", key).value_or(s.rounds);
+  if (!(rounds >= 1 && rounds <= 20 && rounds == std::floor(rounds)))
+    r.fail(t.get("rounds"), Reader::join(key, "rounds"), "expected a whole number of rounds from 1 to 20");
+  s.rounds = static_cast<int>(rounds);
+  s.from = r.string(t, "from", key).value_or(s.from);
+  if (s.from != "default" && s.from != "wide")
+    r.fail(t.get("from"), Reader::join(key, "from"),
+           fmt::format("expected \"default\" (the model's box for the records) or \"wide\" ([-1e8, 1e8]), got '{}'", s.from));
+  if (m.model.empty() || m.laws.empty() || chooses_laws(m) || !m.start.empty() || m.hold || !m.bounds.empty())
+    r.fail(&n, key, "narrow needs a registered 'model' with its own 'laws' (not \"auto\"), and no start, hold or bounds: "
+                    "it makes the box and the start");
+  r.check(&n, key, [&] {
+    check_narrowable_laws(m);
+    return 0;
+  });
+  m.narrow = s;
+}
+
 ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& key) {
   ModelSpec m;
   if (n.is_string()) {
@@ -56,9 +83,9 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
     m.name = id;
     return m;
   }
-  if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers, start }");
+  if (!n.is_table()) r.fail(&n, key, "expected a model id or a table { name, model | fixture, laws, bounds, optimizers, start, hold, narrow }");
   const toml::table& t = *n.as_table();
-  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers", "start", "hold"});
+  r.only_keys(t, key, {"name", "model", "fixture", "laws", "bounds", "optimizers", "start", "hold", "narrow"});
   m.model = r.string(t, "model", key).value_or("");
   m.fixture = r.string(t, "fixture", key).value_or("");
   if (m.model.empty() == m.fixture.empty()) r.fail(&n, key, "expected exactly one of 'model' and 'fixture'");
@@ -78,6 +105,7 @@ ModelSpec read_model(const Reader& r, const toml::node& n, const std::string& ke
     r.fail(t.get("start"), Reader::join(key, "start"),
            "laws = \"auto\" always starts from the records' own fits: drop start");
   if (const toml::node* h = t.get("hold")) read_hold(r, *h, Reader::join(key, "hold"), m);
+  if (const toml::node* nw = t.get("narrow")) read_narrow(r, *nw, Reader::join(key, "narrow"), m);
   return m;
 }
 

@@ -98,6 +98,19 @@ TEST_F(SpecErrors, NamesFileLineKeyAndExpectation) {
   expect("name = \"x\"\nmodels = [{ model = \"mrd.bingham\", start = \"per-file\" }]\n" + kData,
          "key 'models[0].start': start = \"per-file\" starts a law model from its records' own fits: it needs 'model' "
          "and 'laws'");
+  const std::string narrow = "name = \"x\"\nmodels = [{ model = \"mrd.bingham\", laws = \"f_c=poly(I,1)\", narrow = ";
+  expect(narrow + "{ rounds = 0 } }]\n" + kData,
+         "key 'models[0].narrow.rounds': expected a whole number of rounds from 1 to 20");
+  expect(narrow + "{ from = \"paper\" } }]\n" + kData,
+         "key 'models[0].narrow.from': expected \"default\" (the model's box for the records) or \"wide\" ([-1e8, 1e8]), got "
+         "'paper'");
+  expect(narrow + "{ rounds = 2 }, bounds = \"c0=0:10\" }]\n" + kData,
+         "key 'models[0].narrow': narrow needs a registered 'model' with its own 'laws' (not \"auto\"), and no start, "
+         "hold or bounds: it makes the box and the start");
+  expect("name = \"x\"\nmodels = [{ model = \"mrd.bingham\", laws = \"f_c=poly(I,2)\", narrow = {} }]\n" + kData,
+         "key 'models[0].narrow': narrow: the law f_c=poly(I,2) has no box from a narrowed range (those that have one: "
+         "free, poly(VAR,0), poly(VAR,1))");
+  expect(narrow + "{ round = 2 } }]\n" + kData, "key 'models[0].narrow.round': unknown key (known here: rounds, from)");
   expect(kHead + "[[datasets]]\nname = \"a\"\nfile = \"a.csv\"\ntransform = \"crank\"\n",
          "key 'datasets[0].transform': expected slider-crank or slider-crank-printed, got 'crank'");
   expect(kHead + "[[datasets]]\nname = \"a\"\nfile = \"a.csv\"\nunits = \"x=furlong\"\n", "key 'datasets[0].units': ");
