@@ -235,6 +235,10 @@ TEST(CsvLoaderErrors, NonFiniteCell) {
         HasText(parse_error(text), fmt::format("data.csv:7: column 3 ('F'): value is not finite ('{}')", value)));
   }
   EXPECT_TRUE(HasText(parse_error("t,x,F\n0,1e999,0\n"), "data.csv:2: column 2 ('x'): value out of range ('1e999')"));
+  // A command column (I, V, phi) that simulate --fixed-step and inverse follow sample by sample: a gap in it is
+  // refused where it is, not held or interpolated over.
+  EXPECT_TRUE(HasText(parse_error("t,x,F,I\n0,0,0,0.5\n0.01,1,2,nan\n"),
+                      "data.csv:3: column 4 ('I'): value is not finite ('nan')"));
 }
 
 TEST(CsvLoaderErrors, WrongCellCount) {
