@@ -37,6 +37,20 @@ std::pair<double, double> window(double v, double fraction) {
   return {std::min(v * (1 - fraction), v * (1 + fraction)), std::max(v * (1 - fraction), v * (1 + fraction))};
 }
 
+/// The one fit set's values, or the means over several (each parameter's, and of their best values).
+HeldValues mean_of(const std::vector<HeldValues>& fits) {
+  if (fits.size() == 1) return fits.front();
+  HeldValues out;
+  for (const HeldValues& f : fits) {
+    out.best_value += f.best_value;
+    for (const auto& [name, v] : f.values) out.values[name] += v;
+  }
+  const auto n = static_cast<double>(fits.size());
+  out.best_value /= n;
+  for (auto& [name, v] : out.values) v /= n;
+  return out;
+}
+
 }  // namespace
 
 std::string held_laws(const ModelSpec& entry, const Model& base, const std::map<std::string, double>* values) {
@@ -82,31 +96,38 @@ ResolvedModel held_model(const Plan& plan, const GroupRef& g, const std::functio
   const HoldSpec& hold = *entry.hold;
   const int from = part.spec->model_index(hold.from), split = part.spec->split_index(hold.split);
   const SplitPlan& source_split = part.splits[split];
-  if (source_split.fitsets.size() != 1)
-    throw InputError(fmt::format("model '{}' holds to '{}' in split '{}', which has {} fit sets: it needs one", entry.name,
-                                 hold.from, hold.split, source_split.fitsets.size()));
-  std::optional<HeldValues> source;
-  for (const auto& [m, o] : source_split.pairs) {
-    const long long i = m == from ? plan.group_index(g.part, split, 0, m, o, g.metric) : -1;
-    if (i < 0) continue;
-    HeldValues v = fit_of(i);
-    if (!source || v.best_value < source->best_value) source = std::move(v);
+  if (source_split.fitsets.size() != 1 && !hold.mean)
+    throw InputError(fmt::format("model '{}' holds to '{}' in split '{}', which has {} fit sets: it needs one (or mean = "
+                                 "true)",
+                                 entry.name, hold.from, hold.split, source_split.fitsets.size()));
+  std::vector<HeldValues> fits;  // per fit set of the source split, its lowest group
+  for (int f = 0; f < static_cast<int>(source_split.fitsets.size()); ++f) {
+    std::optional<HeldValues> lowest;
+    for (const auto& [m, o] : source_split.pairs) {
+      const long long i = m == from ? plan.group_index(g.part, split, f, m, o, g.metric) : -1;
+      if (i < 0) continue;
+      HeldValues v = fit_of(i);
+      if (!lowest || v.best_value < lowest->best_value) lowest = std::move(v);
+    }
+    if (!lowest) throw InputError(fmt::format("model '{}': split '{}' fits no group of '{}'", entry.name, hold.split, hold.from));
+    fits.push_back(std::move(*lowest));
   }
-  if (!source) throw InputError(fmt::format("model '{}': split '{}' fits no group of '{}'", entry.name, hold.split, hold.from));
+  const HeldValues source = mean_of(fits);
   std::optional<HeldValues> previous;
   if (hold.next > 0)
     if (const int before = fit_before(part, g, hold.order); before >= 0)
       previous = fit_of(plan.group_index(g.part, g.split, before, g.model, g.optimizer, g.metric));
   ModelChoice choice = entry;
-  choice.laws = held_laws(entry, find_model(entry.model), &source->values);
+  choice.laws = held_laws(entry, find_model(entry.model), &source.values);
   const ResolvedModel unwindowed = resolve_model(choice);
   std::string bounds;  // the entry's bounds but the free parameters', whose windows follow
   for (const auto& [name, range] : parse_key_values(entry.bounds, "bounds"))
-    if (std::find(hold.free.begin(), hold.free.end(), name) == hold.free.end())
+    if (hold.mean || std::find(hold.free.begin(), hold.free.end(), name) == hold.free.end())
       bounds += fmt::format("{}{}={}", bounds.empty() ? "" : ",", name, range);
   for (const std::string& name : hold.free) {
+    if (hold.mean) continue;  // their own bounds (the entry's, above, or the defaults)
     const int j = unwindowed.model->parameter_index(name);
-    auto [lower, upper] = window(source->values.at(name), hold.first);
+    auto [lower, upper] = window(source.values.at(name), hold.first);
     if (previous) {
       const auto [l, u] = window(previous->values.at(name), hold.next);
       lower = std::max(lower, l), upper = std::min(upper, u);

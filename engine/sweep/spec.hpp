@@ -71,13 +71,16 @@ struct DatasetSpec {
 /// the best fit of model `from` in split `split` (its one fit set; the lowest of its optimizers' groups), and each
 /// free parameter searches ±`first` (a fraction) around that fit's value. With `next` > 0 the fit sets of this
 /// model's split are fitted in the ascending order of the law variable `order`, each within ±`next` around the fit
-/// before it as well (engine/sweep/held_fit.hpp).
+/// before it as well (engine/sweep/held_fit.hpp). With `mean`, the held values are the means over every fit set of
+/// `split` (each its lowest group), as the crfd paper's eq. 4.4 takes its modified model's constants from its fits
+/// of Tables 2–3, and the free parameters search their own bounds.
 struct HoldSpec {
   std::string laws;  ///< the entry's own laws, as written (ModelSpec::laws adds the held parameters to them)
   std::string from, split;
   std::vector<std::string> free;
   double first = 0.4, next = 0;
   std::string order;
+  bool mean = false;
 };
 
 struct ModelSpec : ModelChoice {

@@ -14,9 +14,9 @@ namespace {
 /// `hold = { from, split, free, first, next, order }` (HoldSpec); the entry's laws then fix the held parameters at
 /// placeholders (held_laws), which each group replaces by the fit it holds to.
 void read_hold(const Reader& r, const toml::node& n, const std::string& key, ModelSpec& m) {
-  if (!n.is_table()) r.fail(&n, key, "expected { from = \"model\", split = \"split\", free = [\"parameter\", ...], first, next, order }");
+  if (!n.is_table()) r.fail(&n, key, "expected { from = \"model\", split = \"split\", free = [\"parameter\", ...], first, next, order, mean }");
   const toml::table& t = *n.as_table();
-  r.only_keys(t, key, {"from", "split", "free", "first", "next", "order"});
+  r.only_keys(t, key, {"from", "split", "free", "first", "next", "order", "mean"});
   HoldSpec h;
   h.laws = m.laws;
   h.from = r.required_string(t, "from", key);
@@ -27,7 +27,11 @@ void read_hold(const Reader& r, const toml::node& n, const std::string& key, Mod
   h.next = r.number(t, "next", key).value_or(0.0);
   if (!(h.next >= 0 && h.next <= 1)) r.fail(t.get("next"), Reader::join(key, "next"), "expected a fraction in [0, 1]");
   h.order = r.string(t, "order", key).value_or("");
-  if ((h.next > 0) == h.order.empty())
+  h.mean = r.boolean(t, "mean", key, false);
+  if (h.mean && (t.contains("first") || t.contains("next") || t.contains("order")))
+    r.fail(&n, key, "mean = true holds to the means over the split's fit sets and leaves the free parameters their own "
+                    "bounds: drop first, next and order");
+  if (!h.mean && (h.next > 0) == h.order.empty())
     r.fail(&n, key, "next (a window around the fit before) and order (the variable the fits follow) go together");
   if (m.model.empty() || chooses_laws(m) || !m.start.empty())
     r.fail(&n, key, "hold needs a registered 'model' whose laws are its own (not \"auto\", no start)");

@@ -351,12 +351,12 @@ TEST(SweepEnergy, TheLoopAreaOfALinearViscousRecordAndAGoneRecord) {
 }
 
 /// A sine record of fvd.gv_linear_elastic's law with m = 0: F = C sgn(v)|v|^0.3 + 4e6 x, 10 mm at `freq` (stated).
-void write_viscous_elastic(const fs::path& p, double C, double freq) {
+void write_viscous_elastic(const fs::path& p, double C, double freq, double K1 = 4e6) {
   std::string s = fmt::format("# operating: freq={}\nt[s],x[mm],F[N]\n", freq);
   for (int k = 0; k < 401; ++k) {
     const double t = 2.0 * k / (freq * 400), w = 2 * std::numbers::pi * freq;
     const double x = 0.01 * std::sin(w * t), v = 0.01 * w * std::cos(w * t);
-    s += fmt::format("{:.12g},{:.12g},{:.12g}\n", t, 1e3 * x, C * (v > 0 ? 1 : -1) * std::pow(std::fabs(v), 0.3) + 4e6 * x);
+    s += fmt::format("{:.12g},{:.12g},{:.12g}\n", t, 1e3 * x, C * (v > 0 ? 1 : -1) * std::pow(std::fabs(v), 0.3) + K1 * x);
   }
   testing::write_text(p, s);
 }
@@ -446,6 +446,47 @@ fit = { freq = [1, 2] }
   expect_same_results((dir / "out" / "store.sqlite").string(), (dir / "one" / "store.sqlite").string());
   const auto verify = run_dampbench(fmt::format("verify {}", (dir / "one" / "store.sqlite").string()));
   EXPECT_EQ(verify.exit_code, 0) << verify.output;
+}
+
+// A model held at the means of another's fits over several conditions (hold with mean = true, the crfd paper's eq. 4.4):
+// the sources' stiffnesses K1 are 3e6 and 5e6 N/m, the held record's 4e6, their mean, with another C. The held laws
+// carry the mean of the sources' fitted K1 (not either one's), and the fit finds the record's C in C's own box.
+TEST(SweepHold, MeanHoldsAtTheMeansOfTheSourceFitsAndLeavesTheFreeParametersTheirBox) {
+  const fs::path dir = testing::test_temp_dir("sweeprun");
+  const double C = 8e5;
+  write_viscous_elastic(dir / "data" / "a_soft.csv", C, 0.5, 3e6);
+  write_viscous_elastic(dir / "data" / "b_stiff.csv", C, 0.75, 5e6);
+  write_viscous_elastic(dir / "data" / "c_held.csv", 1.5 * C, 1.0, 4e6);
+  testing::write_text(dir / "s.toml", hold_sweep(R"({ from = "source", split = "source", free = ["C"], mean = true })",
+                                                 40, 300, dir) + R"toml(fit = { freq = [0.5, 0.75] }
+[[splits]]
+name = "meaned"
+models = ["held"]
+fit = { freq = 1 }
+)toml");
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), (dir / "out").string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto table = run_dampbench(fmt::format("table {} --kind params --format json", (dir / "out" / "store.sqlite").string()));
+  ASSERT_EQ(table.exit_code, 0) << table.output;
+  const auto source_K1 = params_row(table.output, "params_source_source", "K1");  // kN/mm
+  ASSERT_EQ(source_K1.size(), 2u) << table.output;
+  EXPECT_NEAR(source_K1.at("a_soft"), 3.0, 0.05);  // one sinusoid determines K1 - m·ω², not each (m up to 2000 kg)
+  EXPECT_NEAR(source_K1.at("b_stiff"), 5.0, 0.05);
+  const auto held_C = params_row(table.output, "params_held_meaned", "C");
+  ASSERT_EQ(held_C.size(), 1u) << table.output;
+  EXPECT_NEAR(held_C.at("c_held"), 1.5 * C, 0.01 * C);  // found in C's own box (the held law model's table is in SI)
+  const double K1_mean = 0.5 * (source_K1.at("a_soft") + source_K1.at("b_stiff")) * 1e6;  // SI, as the laws row
+  EXPECT_NE(table.output.find(fmt::format("K1={:.4f}", K1_mean).substr(0, 8)), std::string::npos) << table.output;
+  const auto refused = [&](const std::string& hold) {
+    testing::write_text(dir / "bad.toml", hold_sweep(hold, 10, 10, dir));
+    return run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "bad.toml").string(), (dir / "bad").string()));
+  };
+  const auto windowed = refused(R"({ from = "source", split = "source", free = ["C"], mean = true, first = 0.5 })");
+  EXPECT_NE(windowed.exit_code, 0);
+  EXPECT_NE(windowed.output.find("mean = true holds to the means over the split's fit sets and leaves the free parameters "
+                                 "their own bounds: drop first, next and order"),
+            std::string::npos)
+      << windowed.output;
 }
 
 // A hold that names no model the split fits, or a window without its order, is refused before anything runs.
