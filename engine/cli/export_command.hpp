@@ -4,6 +4,7 @@
 #include <string>
 
 #include "engine/cli/cli_options.hpp"
+#include "engine/export/c_export.hpp"
 
 namespace CLI {
 class App;
@@ -18,7 +19,15 @@ struct ExportOptions {
   std::string output;   ///< folder for dampbench_model.h and dampbench_model.c
 };
 
+/// The C pair of the named model, not written (the command's files, the Python module's strings) and the model id.
+struct ExportedModel {
+  exporting::CSource c;
+  std::string model_id;
+};
+
 void add_export_options(CLI::App* cmd, ExportOptions& options);
+/// Checks --lang, loads the model and writes it as C in memory; InputError for what the exporter does not cover.
+ExportedModel run_export(const ExportOptions& options);
 int export_command(const ExportOptions& options);
 
 }  // namespace dampbench::cli

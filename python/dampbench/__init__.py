@@ -19,11 +19,12 @@ from dampbench._core import (  # noqa: F401  (the exception classes, one per exi
 )
 from dampbench.records import load_record, load_records, record  # noqa: F401
 from dampbench.fitting import FitResult, fit  # noqa: F401
-from dampbench.simulation import evaluate, inverse, models, optimizers, simulate  # noqa: F401
+from dampbench.simulation import evaluate, export_c, inverse, models, optimizers, simulate, structure  # noqa: F401
 from dampbench.store import Store, report  # noqa: F401
 
 __version__ = version
 __all__ = [
     "DataError", "Error", "FitResult", "InternalError", "Record", "Store", "StoreError", "UsageError",
-    "evaluate", "fit", "inverse", "load_record", "load_records", "models", "optimizers", "record", "report", "simulate",
+    "evaluate", "export_c", "fit", "inverse", "load_record", "load_records", "models", "optimizers", "record", "report",
+    "simulate", "structure",
 ]

@@ -158,3 +158,42 @@ def optimizers():
     population, iterations and runs.
     """
     return _core.optimizers()
+
+
+def structure(model=None, params=None, *, building, ground, laws=None, fixture=None, model_file=None, scale=1.0,
+              step=1.0 / 4096.0, substeps=4, set=None, control="passive", command=None, lqr_r=1e-6, output_every=8):
+    """A damper model inside a building under a ground acceleration, as `dampbench structure` runs it (the same bits).
+
+    The model as in simulate (model_file, or model/fixture with laws and params). building: a building TOML file
+    (datasets/buildings/*.toml); ground: a CSV of t [s] and ag [m/s^2]; scale: a factor on ag; step: the building's
+    time step [s]; substeps: the damper's RK4 sub-steps per step. set: the damper's operating variables ({"I": 1} or
+    "I=1") for a passive damper; control="on-off" with command="I=0:1" switches the command by the clipped-optimal
+    rule of an LQR gain (lqr_r: R of its cost). output_every: steps between the time histories' rows.
+
+    Returns {"damper", "bare", "damped", "lqr_residual"}; "bare" and "damped" each hold the time histories "t", "ag",
+    "u", "drift", "abs_acc" (rows: times, columns: storeys), "force", "command", the peaks over every step
+    "peak_u", "peak_drift", "peak_abs_acc" (per storey), "peak_force", "high_share", "energy" ({"input",
+    "structural", "damper", "kinetic", "strain", "balance_error"}), "steps" and "unconverged_steps".
+    """
+    return _core.structure(**_model_args(model, params, laws, model_file), fixture=fixture or "",
+                           building=os.fspath(building), ground=os.fspath(ground), scale=float(scale),
+                           step_s=float(step), substeps=int(substeps), set=key_values(set, "set"), control=control,
+                           command=command or "", lqr_r=float(lqr_r), output_every=int(output_every))
+
+
+def export_c(model=None, params=None, *, laws=None, fixture=None, model_file=None, substeps=4, output=None):
+    """The model as a dependency-free C99 pair, as `dampbench export --lang c` writes it (the same text).
+
+    The model as in simulate. substeps: RK4 sub-steps per dbm_step. Returns {"header", "source", "model"} (the
+    texts of dampbench_model.h and dampbench_model.c); with output (an existing folder) also writes them there.
+    A model the exporter does not cover raises UsageError before anything is written.
+    """
+    out = _core.export_c(**_model_args(model, params, laws, model_file), fixture=fixture or "", substeps=int(substeps))
+    if output is not None:
+        folder = os.fspath(output)
+        if not os.path.isdir(folder):
+            raise UsageError(f"export_c: output: '{folder}' is not a folder (create it first)")
+        for name, text in (("dampbench_model.h", out["header"]), ("dampbench_model.c", out["source"])):
+            with open(os.path.join(folder, name), "w", encoding="utf-8") as f:
+                f.write(text)
+    return out

@@ -22,6 +22,7 @@ void bind_records(py::module_& m);   // records.cpp: Record, load_record, record
 void bind_fit(py::module_& m);       // fit.cpp: fit
 void bind_simulate(py::module_& m);  // simulate.cpp: simulate, evaluate, models, optimizers
 void bind_store(py::module_& m);     // store.cpp: a store's runs, groups and tables; report
+void bind_control(py::module_& m);   // control.cpp: structure, export_c
 
 /// A copy of `values` as a 1-D numpy array.
 inline py::array_t<double> to_numpy(const std::vector<double>& values) {

@@ -11,4 +11,5 @@ PYBIND11_MODULE(_core, m) {
   bind_fit(m);
   bind_simulate(m);
   bind_store(m);
+  bind_control(m);
 }

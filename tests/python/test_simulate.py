@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import dampbench
-from conftest import FVD_RECORD, cli_json, run_cli
+from conftest import FVD_RECORD, SOURCE_DIR, cli_json, run_cli
 
 GV_ELASTIC = ("fvd.gv_linear_elastic", {"m": 12.5, "C": 2.1e5, "alpha": 0.35, "K1": 3.0e6})
 BOUC_WEN = ("mrd.bouc_wen", {"c0": 1000.0, "k0": 2000.0, "x0": 0.001, "alpha": 5.0e4, "beta": 300.0,
@@ -300,3 +300,41 @@ def test_inverse_finds_the_current_of_a_fixed_step_simulation_as_the_command_lin
     assert cli["share_reachable"] == out["share_reachable"] and cli["tracking_error"] == out["tracking_error"]
     with pytest.raises(dampbench.UsageError, match="has no law in V"):
         dampbench.inverse(fixture="mfm.table3", record=desired, range="V=0:1")
+
+
+def test_structure_gives_the_command_lines_peaks_and_energies(exe, tmp_path):
+    t = np.arange(0.0, 2.0, 0.005)
+    ground = tmp_path / "ground.csv"
+    np.savetxt(ground, np.column_stack([t, 2.0 * np.sin(3 * np.pi * t) * np.exp(-t)]), delimiter=",",
+               header="t,ag", comments="", fmt="%.17g")
+    building = SOURCE_DIR / "datasets" / "buildings" / "utfsm_case_1.toml"
+    out = dampbench.structure(fixture="mfm.table3", set={"I": 0.5}, building=building, ground=ground)
+    cli = cli_json(exe, "structure", "--fixture", "mfm.table3", "--set", "I=0.5", "--building", building,
+                   "--ground", ground)
+    for run in ("bare", "damped"):
+        assert list(out[run]["peak_drift"]) == cli[run]["peak_drift_m"]
+        assert out[run]["peak_abs_acc"].tolist() == cli[run]["peak_absolute_acceleration_m_s2"]
+        assert out[run]["steps"] == cli[run]["steps"]
+    assert out["damped"]["energy"]["damper"] == cli["damped"]["energy_J"]["damper"]
+    assert out["damped"]["peak_force"] == cli["damped"]["peak_damper_force_N"]
+    assert out["bare"]["peak_force"] == 0.0 and out["damped"]["peak_force"] > 0.0
+    # the time histories: one row per output step, one column per storey; the peak over them is at most the peak
+    # over every step
+    drift = out["damped"]["drift"]
+    assert drift.shape == (len(out["damped"]["t"]), 3)
+    assert np.all(np.max(np.abs(drift), axis=0) <= out["damped"]["peak_drift"])
+    with pytest.raises(dampbench.UsageError, match="--control: expected passive or on-off"):
+        dampbench.structure(fixture="mfm.table3", building=building, ground=ground, control="sometimes")
+
+
+def test_export_c_is_the_command_lines_text_and_refuses_what_it_does_not_cover(exe, tmp_path):
+    out = dampbench.export_c(fixture="mfm.table3", substeps=3, output=tmp_path)
+    cli_dir = tmp_path / "cli"
+    cli_dir.mkdir()
+    code, _, err = run_cli(exe, "export", "--fixture", "mfm.table3", "--substeps", "3", "-o", cli_dir)
+    assert code == 0, err
+    for name, key in (("dampbench_model.h", "header"), ("dampbench_model.c", "source")):
+        assert (cli_dir / name).read_text() == out[key] == (tmp_path / name).read_text()
+    assert "#define DBM_SUBSTEPS 3" in out["header"]
+    with pytest.raises(dampbench.UsageError, match="fvd.linear_viscous"):
+        dampbench.export_c("fvd.linear_viscous", {"m": 0, "C": 1000})
