@@ -51,7 +51,9 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
                 "models that have them, local stages and every reported value in double; or double throughout");
   c->add_option("--bounds", fit.model.bounds, "bounds in SI, name=lo:hi,...");
   c->add_option("--start", fit.start,
-                "per-file: start the search from the laws fitted to each record's own fit; or a model file (--save-model) of "
+                "per-file: start the search from the laws fitted to each record's own fit; narrowed: search the box of three "
+                "rounds of the mfm paper's bound narrowing over the records, from the laws fitted to the last; or a model "
+                "file (--save-model) of "
                 "the same model and laws: start from its coefficients (member 0 of each run, clamped into the box)");
   c->add_option("--format", o.format, "md (default) or json");
   c->add_option("--report", o.report, "also write an HTML report (loops, convergence, runs) to this file");

@@ -3,7 +3,7 @@
 #include <utility>
 
 #include "engine/fit/fit.hpp"
-#include "engine/fit/record_start.hpp"
+#include "engine/fit/record_seed.hpp"
 
 namespace dampbench {
 namespace {
@@ -31,7 +31,7 @@ FitResult fit_and_predict(const FitSpec& spec, const HeldOutSpec& held_out,
   plan.progress = progress;
   FitRequest seeded = result.prepared.request();
   seeded.progress = progress;
-  seed_from_record_fits(result.prepared, seeded, plan.record_fits.get(), progress);
+  seed_start(result.prepared, seeded, plan.record_fits.get(), progress);
   result.outcome = result.prepared.auto_laws ? fit_with_chosen_laws(result, plan) : run_fit(seeded);
   if (held_out.any()) result.held_out = run_held_out(result.prepared, result.outcome, plan);
   return result;

@@ -13,7 +13,7 @@
 #include "engine/common/random.hpp"
 #include "engine/evaluation/batch_evaluator.hpp"
 #include "engine/fit/fitted_range.hpp"
-#include "engine/fit/record_start.hpp"
+#include "engine/fit/record_seed.hpp"
 #include "engine/fit/law_selection.hpp"
 #include "engine/model/bounds.hpp"
 #include "engine/model/law_model.hpp"
@@ -223,7 +223,7 @@ HeldOut run_held_out(const PreparedFit& fit, const FitOutcome& outcome, const He
   for (const Fold& fold : plan.folds) {
     ResolvedModel fold_model;
     FitRequest seeded = fold_request(request, fold);
-    seed_from_record_fits(fit, seeded, record_fits, plan.progress);
+    seed_start(fit, seeded, record_fits, plan.progress);
     const FitOutcome f = fit.auto_laws ? fit_fold_with_auto_laws(fit, request, fold, fold_model, record_fits, plan.progress)
                                        : run_fit(seeded);
     const Model& predicting = fit.auto_laws ? *fold_model.model : model;

@@ -69,11 +69,15 @@ PreparedFit prepare_fit(const FitSpec& spec) {
   ModelChoice choice = spec.model;
   p.auto_laws = chooses_laws(choice);
   p.start_per_file = spec.start == "per-file";
+  p.start_narrowed = spec.start == "narrowed";
+  if (p.start_narrowed && !choice.bounds.empty())
+    throw InputError("--start narrowed makes the box from the records' narrowed fits: drop --bounds");
   if (!spec.start.empty() && p.auto_laws)
     throw InputError(fmt::format("--start {} with --laws auto: --laws auto always starts from the records' own fits",
                                  spec.start));
   p.model = resolve_model_or_auto_base(choice);  // with --laws auto: the base model, before its laws are chosen
-  if (!spec.start.empty() && !p.start_per_file) p.start = start_from_model_file(spec.start, *p.model.model);
+  if (!spec.start.empty() && !p.start_per_file && !p.start_narrowed)
+    p.start = start_from_model_file(spec.start, *p.model.model);
   if (p.auto_laws) choice.laws.clear();
   p.choice = choice;
   const Model& model = *p.model.model;

@@ -32,7 +32,8 @@ struct FitSpec {
   std::optional<long long> max_evaluations;  ///< the automatic budget's cap (auto_budget.hpp)
   std::optional<double> max_seconds;         ///< the automatic budget's wall-clock cap
   std::uint64_t seed = 1;
-  /// "", "per-file" (engine/fit/record_start.hpp), or a model file (fit --save-model) of the same model whose
+  /// "", "per-file" (engine/fit/record_start.hpp), "narrowed" (three rounds of the mfm paper's bound narrowing from
+  /// the default box, engine/fit/record_narrowing.hpp), or a model file (fit --save-model) of the same model whose
   /// coefficients start the search
   std::string start;
   /// "mixed" (default): the population phase in single-precision lanes (IdentificationSettings::search_precision), or "double"
@@ -47,6 +48,7 @@ struct PreparedFit {
   ResolvedModel model;      ///< with --laws auto: the base model until the laws are chosen
   bool auto_laws = false;   ///< --laws auto (engine/fit/law_selection.hpp)
   bool start_per_file = false;  ///< --start per-file (engine/fit/record_start.hpp)
+  bool start_narrowed = false;  ///< --start narrowed: the box and start of bound narrowing (record_narrowing.hpp)
   std::vector<double> start;    ///< --start FILE: the file's coefficients, member 0 of each run; empty: none
   Metric metric = Metric::of_abs;
   FitPlan plan;             ///< optimizer, population, iterations and runs, with the class defaults

@@ -409,6 +409,34 @@ TEST(HeldOutCommand, ARecordPredictedWithoutAFiniteForceSaysWhyAndTheMeansKeepTh
     EXPECT_NE(md.output.find(text), std::string::npos) << text << "\n" << md.output;
 }
 
+// fit --start narrowed: three rounds of the mfm paper's bound narrowing over the records, then the laws' box from
+// their ranges. Noise-free Bingham records with f_c = 150 + 300·I: the per-record fits are exact, the box's constant
+// term is f_c's range at 0 A and its slope bound the range's width over 0-1 A, so the truth sits on the box's corner
+// and the fit returns it.
+TEST(FitStartNarrowed, TheLawsComeBackFromTheBoxOfTheRecordsNarrowedFits) {
+  const Simulated sim("mrd.bingham", "f_c=poly(I,1)", {150.0, 300.0, 2500.0, -5.0}, 0);
+  const std::string fit = "fit --model mrd.bingham --laws 'f_c=poly(I,1)' --optimizer ga-lm --pop 20 --iters 10 --runs 2" +
+                          sim.fitted_on();
+  std::string progress;
+  const auto j = run_json(fit + " --start narrowed", &progress);
+  EXPECT_NE(progress.find("--start narrowed: bounds narrowed over 3 records in 3 rounds (failed records per round: 0, 0, 0;"),
+            std::string::npos)
+      << progress;
+  const double truth[] = {150.0, 300.0, 2500.0, -5.0};
+  const char* names[] = {"f_c_I0", "f_c_I1", "c0", "f0"};
+  for (int k = 0; k < 4; ++k)
+    EXPECT_NEAR(j.at("best_params").at(names[k]).get<double>(), truth[k], 1e-6 * std::abs(truth[k])) << names[k];
+  const auto with_bounds = testing::run_dampbench(fit + " --start narrowed --bounds f0=-10:0");
+  EXPECT_NE(with_bounds.exit_code, 0);
+  EXPECT_NE(with_bounds.output.find("--start narrowed makes the box from the records' narrowed fits: drop --bounds"),
+            std::string::npos)
+      << with_bounds.output;
+  const auto quadratic = testing::run_dampbench("fit --model mrd.bingham --laws 'f_c=poly(I,2)' --start narrowed" + sim.fitted_on());
+  EXPECT_NE(quadratic.exit_code, 0);
+  EXPECT_NE(quadratic.output.find("narrow: the law f_c=poly(I,2) has no box from a narrowed range"), std::string::npos)
+      << quadratic.output;
+}
+
 TEST(HeldOutCommand, BadOptionsAreReportedBeforeTheFit) {
   const Simulated sim("mrd.bingham", "f_c=poly(I,1)", {150.0, 300.0, 2500.0, -5.0}, 0);
   const std::string fit = "fit --model mrd.bingham --laws 'f_c=poly(I,1)' --runs 2" + sim.fitted_on();
