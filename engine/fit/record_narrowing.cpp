@@ -15,11 +15,6 @@
 namespace dampbench {
 namespace {
 
-std::map<std::string, ParameterLaw> laws_of(const ModelChoice& choice) {
-  return choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
-                             : parse_laws(choice.laws, choice.option_prefix + "laws");
-}
-
 /// The single poly factor of `law`, or null for a shared parameter (free, poly of degree 0).
 const LawFactor* slope_factor(const ParameterLaw& law, const std::string& parameter) {
   if (law.kind == ParameterLaw::Kind::free || law.kind == ParameterLaw::Kind::fixed) return nullptr;
@@ -68,8 +63,8 @@ std::string summary_of(const NarrowingResult& n, const Model& per_record, std::s
   double widest = 0;
   std::string widest_name;
   const auto params = per_record.parameters();
+  const NarrowingRound& first = n.rounds.front();
   for (int j = 0; j < per_record.dim(); ++j) {
-    const NarrowingRound& first = n.rounds.front();
     const double start_width = first.bounds.upper[j] - first.bounds.lower[j];
     const double share = start_width > 0 ? (n.final_bounds.upper[j] - n.final_bounds.lower[j]) / start_width : 0;
     if (share >= widest) widest = share, widest_name = params[j].name;
@@ -108,29 +103,20 @@ NarrowedStart narrowed_start(const ModelChoice& choice, const Model& law_model, 
           static_cast<double>(r.conditions[c].evaluations) * static_cast<double>(records[c]->size());
     }
   }
-  const NarrowingRound& last = out.narrowing.rounds.back();
-  std::vector<std::map<std::string, double>> variables;
-  std::vector<std::size_t> kept;  // the last round's records that did not fail
-  for (std::size_t c = 0; c < last.conditions.size(); ++c)
-    if (!last.conditions[c].failed) kept.push_back(c), variables.push_back(records[c]->law_variables);
   const auto fitted = base.parameters();
-  std::vector<std::string> names;
   for (int j = 0; j < base.dim(); ++j) {
     const std::string& p = fitted[j].name;
-    const ParameterLaw law = laws.count(p) ? laws.at(p) : ParameterLaw{};
-    append_law_box(law, p, out.narrowing.final_bounds.lower[j], out.narrowing.final_bounds.upper[j], records, out.box);
-    std::vector<double> values;
-    for (std::size_t c : kept) values.push_back(last.conditions[c].best_params[j]);
-    if (!kept.empty()) {
-      const auto coefficients = fit_law_to_values(law, p, variables, values);
-      out.start.insert(out.start.end(), coefficients.begin(), coefficients.end());
-    }
-    for (const auto& n : law.coefficient_names(p)) names.push_back(n);
+    append_law_box(laws.count(p) ? laws.at(p) : ParameterLaw{}, p, out.narrowing.final_bounds.lower[j],
+                   out.narrowing.final_bounds.upper[j], records, out.box);
   }
-  const auto params = law_model.parameters();
-  bool same = names.size() == params.size();
-  for (std::size_t k = 0; same && k < names.size(); ++k) same = names[k] == params[k].name;
-  if (!same) throw std::logic_error(fmt::format("narrow: the box's coefficients do not match {}'s", law_model.id()));
+  if (out.box.dim() != law_model.dim())
+    throw std::logic_error(fmt::format("narrow: the box's coefficients do not match {}'s", law_model.id()));
+  std::vector<std::vector<double>> fits;  // the last round's records that did not fail
+  std::vector<std::map<std::string, double>> variables;
+  for (std::size_t c = 0; c < out.narrowing.rounds.back().conditions.size(); ++c)
+    if (const NarrowingCondition& cond = out.narrowing.rounds.back().conditions[c]; !cond.failed)
+      fits.push_back(cond.best_params), variables.push_back(records[c]->law_variables);
+  if (!fits.empty()) out.start = laws_from_record_fits(choice, base, law_model, fits, variables, "narrow");
   if (!out.start.empty()) clamp_into_box(law_model, out.box, out.start);
   out.summary = summary_of(out.narrowing, base, records.size());
   return out;

@@ -82,35 +82,44 @@ ResolvedModel per_record_model(const ModelChoice& choice) {
   return resolve_model(free);
 }
 
+std::map<std::string, ParameterLaw> laws_of(const ModelChoice& choice) {
+  return choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
+                             : parse_laws(choice.laws, choice.option_prefix + "laws");
+}
+
+std::vector<double> laws_from_record_fits(const ModelChoice& choice, const Model& per_record, const Model& law_model,
+                                          const std::vector<std::vector<double>>& fits,
+                                          const std::vector<std::map<std::string, double>>& variables,
+                                          std::string_view what) {
+  const auto laws = laws_of(choice);
+  const auto fitted = per_record.parameters();  // the base model's order, without fixed or gauge-tied parameters
+  std::vector<double> start;
+  std::vector<std::string> names;
+  for (std::size_t j = 0; j < fitted.size(); ++j) {
+    const std::string& p = fitted[j].name;
+    const auto law = laws.count(p) ? laws.at(p) : ParameterLaw{};
+    std::vector<double> values;
+    for (const auto& f : fits) values.push_back(f[j]);
+    const auto c = fit_law_to_values(law, p, variables, values);
+    start.insert(start.end(), c.begin(), c.end());
+    for (const auto& n : law.coefficient_names(p)) names.push_back(n);
+  }
+  const auto params = law_model.parameters();
+  bool same = names.size() == params.size();
+  for (std::size_t k = 0; same && k < names.size(); ++k) same = names[k] == params[k].name;
+  if (!same) throw std::logic_error(fmt::format("{}: the start's coefficients do not match {}'s", what, law_model.id()));
+  return start;
+}
+
 std::vector<double> start_from_record_fits(const LawSearch& search, const ModelChoice& choice,
                                            const Model& law_model, PreFitEffort* effort) {
-  const auto laws = choice.laws.empty() ? std::map<std::string, ParameterLaw>{}
-                                        : parse_laws(choice.laws, choice.option_prefix + "laws");
-  for (const auto& [name, law] : laws)  // refused before the records' fits, which take minutes
+  for (const auto& [name, law] : laws_of(choice))  // refused before the records' fits, which take minutes
     if (fitted_as_value_law(law)) value_law_of(law, name);
   const ResolvedModel per_record = per_record_model(choice);
   const auto fits = fit_each_record(search, per_record, effort);
   std::vector<std::map<std::string, double>> variables;
   for (const Signals* r : search.records) variables.push_back(r->law_variables);
-  const auto fitted = per_record.model->parameters();
-  std::vector<double> start;
-  std::vector<std::string> names;
-  for (const auto& p : search.base->parameters()) {
-    const auto it = std::find_if(fitted.begin(), fitted.end(), [&](const ParameterInfo& q) { return q.name == p.name; });
-    if (it == fitted.end()) continue;  // fixed, or tied by the gauge: no coefficient
-    const auto law = laws.count(p.name) ? laws.at(p.name) : ParameterLaw{};
-    std::vector<double> values;
-    for (const auto& f : fits) values.push_back(f[static_cast<std::size_t>(it - fitted.begin())]);
-    const auto c = fit_law_to_values(law, p.name, variables, values);
-    start.insert(start.end(), c.begin(), c.end());
-    for (const auto& n : law.coefficient_names(p.name)) names.push_back(n);
-  }
-  const auto params = law_model.parameters();
-  bool same = names.size() == params.size();
-  for (std::size_t k = 0; same && k < names.size(); ++k) same = names[k] == params[k].name;
-  if (!same)
-    throw std::logic_error(fmt::format("--start per-file: the start's coefficients do not match {}'s", law_model.id()));
-  return start;
+  return laws_from_record_fits(choice, *per_record.model, law_model, fits, variables, "--start per-file");
 }
 
 void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,

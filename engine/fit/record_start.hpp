@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/fit/law_selection.hpp"
@@ -37,6 +38,17 @@ std::vector<double> start_from_record_fits(const LawSearch& search, const ModelC
 void seed_from_record_fits(const PreparedFit& fit, FitRequest& request,
                            RecordFitCache* record_fits,
                            const std::function<void(const std::string&)>& progress);
+
+/// The laws of `choice` by parameter (none when it has none).
+std::map<std::string, ParameterLaw> laws_of(const ModelChoice& choice);
+
+/// The law model's coefficients (in `law_model`'s order) from fits of `per_record` (per_record_model's order), one
+/// per record at `variables`: each law fitted to its parameter's values. `what` names the start in the logic_error
+/// of a mismatch between the two models.
+std::vector<double> laws_from_record_fits(const ModelChoice& choice, const Model& per_record, const Model& law_model,
+                                          const std::vector<std::vector<double>>& fits,
+                                          const std::vector<std::map<std::string, double>>& variables,
+                                          std::string_view what);
 
 /// One law's coefficients fitted to values of its parameter at the records' variables (as above).
 std::vector<double> fit_law_to_values(const ParameterLaw& law, const std::string& parameter,

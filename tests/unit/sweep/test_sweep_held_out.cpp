@@ -54,9 +54,12 @@ fs::path write_bingham_record(const fs::path& dir, double amp, double freq, doub
   return p;
 }
 
-/// A sweep of the records in `data`: one Bingham model with `laws`, `optimizer`, then `splits`.
+constexpr const char* kGaLm = "[optimizer]\nname = \"ga-lm\"\npopulation = 24\niterations = 30\n";
+
+/// A sweep of the records in `data`: one Bingham model with `laws` (and the model's further keys that may open
+/// `optimizer`), `optimizer`, then `splits`.
 std::string sweep_text(const std::string& laws, const fs::path& data, const std::string& splits,
-                       const std::string& optimizer = "[optimizer]\nname = \"ga-lm\"\npopulation = 24\niterations = 30\n") {
+                       const std::string& optimizer = kGaLm) {
   return fmt::format(R"toml(name = "held_out"
 seed = 1
 runs = 2
@@ -75,36 +78,23 @@ glob = "{}/*.csv"
 // narrow = { rounds } (the mfm paper's bound narrowing) in a sweep: the group fits each record alone twice, then
 // searches the box their ranges give the laws' coefficients, and says so in its stored message. c0 is linear in I
 // (1000 + 2000·I): its per-record fits span 1000-3000 N·s/m over 0-1 A, so its slope's bound is the true slope.
+/// `dir/s.toml` run into `dir/out` (the run must succeed) and its store's groups.
+std::vector<GroupRecord> run_groups(const fs::path& dir) {
+  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(),
+                                             (dir / "out").string()));
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  if (run.exit_code != 0) return {};
+  return Store::open((dir / "out" / "store.sqlite").string()).groups();
+}
+
 TEST(SweepNarrow, AGroupSearchesTheBoxOfItsRecordsNarrowedFitsAndSaysSo) {
   const fs::path dir = testing::test_temp_dir("sweep_narrow");
   fs::create_directories(dir / "data");
   for (double I : {0.0, 0.5, 1.0}) write_bingham_record(dir / "data", 0.01, 1.0, I);
-  std::ofstream(dir / "s.toml") << fmt::format(R"toml(name = "narrow"
-seed = 1
-runs = 2
-metric = "nrmse"
-[[models]]
-name = "bingham(I)"
-model = "mrd.bingham"
-laws = "f_c=poly(I,1);c0=poly(I,1)"
-narrow = {{ rounds = 2 }}
-[optimizer]
-name = "ga-lm"
-population = 24
-iterations = 30
-[[datasets]]
-name = "d"
-glob = "{}/*.csv"
-[[splits]]
-name = "damper"
-by = "all"
-)toml",
-                                               (dir / "data").string());
-  const fs::path out = dir / "out";
-  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), out.string()));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const Store store = Store::open((out / "store.sqlite").string());
-  const auto groups = store.groups();
+  std::ofstream(dir / "s.toml") << sweep_text("f_c=poly(I,1);c0=poly(I,1)", dir / "data",
+                                              "[[splits]]\nname = \"damper\"\nby = \"all\"\n",
+                                              std::string("narrow = { rounds = 2 }\n") + kGaLm);
+  const auto groups = run_groups(dir);
   ASSERT_EQ(groups.size(), 1u);
   const GroupRecord& g = groups[0];
   ASSERT_FALSE(g.failed) << g.message;
@@ -133,12 +123,7 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
   std::ofstream(dir / "s.toml") << sweep_text("auto", dir / "data",
                                               "[[splits]]\nname = \"damper\"\nby = \"all\"\nfit = { freq = [1, 2, 0.5] }\n"
                                               "predict = { freq = 1.5 }\n");
-  const fs::path out = dir / "out";
-  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(), out.string()));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-
-  const Store store = Store::open((out / "store.sqlite").string());
-  const auto groups = store.groups();
+  const auto groups = run_groups(dir);
   ASSERT_EQ(groups.size(), 1u);
   const GroupRecord& g = groups[0];
   ASSERT_FALSE(g.failed) << g.message;
@@ -175,7 +160,7 @@ TEST(SweepLawsAuto, AGroupChoosesTheTrueLawsPredictsAndMatchesFitLawsAutoBitForB
   EXPECT_EQ(g.evaluations, joint + own_fits);
 
   // the params table names the group's laws and its law model's coefficients
-  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", (out / "store.sqlite").string()));
+  const auto table = run_dampbench(fmt::format("table {} --kind params --format csv", (dir / "out" / "store.sqlite").string()));
   ASSERT_EQ(table.exit_code, 0) << table.output;
   EXPECT_NE(table.output.find("laws,,\"f_c=hill(I,2);c0=mono(I,0,1)\""), std::string::npos) << table.output;
   EXPECT_NE(table.output.find("f0,"), std::string::npos) << table.output;
@@ -249,11 +234,7 @@ TEST(SweepFolds, LeavingASettingOutFitsTheOthersAndPredictsEveryCurrentOfIt) {
   EXPECT_EQ(names(part, fitsets[0].fit), "10mm1Hz0.5A+10mm1Hz0A+10mm1Hz1A+20mm0.5Hz0.5A+20mm0.5Hz0A+20mm0.5Hz1A");
   EXPECT_EQ(fitsets[2].label, "amp=0.02,freq=0.5");
 
-  const auto run = run_dampbench(fmt::format("run {} -o {} --quiet --fresh", (dir / "s.toml").string(),
-                                             (dir / "out").string()));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const Store store = Store::open((dir / "out" / "store.sqlite").string());
-  const auto groups = store.groups();
+  const auto groups = run_groups(dir);
   ASSERT_EQ(groups.size(), 3u);
   for (const GroupRecord& g : groups) {
     ASSERT_FALSE(g.failed) << g.message;
