@@ -77,7 +77,7 @@ stage "release ctest" ctest --test-dir build --output-on-failure --timeout 900 -
 skip="store_soak|RealData|Utfsm|ModelRecovery|StandardFunctions|Conformance|bouc_wen_ga_lm|FitDefaultsRecover|OnLargerRows|^mpi$"
 skip+="|^bouc_wen_benchmark$|LawSelection.PicksTheTrueFamilies|^readme_examples$|HeldOutCommand.ReferenceIsTheBaseModel|HeldOutCommand.ARecordPredictedWithout"
 skip+="|FitReportDrawsEachHeldOutRecord|SweepLawsAuto.AGroupChoosesTheTrueLaws|ExeSweep.InterruptedAndKilled|Merge.ThreeShards"
-skip+="|FvdPresetWritesItsReproduction|^paper_claims_|^readme_results$|ControlCli.ExamplesBuildingTableIsTheCommandsOutput"
+skip+="|VaryingCommand.FitRecovers|FvdPresetWritesItsReproduction|^paper_claims_|^readme_results$|ControlCli.ExamplesBuildingTableIsTheCommandsOutput"
 SANITIZER_SKIP="${SANITIZER_SKIP:-$skip}"
 builds+=(build-asan)
 stage "sanitizer build" bash scripts/sanitizer-build.sh

@@ -86,9 +86,7 @@ Simulation run_simulate(const SimulateOptions& o) {
   else sim.data = make_sine(parse_sine_option(o.sine));
   // A file's loader applies --set itself; a sine or a given record take it here.
   if (o.input.path.empty() && !o.input.set.empty()) set_operating(sim.data, o.input.set);
-  Signals signals = prepare_signals(sim.data);
-  if (o.fixed_step > 0)  // a stepped model follows a varying column sample by sample
-    for (const auto& [name, column] : signals.operating_signals) signals.operating_refused.erase(name);
+  const Signals signals = prepare_signals(sim.data);
   check_record(model, signals);
   if (!o.model_file.empty()) sim.extrapolated = fitted_range_of(loaded).outside(signals.law_variables);
   if (o.fixed_step < 0)
@@ -102,7 +100,8 @@ Simulation run_simulate(const SimulateOptions& o) {
 
 namespace {
 
-/// The simulated record's columns in SI: t,y,u (and v,a,z with --states) of a structure, t,x,v,a,F of a rig.
+/// The simulated record's columns in SI: t,y,u (and v,a,z with --states) of a structure, t,x,v,a,F of a rig (and
+/// its varying I, V or phi).
 std::vector<std::pair<std::string, std::vector<double>>> simulated_columns(const Simulation& sim, bool states) {
   const Dataset& data = sim.data;
   if (data.is_system()) {  // a structure model: its displacement y (with any noise), the input u, and its states
@@ -114,7 +113,11 @@ std::vector<std::pair<std::string, std::vector<double>>> simulated_columns(const
     }
     return c;
   }
-  return {{"t", data.t_s}, {"x", data.x_m}, {"v", data.v_m_s}, {"a", data.a_m_s2}, {"F", sim.force}};
+  std::vector<std::pair<std::string, std::vector<double>>> c{
+      {"t", data.t_s}, {"x", data.x_m}, {"v", data.v_m_s}, {"a", data.a_m_s2}, {"F", sim.force}};
+  // A command that varies over the test (I, V or phi) goes with the forces it made, so that `fit` reads it back.
+  for (const auto& [name, column] : data.operating_signals) c.emplace_back(name, column);
+  return c;
 }
 
 }  // namespace

@@ -3,11 +3,14 @@
 // run, in one lane (W = 1), so a stepped model and the batch kernels share their equations. ODE laws step by
 // RK4 in the sub-steps the caller gives, with |s|^e taken exactly at every stage (the batch kernel's series is a
 // speed-up of the same power); algebraic laws evaluate at the sample.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "engine/kernels/lane_kernel.hpp"
+#include "engine/kernels/substep_rule.hpp"
 #include "engine/model/stepper.hpp"
 
 namespace dampbench {
@@ -21,7 +24,8 @@ class SampleSignals {
       column->assign(1, 0.0);
   }
   void set_variables(const std::map<std::string, double>& variables) {
-    s_.operating = s_.law_variables = variables;
+    assign(s_.operating, variables);
+    assign(s_.law_variables, variables);
     const auto w = variables.find("w");
     const auto freq = variables.find("freq");
     s_.excitation_freq_hz = w != variables.end() ? w->second : freq != variables.end() ? freq->second : 0.0;
@@ -35,6 +39,17 @@ class SampleSignals {
   [[nodiscard]] const Signals& signals() const { return s_; }
 
  private:
+  /// to = from, in place when they hold the same names: a lagged law model sets its base's parameters and
+  /// variables at every sub-step, and a map's copy was most of such a step's time.
+  static void assign(std::map<std::string, double>& to, const std::map<std::string, double>& from) {
+    if (to.size() == from.size() &&
+        std::equal(to.begin(), to.end(), from.begin(), [](const auto& a, const auto& b) { return a.first == b.first; })) {
+      auto it = to.begin();
+      for (const auto& [name, value] : from) (it++)->second = value;
+    } else {
+      to = from;
+    }
+  }
   Signals s_;
 };
 
@@ -54,6 +69,7 @@ class AlgebraicLawStepper final : public ModelStepper {
     p_ = stepper_lanes<Law>(params);
     sample_.set_variables(variables);
   }
+  void set_parameter_values(std::span<const double> params) override { p_ = stepper_lanes<Law>(params); }
   void reset() override {}
   [[nodiscard]] double force(double x, double v, double a) const override {
     const Signals& s = sample_.at(x, v, a);
@@ -86,6 +102,7 @@ class OdeLawStepper final : public ModelStepper {
     sample_.set_variables(variables);
     ctx_ = Law::context(sample_.signals());
   }
+  void set_parameter_values(std::span<const double> params) override { p_ = stepper_lanes<Law>(params); }
   void reset() override { y_.fill(0.0); }
   [[nodiscard]] double force(double x, double v, double) const override { return Law::force(p_, 0, ctx_, x, v, y_.data()); }
   void advance(double x0, double v0, double x1, double v1, double dt, int substeps) override {
@@ -102,6 +119,20 @@ class OdeLawStepper final : public ModelStepper {
       rhs(x0 + b * dx, v0 + b * dv, t.data(), k4.data());
       for (int j = 0; j < S; ++j) y_[j] += (h / 6.0) * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
     }
+  }
+  [[nodiscard]] double stiffness(double velocity_max_abs_m_s, double displacement_ptp_m) const override {
+    if constexpr (requires { Law::stiffness(p_, 0, ctx_, RecordScales{}); }) {
+      const double estimate = Law::stiffness(p_, 0, ctx_, RecordScales{velocity_max_abs_m_s, displacement_ptp_m});
+      return std::isfinite(estimate) ? std::max(estimate, 0.0) : std::numeric_limits<double>::infinity();
+    } else {
+      return 0;
+    }
+  }
+  [[nodiscard]] int kernel_substeps(const Signals& data, std::size_t k, double lambda) const override {
+    const int n = ode_substeps(data, k, Law::kSubstepsPerStroke, law_stroke_driven<Law>());
+    const double stiff = std::ceil((data.t_s[k] - data.t_s[k - 1]) * lambda / law_stiff_step<Law>());
+    if (!(stiff <= kMaxSubsteps)) return 0;  // masked as too stiff (+inf λ included)
+    return std::max(n, static_cast<int>(stiff));
   }
   [[nodiscard]] std::vector<double> states() const override { return {y_.begin(), y_.end()}; }
   void set_states(std::span<const double> states) override {

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "engine/common/error.hpp"
+#include "engine/model/metrics.hpp"
+#include "engine/model/law_model_stepper.hpp"
+#include "engine/model/stepped_simulation.hpp"
 
 namespace dampbench {
 namespace {
@@ -219,92 +223,19 @@ std::vector<double> LawModel::base_parameters(std::span<const double> c,
   return p;
 }
 
-namespace {
-
-/// A law model stepped sample by sample: its laws evaluated at each set_parameters' variables, the base stepped.
-/// With driver lags, the laws see the lagged u of each commanded variable: over a sub-step of length h under the
-/// held command c, u moves exactly as c + (u − c)·e^(−t/τ); the base takes one RK4 sub-step with the laws at u of
-/// the sub-step's middle, and the force at a sample sees u there. The C export (engine/export) does the same.
-class LawStepper final : public ModelStepper {
- public:
-  LawStepper(const LawModel& model, std::unique_ptr<ModelStepper> base)
-      : model_(model), base_(std::move(base)), lagged_(model.lags().size(), 0.0), tau_(model.lags().size(), 0.0) {}
-  void set_parameters(std::span<const double> coefficients, const std::map<std::string, double>& variables) override {
-    coefficients_.assign(coefficients.begin(), coefficients.end());
-    commanded_ = seen_ = variables;
-    for (std::size_t i = 0; i < tau_.size(); ++i) {
-      tau_[i] = model_.lag_tau(model_.lags()[i], coefficients);
-      if (!(tau_[i] >= 0)) throw InputError(fmt::format("{}: the driver lag's tau must be >= 0 s, got {}", model_.id(), tau_[i]));
-    }
-    apply(lagged_);
-  }
-  void reset() override {
-    base_->reset();
-    for (std::size_t i = 0; i < lagged_.size(); ++i) lagged_[i] = command(i);  // u(0) = c(0)
-    apply(lagged_);
-  }
-  [[nodiscard]] double force(double x, double v, double a) const override { return base_->force(x, v, a); }
-  void advance(double x0, double v0, double x1, double v1, double dt, int substeps) override {
-    if (lagged_.empty()) return base_->advance(x0, v0, x1, v1, dt, substeps);
-    const double inv = 1.0 / substeps, h = dt * inv, dx = x1 - x0, dv = v1 - v0;
-    std::vector<double> middle(lagged_.size());
-    for (int i = 0; i < substeps; ++i) {
-      const double a = i * inv, b = (i + 1) * inv;
-      for (std::size_t j = 0; j < lagged_.size(); ++j) {
-        const double c = command(j);
-        middle[j] = c + (lagged_[j] - c) * std::exp(-(0.5 * h) / tau_[j]);
-        lagged_[j] = c + (lagged_[j] - c) * std::exp(-h / tau_[j]);
-      }
-      apply(middle);
-      base_->advance(x0 + a * dx, v0 + a * dv, x0 + b * dx, v0 + b * dv, h, 1);
-    }
-    apply(lagged_);
-  }
-  [[nodiscard]] std::vector<double> states() const override {
-    auto out = base_->states();
-    out.insert(out.end(), lagged_.begin(), lagged_.end());
-    return out;
-  }
-  void set_states(std::span<const double> states) override {
-    const std::size_t own = states.size() - lagged_.size();
-    base_->set_states(states.first(own));
-    std::copy(states.begin() + static_cast<std::ptrdiff_t>(own), states.end(), lagged_.begin());
-    apply(lagged_);
-  }
-
- private:
-  [[nodiscard]] double command(std::size_t lag) const {
-    const auto it = commanded_.find(model_.lags()[lag].variable);
-    return it == commanded_.end() ? std::nan("") : it->second;
-  }
-  /// The base's parameters with each lagged variable at u[i] (the commanded values without lags).
-  void apply(const std::vector<double>& u) {
-    if (coefficients_.empty()) return;
-    // seen_ holds the given variables (set_parameters) with the lagged ones overwritten here: no map per sub-step
-    for (std::size_t i = 0; i < u.size(); ++i) seen_[model_.lags()[i].variable] = u[i];
-    base_->set_parameters(model_.base_parameters(coefficients_, seen_), seen_);
-  }
-
-  const LawModel& model_;
-  std::unique_ptr<ModelStepper> base_;
-  std::vector<double> coefficients_;
-  std::map<std::string, double> commanded_, seen_;  // the variables given, and those the laws see (lagged)
-  std::vector<double> lagged_, tau_;  // u and τ of each lag
-};
-
-}  // namespace
-
 std::unique_ptr<ModelStepper> LawModel::stepper() const {
   auto base = base_.stepper();
   if (!base) return nullptr;
-  return std::make_unique<LawStepper>(*this, std::move(base));
+  return make_law_stepper(*this, std::move(base));
 }
 
 void LawModel::check_variables(const Signals& data) const {
   const auto params = base_.parameters();
   for (std::size_t j = 0; j < laws_.size(); ++j) {
     for (const auto& v : laws_[j].variables()) {
-      if (const auto refused = data.operating_refused.find(v); refused != data.operating_refused.end())
+      // A column that varies over the test is followed sample by sample where the base can be stepped.
+      const bool followed = data.operating_signals.count(v) && base_.stepper();
+      if (const auto refused = data.operating_refused.find(v); refused != data.operating_refused.end() && !followed)
         throw InputError(fmt::format("{} (needed by the law of {})", refused->second, params[j].name));
       if (!data.law_variables.count(v))
         throw InputError(fmt::format("dataset '{}' has no operating variable '{}' (needed by the law of {}; give it "
@@ -345,39 +276,73 @@ const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int firs
   return scratch;
 }
 
+bool LawModel::follows_columns(const Signals& data) const {
+  if (data.operating_signals.empty()) return false;
+  return std::any_of(law_variables_.begin(), law_variables_.end(),
+                     [&](const std::string& v) { return data.operating_signals.count(v) > 0; });
+}
+
+void LawModel::evaluate_stepped(const CandidateBatch& batch, int first, int count, const Signals& data,
+                                MetricSums* out) const {
+  std::vector<double> c(coefficients_.size());
+  for (int i = 0; i < count; ++i) {
+    for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
+    const auto force = simulate_stepped(*this, c, data, kKernelSubsteps);
+    const double inf = std::numeric_limits<double>::infinity();
+    const bool failed = std::any_of(force.begin(), force.end(), [](double f) { return !std::isfinite(f); });
+    out[i] = failed ? MetricSums{inf, inf, inf, inf, inf} : metric_sums(force, data);
+  }
+}
+
 void LawModel::evaluate_block(const CandidateBatch& batch, int first, int count, const Signals& data,
                               SumSet wanted, MetricSums* out) const {
+  if (follows_columns(data)) return evaluate_stepped(batch, first, count, data, out);
   base_.evaluate_block(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
 void LawModel::evaluate_block_float32(const CandidateBatch& batch, int first, int count, const Signals& data,
                                       SumSet wanted, MetricSums* out) const {
+  if (follows_columns(data)) return evaluate_stepped(batch, first, count, data, out);
   base_.evaluate_block_float32(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
 std::vector<double> LawModel::simulate_float32(std::span<const double> coefficients, const Signals& data) const {
+  if (follows_columns(data)) return simulate(coefficients, data);
   return base_.simulate_float32(base_parameters(coefficients, data), data);
 }
 
 bool LawModel::lane_costs(const CandidateBatch& batch, const Signals& data, std::span<double> out) const {
+  if (follows_columns(data)) return false;  // evaluated candidate by candidate: no lane blocks to balance
   return base_.lane_costs(base_block(batch, 0, batch.count(), data), data, out);
 }
 
 void LawModel::evaluate_scalar(const CandidateBatch& batch, int first, int count, const Signals& data,
                                SumSet wanted, MetricSums* out) const {
+  if (follows_columns(data)) return evaluate_stepped(batch, first, count, data, out);
   base_.evaluate_scalar(base_block(batch, first, count, data), 0, count, data, wanted, out);
 }
 
 std::vector<double> LawModel::simulate(std::span<const double> coefficients, const Signals& data) const {
+  if (follows_columns(data)) return simulate_stepped(*this, coefficients, data, kKernelSubsteps);
   return base_.simulate(base_parameters(coefficients, data), data);
 }
 
 void LawModel::simulate_block(const CandidateBatch& batch, int first, int count, const Signals& data, double* out) const {
+  if (follows_columns(data)) {
+    std::vector<double> c(coefficients_.size());
+    for (int i = 0; i < count; ++i) {
+      for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
+      const auto force = simulate_stepped(*this, c, data, kKernelSubsteps);
+      std::copy(force.begin(), force.end(), out + static_cast<std::size_t>(i) * data.size());
+    }
+    return;
+  }
   base_.simulate_block(base_block(batch, first, count, data), 0, count, data, out);
 }
 
 std::optional<std::vector<double>> LawModel::simulate_reference(std::span<const double> coefficients,
                                                                 const Signals& data) const {
+  if (follows_columns(data)) return std::nullopt;  // CVODE takes one set of base parameters
   return base_.simulate_reference(base_parameters(coefficients, data), data);
 }
 

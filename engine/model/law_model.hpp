@@ -16,7 +16,8 @@ namespace dampbench {
 /// The driver's lag of a commanded variable (Spencer et al. 1997; fdsp eq. 7 with η = 1/τ): the laws see u with
 /// u̇ = (c(t) − u)/τ instead of the command c, u(0) = c(0). Given in the laws as `tau_I=free` (τ a coefficient, in
 /// seconds) or `tau_I=0.02` (fixed). Under a constant command u stays c, so the batch kernels, which take one value
-/// per record, are exact without it; a model stepped sample by sample (engine/model/stepper.hpp) integrates it.
+/// per record, are exact without it; on a record whose command varies, the model is stepped sample by sample
+/// (engine/model/stepper.hpp), which integrates it.
 struct DriverLag {
   std::string variable;
   int coefficient = -1;   ///< τ's index among the coefficients, or −1 when fixed
@@ -68,6 +69,10 @@ class LawModel final : public Model {
   /// The base model's stepper with the laws evaluated at the variables each set_parameters gives (a command that
   /// changes between steps changes the base parameters there; the states carry on).
   [[nodiscard]] std::unique_ptr<ModelStepper> stepper() const override;
+  /// Whether a law reads a variable that varies over the record (a column in Dataset::operating_signals): such a
+  /// record is evaluated candidate by candidate, stepped sample by sample (engine/model/stepped_simulation.hpp)
+  /// with the batch kernels' sub-step rules, instead of in lanes at one value per record.
+  [[nodiscard]] bool follows_columns(const Signals& data) const;
   /// Throws InputError if the record lacks a variable some law needs.
   void check_variables(const Signals& data) const;
   /// The operating variables its laws read, sorted, each once.
@@ -99,6 +104,9 @@ class LawModel final : public Model {
   [[nodiscard]] ParameterInfo gauged_info(const ParameterInfo& p) const;
   /// The base parameters of one candidate's coefficients `c` under operating variables `v`, into p[0, base dim).
   void base_values(const double* c, const std::map<std::string, double>& v, double* p) const;
+  /// evaluate_block on such a record: each candidate's stepped force and its metric sums (every sum; +inf for a
+  /// candidate that blows up or is too stiff).
+  void evaluate_stepped(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) const;
   /// The base parameters of candidates [first, first + count) under the record's variables (thread scratch).
   const CandidateBatch& base_block(const CandidateBatch& batch, int first, int count, const Signals& data) const;
 

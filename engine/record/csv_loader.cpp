@@ -86,6 +86,7 @@ void read_operating(const std::vector<Line>& comments, const std::string& source
       data.operating[name] = parse_number(value, fmt::format("{} {}", where, name));
       data.operating_source[name] = "file comment";
       data.operating_refused.erase(name);  // the file states the constant its column could not give
+      data.operating_signals.erase(name);
     }
   }
 }
@@ -226,9 +227,9 @@ double mean(const std::vector<double>& values) {
 
 /// A column of I, V or phi gives one constant (its mean) only when it stays within measurement noise: its spread
 /// max − min at most kConstantSpreadRel of max(|mean|, kConstantFloor) (A, V or degrees; the floor keeps a 0 A
-/// test's noise from counting as variation). A column beyond that is a time-varying current, voltage or angle,
-/// which laws in one constant value cannot describe: the mean stays in `operating` (for tables), and
-/// `operating_refused` says why a law must not use it.
+/// test's noise from counting as variation). A column beyond that is a time-varying current, voltage or angle:
+/// the mean stays in `operating` (for tables), the column in `operating_signals` (a law model follows it sample by
+/// sample), and `operating_refused` says why a model that cannot be stepped must not use it.
 constexpr double kConstantSpreadRel = 0.05;
 constexpr double kConstantFloor = 0.1;
 
@@ -240,10 +241,12 @@ void read_operating_column(const char* name, const std::vector<double>& column, 
   data.operating_source[name] = "column mean";
   if (!(spread <= kConstantSpreadRel * scale)) {
     data.operating_signals[name] = column;
+    data.operating_source[name] =
+        fmt::format("column varying from {:.6g} to {:.6g}: the mean shown, laws follow the column sample by sample", *lo, *hi);
     data.operating_refused[name] = fmt::format(
         "{}: column {} varies over the test (min {:.6g}, max {:.6g}: spread {:.3g} is {:.3g} % of max(|mean|, {:g}), "
-        "more than the {:g} % a constant value may vary); fits and batch evaluations take one constant value per "
-        "record; simulate --fixed-step and inverse follow the column sample by sample",
+        "more than the {:g} % a constant value may vary); a law in it follows the column sample by sample, which "
+        "needs a model that can be stepped",
         data.source, name, *lo, *hi, spread, 100 * spread / scale, kConstantFloor, 100 * kConstantSpreadRel);
   }
 }

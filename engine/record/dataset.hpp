@@ -30,8 +30,8 @@ struct Dataset {
   /// Operating variables the record holds but cannot give as one constant, with why (a column that varies over
   /// the test): a law that needs one refuses the record with this text rather than use the column's mean.
   std::map<std::string, std::string> operating_refused;
-  /// The columns of those variables, sample by sample: a model stepped sample by sample (simulate --fixed-step,
-  /// inverse, engine/model/stepper.hpp) follows them; the batch kernels refuse them (operating_refused).
+  /// The columns of those variables, sample by sample (a value stated by the file, --conditions or --set replaces
+  /// one): a law model follows them, stepped sample by sample (engine/model/stepped_simulation.hpp).
   std::map<std::string, std::vector<double>> operating_signals;
 
   [[nodiscard]] std::size_t size() const { return t_s.size(); }

@@ -210,7 +210,8 @@ std::vector<Dataset> records_from_channels(const ChannelTable& table, const Reco
     }
     Dataset d = dataset_from_columns(records[r], name, csv);
     d.source = table.source;
-    for (auto& [variable, where] : d.operating_source) where = "column mean";
+    for (auto& [variable, where] : d.operating_source)
+      if (!d.operating_signals.count(variable)) where = "column mean";
     out.push_back(std::move(d));
   }
   return out;
@@ -229,10 +230,12 @@ Dataset preprocessed_csv(const RecordOptions& o, bool require_force) {
   if (!wants_preprocessing(o) || d.is_system()) return d;
   Columns c{{"t", d.t_s}, {"x", d.x_m}};
   if (d.has_force()) c["F"] = d.F_N;
+  for (const auto& [name, column] : d.operating_signals) c[name] = column;  // cut with the record (--whole-cycles)
   preprocess(c, o, o.path, false);
   d.t_s = c["t"];
   d.x_m = c["x"];
   if (d.has_force()) d.F_N = c["F"];
+  for (auto& [name, column] : d.operating_signals) column = c[name];
   d.v_m_s = differentiate_3rd_order(d.t_s, d.x_m);
   d.a_m_s2 = differentiate_3rd_order(d.t_s, d.v_m_s);
   return d;

@@ -19,7 +19,8 @@ void set_operating(Dataset& data, const std::string& text, std::string_view opti
       throw InputError(fmt::format("{}: unknown operating variable '{}' (known: I, V, phi, amp, freq)", option, name));
     data.operating[name] = parse_number(value, fmt::format("{} {}", option, name));
     data.operating_source[name] = std::string(option);
-    data.operating_refused.erase(name);  // a stated constant replaces what the record could not give
+    data.operating_refused.erase(name);  // a stated constant replaces the column
+    data.operating_signals.erase(name);
   }
 }
 
@@ -77,6 +78,7 @@ Dataset prepare_record(Dataset data, const RecordOptions& options) {
       data.operating[k] = v;
       data.operating_source[k] = "file name";
       data.operating_refused.erase(k);
+      data.operating_signals.erase(k);
     }
   } else if (!options.conditions.empty()) {
     throw InputError(fmt::format("--conditions: expected utfsm, got '{}'", options.conditions));
