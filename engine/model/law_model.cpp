@@ -9,7 +9,6 @@
 
 #include "engine/common/error.hpp"
 #include "engine/model/metrics.hpp"
-#include "engine/model/law_model_stepper.hpp"
 #include "engine/model/stepped_simulation.hpp"
 
 namespace dampbench {
@@ -221,12 +220,6 @@ std::vector<double> LawModel::base_parameters(std::span<const double> c,
   std::vector<double> p(laws_.size());
   base_values(c.data(), variables, p.data());
   return p;
-}
-
-std::unique_ptr<ModelStepper> LawModel::stepper() const {
-  auto base = base_.stepper();
-  if (!base) return nullptr;
-  return make_law_stepper(*this, std::move(base));
 }
 
 void LawModel::check_variables(const Signals& data) const {

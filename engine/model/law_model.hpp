@@ -67,7 +67,7 @@ class LawModel final : public Model {
   [[nodiscard]] std::vector<double> base_parameters(std::span<const double> coefficients,
                                                     const std::map<std::string, double>& variables) const;
   /// The base model's stepper with the laws evaluated at the variables each set_parameters gives (a command that
-  /// changes between steps changes the base parameters there; the states carry on).
+  /// changes between steps changes the base parameters there; the states carry on). In law_model_stepper.cpp.
   [[nodiscard]] std::unique_ptr<ModelStepper> stepper() const override;
   /// Whether a law reads a variable that varies over the record (a column in Dataset::operating_signals): such a
   /// record is evaluated candidate by candidate, stepped sample by sample (engine/model/stepped_simulation.hpp)

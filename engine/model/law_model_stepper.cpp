@@ -1,4 +1,6 @@
-#include "engine/model/law_model_stepper.hpp"
+// LawModel::stepper(): a law model stepped sample by sample (engine/model/stepper.hpp), its laws evaluated at the
+// variables each set_parameters gives, with each driver lag's u integrated between, and its base model stepped.
+#include "engine/model/law_model.hpp"
 
 #include <cmath>
 #include <map>
@@ -151,8 +153,10 @@ class LawStepper final : public ModelStepper {
 
 }  // namespace
 
-std::unique_ptr<ModelStepper> make_law_stepper(const LawModel& model, std::unique_ptr<ModelStepper> base) {
-  return std::make_unique<LawStepper>(model, std::move(base));
+std::unique_ptr<ModelStepper> LawModel::stepper() const {
+  auto base = base_.stepper();
+  if (!base) return nullptr;
+  return std::make_unique<LawStepper>(*this, std::move(base));
 }
 
 }  // namespace dampbench
