@@ -150,7 +150,7 @@ void check_run(const SeismicRun& run) {
 
 /// The time histories' rows and the peaks.
 struct Recorder {
-  Recorder(SeismicResponse& r, int storeys, std::size_t rows) : r(r), n(storeys) {
+  Recorder(SeismicResponse& response, int storeys, std::size_t rows) : r(response), n(storeys) {
     r.u_m.setZero(static_cast<Eigen::Index>(rows), n);
     r.drift_m = r.abs_acc_m_s2 = r.u_m;
     r.peak_u_m = r.peak_drift_m = r.peak_abs_acc_m_s2 = Eigen::VectorXd::Zero(n);

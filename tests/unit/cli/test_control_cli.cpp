@@ -167,9 +167,10 @@ TEST(ControlCli, ExamplesBuildingTableIsTheCommandsOutput) {
     reductions.push_back(100 * (1 - drift / drift0));
     EXPECT_NE(doc.find(bare_row), std::string::npos) << bare_row;
     EXPECT_NE(doc.find(row), std::string::npos) << row;
-    if (j["damper"].contains("command"))
+    if (j["damper"].contains("command")) {
       EXPECT_NE(doc.find(fmt::format("keeps 1 A on {:.0f} % of the steps", 100 * damped["high_command_share"].get<double>())),
                 std::string::npos);
+    }
   }
   std::ifstream readme_file(root + "/README.md");
   const std::string readme((std::istreambuf_iterator<char>(readme_file)), std::istreambuf_iterator<char>());

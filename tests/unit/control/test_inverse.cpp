@@ -96,7 +96,9 @@ TEST(Inverse, ForceOutOfReachIsReportedAtTheLimits) {
   EXPECT_LT(r.share_reachable, 0.9);
   EXPECT_LT(r.tracking_error, 0.01);  // over the reachable samples only
   for (std::size_t k = 1; k < c.record.size(); ++k)
-    if (!r.reachable[k]) EXPECT_TRUE(r.command[k - 1] == 0.0 || r.command[k - 1] == 1.0) << k;
+    if (!r.reachable[k]) {
+      EXPECT_TRUE(r.command[k - 1] == 0.0 || r.command[k - 1] == 1.0) << k;
+    }
 }
 
 TEST(Inverse, OnOffTakesTheHighCommandWhenTheDesiredForceIsLarger) {
