@@ -376,7 +376,8 @@ Dataset dataset_from_columns(const std::map<std::string, std::vector<double>>& s
   Dataset data = make_dataset(columns, values, source);
   data.name = name;
   data.source = "arrays";
-  for (auto& [variable, where] : data.operating_source) where = "array mean";
+  for (auto& [variable, where] : data.operating_source)
+    if (!data.operating_signals.count(variable)) where = "array mean";
   return data;
 }
 

@@ -86,7 +86,8 @@ def record(t, x, F=None, *, v=None, a=None, I=None, V=None, phi=None, name="reco
            transform=None, average_cycles=None, conditions=None, set=None):
     """A record from numpy arrays in SI units: time t [s] (strictly increasing), displacement x [m], force F [N],
     optionally velocity v [m/s] and acceleration a [m/s^2] (else differentiated as for a file), and the operating
-    variables I [A], V [V], phi [deg] as arrays (their mean, as a file's column) or numbers. set={"amp": 0.01}
+    variables I [A], V [V], phi [deg] as numbers or arrays, as a file's column: constant within 5 % (its mean), or a
+    command that varies over the test, which laws follow sample by sample (Record.varying). set={"amp": 0.01}
     gives any operating variable. `name` names the record in tables and keys its runs: a record made from a file's
     columns, named by the file's stem, fits to the same bits as the file. Raises DataError for NaN or infinite
     values, a time that does not increase, or arrays of different lengths.

@@ -37,6 +37,14 @@ void bind_records(py::module_& m) {
       .def_property_readonly("F", [](const Dataset& d) { return to_numpy(d.F_N); }, "force [N] (empty: none)")
       .def_readonly("operating", &Dataset::operating, "operating variables (I [A], V [V], phi [deg], amp [m], freq [Hz])")
       .def_readonly("operating_source", &Dataset::operating_source, "where each operating variable comes from")
+      .def_property_readonly(
+          "varying",
+          [](const Dataset& d) {
+            py::dict out;
+            for (const auto& [name, column] : d.operating_signals) out[py::str(name)] = to_numpy(column);
+            return out;
+          },
+          "the operating variables that vary over the test, sample by sample (laws follow them)")
       .def("__len__", &Dataset::size)
       .def("__repr__", [](const Dataset& d) {
         std::string operating;

@@ -165,3 +165,22 @@ def test_prediction_and_vector_level_equal_cli(exe):
     result = dampbench.fit("fvd.gv_linear_elastic", FVD_RECORD, runs=4, predict=[held_out], isa="sse2")
     assert_same_fit(result, cli)
     assert result.json["held_out"] == cli["held_out"]
+
+
+def test_a_current_that_varies_during_the_test_is_followed_by_the_laws():
+    # F = (1000 + 2000 I(t)) v with a current stepping from 0 to 1 A halfway (the command at a sample holds until
+    # the next, so the force at sample k sees the current of sample k - 1): fitted exactly, which no constant current
+    # could do.
+    t = np.arange(200) * 0.01
+    w = 2 * np.pi
+    x, v = 0.01 * np.sin(w * t), 0.01 * w * np.cos(w * t)
+    current = np.where(np.arange(200) < 100, 0.0, 1.0)
+    held = np.where(np.arange(200) <= 100, 0.0, 1.0)
+    rec = dampbench.record(t, x, (1000 + 2000 * held) * v, v=v, I=current, name="step")
+    np.testing.assert_array_equal(rec.varying["I"], current)
+    assert rec.operating_source["I"].startswith("column varying from 0 to 1")
+    bounds = {"m": (0, 0), "C_I0": (0, 1e4), "C_I1": (0, 1e4)}
+    result = dampbench.fit("fvd.linear_viscous", rec, laws={"C": "poly(I,1)"}, bounds=bounds, runs=2, iters=40,
+                           metric="nrmse")
+    assert result.metrics["nrmse"] < 1e-3
+    assert abs(result.params["C_I1"] - 2000) < 20

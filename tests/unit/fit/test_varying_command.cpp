@@ -1,8 +1,8 @@
 // Records whose command varies over the test (a current column I(t)): a law model follows the column sample by
 // sample in every batch path (engine/model/law_model.hpp, stepped_simulation.hpp), and `fit` identifies the laws and
 // the driver's lag τ from such records. Known answers: synthetic Bouc–Wen and Spencer records made by a finely
-// stepped truth (32 fixed sub-steps per sample, not the fit's own sub-step rule) under a random-step current through
-// a lag of τ = 20 ms, with 1 % Gaussian noise.
+// stepped truth (32 fixed sub-steps per sample, not the fit's own sub-step rule) under a random-step current (and
+// Bouc–Wen under a random current) through a lag of τ = 20 ms, with 1 % Gaussian noise.
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
@@ -27,37 +27,55 @@ namespace {
 
 using testing::bits;
 
-/// A 10 mm, 1.5 Hz sine sampled at 1 kHz for `seconds`, under a current that steps between 0, 0.25, 0.5, 0.75 and
-/// 1 A every 0.15–0.4 s (levels and durations drawn once at random, written out so that every record holds each
-/// level and both directions of steps).
+/// A 10 mm, 1.5 Hz sine sampled at 1 kHz for `seconds` under the current `current(t)` [A].
+template <class Current>
+Dataset sine_record(double seconds, Current current) {
+  Dataset d;
+  d.name = "command";
+  d.source = "test";
+  std::vector<double> column;
+  const double fs = 1000.0, w = 2 * M_PI * 1.5;
+  for (int k = 0; static_cast<double>(k) / fs < seconds; ++k) {
+    const double t = static_cast<double>(k) / fs;
+    d.t_s.push_back(t);
+    d.x_m.push_back(0.01 * std::sin(w * t));
+    d.v_m_s.push_back(0.01 * w * std::cos(w * t));
+    d.a_m_s2.push_back(-0.01 * w * w * std::sin(w * t));
+    column.push_back(current(t));
+  }
+  d.operating_signals["I"] = column;
+  double mean = 0;
+  for (double c : column) mean += c / static_cast<double>(column.size());
+  d.operating["I"] = mean;
+  d.operating_source["I"] = "column mean";
+  d.operating_refused["I"] = "varies";
+  return d;
+}
+
+/// A current that steps between 0, 0.25, 0.5, 0.75 and 1 A every 0.15–0.4 s (levels and durations drawn once at
+/// random, written out so that every record holds each level and both directions of steps).
 Dataset step_current_record(double seconds) {
   static constexpr std::array<std::pair<double, double>, 12> kSteps{{{0.0, 0.23}, {0.75, 0.31}, {0.25, 0.17},
                                                                      {1.0, 0.28}, {0.5, 0.36}, {0.0, 0.19},
                                                                      {1.0, 0.22}, {0.25, 0.39}, {0.75, 0.16},
                                                                      {0.5, 0.27}, {1.0, 0.33}, {0.0, 0.4}}};
-  Dataset d;
-  d.name = "steps";
-  d.source = "test";
-  std::vector<double> current;
-  const double fs = 1000.0, w = 2 * M_PI * 1.5;
-  std::size_t step = 0;
-  double step_end = kSteps[0].second;
-  for (int k = 0; static_cast<double>(k) / fs < seconds; ++k) {
-    const double t = static_cast<double>(k) / fs;
+  return sine_record(seconds, [&, step = std::size_t{0}, step_end = kSteps[0].second](double t) mutable {
     while (t >= step_end) step_end += kSteps[++step % kSteps.size()].second;
-    d.t_s.push_back(t);
-    d.x_m.push_back(0.01 * std::sin(w * t));
-    d.v_m_s.push_back(0.01 * w * std::cos(w * t));
-    d.a_m_s2.push_back(-0.01 * w * w * std::sin(w * t));
-    current.push_back(kSteps[step % kSteps.size()].first);
-  }
-  d.operating_signals["I"] = current;
-  double mean = 0;
-  for (double c : current) mean += c / static_cast<double>(current.size());
-  d.operating["I"] = mean;
-  d.operating_source["I"] = "column mean";
-  d.operating_refused["I"] = "varies";
-  return d;
+    return kSteps[step % kSteps.size()].first;
+  });
+}
+
+/// A random current in 0–1 A: a new uniform level every 50 ms (seeded), linear between them, so that no two
+/// samples share a value.
+Dataset random_current_record(double seconds) {
+  std::mt19937_64 rng(17);
+  std::vector<double> levels;
+  for (int i = 0; i <= static_cast<int>(seconds / 0.05) + 1; ++i) levels.push_back(static_cast<double>(rng() % 1001) / 1000.0);
+  return sine_record(seconds, [&](double t) {
+    const auto i = static_cast<std::size_t>(t / 0.05);
+    const double th = t / 0.05 - static_cast<double>(i);
+    return levels[i] + th * (levels[i + 1] - levels[i]);
+  });
 }
 
 std::vector<double> named(const Model& m, const std::vector<std::pair<std::string, double>>& values) {
@@ -178,6 +196,20 @@ TEST(VaryingCommand, FitRecoversTheLawsAndTheDriversLagWithinTwoPercent) {
       const auto j = static_cast<std::size_t>(model.parameter_index(name));
       EXPECT_NEAR(best[j], truth[j], 0.02 * std::fabs(truth[j])) << name;
     }
+  }
+}
+
+TEST(VaryingCommand, FitRecoversTheLawsAndTheLagUnderARandomCurrent) {
+  const Recovery r = recoveries().front();
+  const LawModel model(find_model(r.base), parse_laws(r.laws, "test"));
+  const auto truth = named(model, r.truth);
+  const Dataset record = with_truth(random_current_record(2.0), model, truth);
+  ASSERT_GT(record.operating_signals.at("I")[101], record.operating_signals.at("I")[100]);  // no two samples alike
+  const FitOutcome fit = run_fit(prepare_fit(fit_spec(r, record)).request());
+  const auto& best = fit.best().best_params;
+  for (const auto& name : r.checked) {
+    const auto j = static_cast<std::size_t>(model.parameter_index(name));
+    EXPECT_NEAR(best[j], truth[j], 0.02 * std::fabs(truth[j])) << name;
   }
 }
 
