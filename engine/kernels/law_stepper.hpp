@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "engine/kernels/lane_kernel.hpp"
 #include "engine/kernels/substep_rule.hpp"
@@ -103,6 +104,8 @@ class OdeLawStepper final : public ModelStepper {
     ctx_ = Law::context(sample_.signals());
   }
   void set_parameter_values(std::span<const double> params) override { p_ = stepper_lanes<Law>(params); }
+  /// Only a law with a per-record context (fdsp's V and ω) reads the variables.
+  [[nodiscard]] bool reads_variables() const override { return !std::is_empty_v<typename Law::Context>; }
   void reset() override { y_.fill(0.0); }
   [[nodiscard]] double force(double x, double v, double) const override { return Law::force(p_, 0, ctx_, x, v, y_.data()); }
   void advance(double x0, double v0, double x1, double v1, double dt, int substeps) override {

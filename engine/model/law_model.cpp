@@ -275,15 +275,24 @@ bool LawModel::follows_columns(const Signals& data) const {
                      [&](const std::string& v) { return data.operating_signals.count(v) > 0; });
 }
 
+std::vector<double> LawModel::stepped_force(std::span<const double> coefficients, const Signals& data) const {
+  const auto nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& lag : lags_)  // a τ below 0 (a box the user gave) is a failed candidate, as a blown-up one
+    if (!(lag_tau(lag, coefficients) >= 0)) return std::vector<double>(data.size(), nan);
+  auto force = simulate_stepped(*this, coefficients, data, kKernelSubsteps);
+  if (std::any_of(force.begin(), force.end(), [](double f) { return !std::isfinite(f); }))
+    std::fill(force.begin(), force.end(), nan);  // NaN throughout, as a lane the kernels mask
+  return force;
+}
+
 void LawModel::evaluate_stepped(const CandidateBatch& batch, int first, int count, const Signals& data,
                                 MetricSums* out) const {
   std::vector<double> c(coefficients_.size());
   for (int i = 0; i < count; ++i) {
     for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
-    const auto force = simulate_stepped(*this, c, data, kKernelSubsteps);
+    const auto force = stepped_force(c, data);
     const double inf = std::numeric_limits<double>::infinity();
-    const bool failed = std::any_of(force.begin(), force.end(), [](double f) { return !std::isfinite(f); });
-    out[i] = failed ? MetricSums{inf, inf, inf, inf, inf} : metric_sums(force, data);
+    out[i] = !force.empty() && std::isnan(force.front()) ? MetricSums{inf, inf, inf, inf, inf} : metric_sums(force, data);
   }
 }
 
@@ -316,7 +325,7 @@ void LawModel::evaluate_scalar(const CandidateBatch& batch, int first, int count
 }
 
 std::vector<double> LawModel::simulate(std::span<const double> coefficients, const Signals& data) const {
-  if (follows_columns(data)) return simulate_stepped(*this, coefficients, data, kKernelSubsteps);
+  if (follows_columns(data)) return stepped_force(coefficients, data);
   return base_.simulate(base_parameters(coefficients, data), data);
 }
 
@@ -325,7 +334,7 @@ void LawModel::simulate_block(const CandidateBatch& batch, int first, int count,
     std::vector<double> c(coefficients_.size());
     for (int i = 0; i < count; ++i) {
       for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
-      const auto force = simulate_stepped(*this, c, data, kKernelSubsteps);
+      const auto force = stepped_force(c, data);
       std::copy(force.begin(), force.end(), out + static_cast<std::size_t>(i) * data.size());
     }
     return;

@@ -104,6 +104,9 @@ class LawModel final : public Model {
   [[nodiscard]] ParameterInfo gauged_info(const ParameterInfo& p) const;
   /// The base parameters of one candidate's coefficients `c` under operating variables `v`, into p[0, base dim).
   void base_values(const double* c, const std::map<std::string, double>& v, double* p) const;
+  /// The force on such a record: stepped with the kernels' sub-step rules; NaN throughout for a candidate that
+  /// blows up, is too stiff or has a driver lag's τ below 0.
+  [[nodiscard]] std::vector<double> stepped_force(std::span<const double> coefficients, const Signals& data) const;
   /// evaluate_block on such a record: each candidate's stepped force and its metric sums (every sum; +inf for a
   /// candidate that blows up or is too stiff).
   void evaluate_stepped(const CandidateBatch& batch, int first, int count, const Signals& data, MetricSums* out) const;

@@ -17,7 +17,7 @@ namespace {
 /// With driver lags, the laws see the lagged u of each commanded variable: over a sub-step of length h under the
 /// held command c, u moves exactly as c + (u − c)·e^(−t/τ); the base takes one RK4 sub-step with the laws at u of
 /// the sub-step's middle, and the force at a sample sees u there. The C export (engine/export) does the same.
-/// The base's own use of a variable (fdsp's filter reads V) sees the commanded value.
+/// A base that reads the variables itself (fdsp's filter reads V in its context) gets them with the lagged values.
 class LawStepper final : public ModelStepper {
  public:
   LawStepper(const LawModel& model, std::unique_ptr<ModelStepper> base)
@@ -26,7 +26,7 @@ class LawStepper final : public ModelStepper {
 
   void set_parameters(std::span<const double> coefficients, const std::map<std::string, double>& variables) override {
     coefficients_.assign(coefficients.begin(), coefficients.end());
-    commanded_ = variables;
+    commanded_ = seen_ = variables;
     for (std::size_t i = 0; i < tau_.size(); ++i) {
       const auto& lag = model_.lags()[i];
       tau_[i] = model_.lag_tau(lag, coefficients);
@@ -35,11 +35,11 @@ class LawStepper final : public ModelStepper {
       commands_[i] = it == variables.end() ? std::nan("") : it->second;
     }
     base_values_ = model_.base_parameters(coefficients_, commanded_);  // InputError for a variable the laws lack
-    base_->set_parameters(base_values_, commanded_);
     plan_lagged_laws();
-    apply(lagged_);
+    apply(lagged_, true);
   }
   void set_parameter_values(std::span<const double> coefficients) override { set_parameters(coefficients, commanded_); }
+  [[nodiscard]] bool reads_variables() const override { return true; }
   void reset() override {
     base_->reset();
     lagged_ = commands_;  // u(0) = c(0)
@@ -104,6 +104,8 @@ class LawStepper final : public ModelStepper {
   /// a lookup by name (ParameterLaw::evaluate's arithmetic, factor by factor, so the same bits).
   void plan_lagged_laws() {
     plan_.clear();
+    slots_.assign(lagged_.size(), nullptr);
+    for (std::size_t i = 0; i < lagged_.size(); ++i) slots_[i] = &seen_[model_.lags()[i].variable];  // nodes stay put
     if (lagged_.empty()) return;
     const auto& laws = model_.laws();
     for (std::size_t j = 0; j < laws.size(); ++j) {
@@ -125,9 +127,11 @@ class LawStepper final : public ModelStepper {
     }
   }
 
-  /// The base's parameters with each lagged variable at u[i] (the laws that read none keep their values).
-  void apply(const std::vector<double>& u) {
-    if (coefficients_.empty() || plan_.empty()) return;
+  /// The base's parameters with each lagged variable at u[i] (the laws that read none keep their values); the
+  /// variables too (seen_, the lagged ones at u) where the base reads them, or with `all`.
+  void apply(const std::vector<double>& u, bool all = false) {
+    if (coefficients_.empty()) return;
+    if (plan_.empty() && !all) return;
     for (const auto& law : plan_) {
       double product = 1.0;
       for (const auto& f : law.factors)
@@ -139,13 +143,19 @@ class LawStepper final : public ModelStepper {
       for (int j : model_.gauge_sum_of()) sum += base_values_[static_cast<std::size_t>(j)];
       base_values_[static_cast<std::size_t>(model_.gauge_tied())] = sum;
     }
-    base_->set_parameter_values(base_values_);
+    if (all || base_->reads_variables()) {
+      for (std::size_t i = 0; i < u.size(); ++i) *slots_[i] = u[i];
+      base_->set_parameters(base_values_, seen_);
+    } else {
+      base_->set_parameter_values(base_values_);
+    }
   }
 
   const LawModel& model_;
   std::unique_ptr<ModelStepper> base_;
   std::vector<double> coefficients_, base_values_;
-  std::map<std::string, double> commanded_;  // the variables given
+  std::map<std::string, double> commanded_, seen_;  // the variables given, and with the lagged ones at u
+  std::vector<double*> slots_;                      // seen_'s value of each lag
   std::vector<double> lagged_, tau_, commands_;  // u, τ and the commanded value of each lag
   std::vector<LaggedLaw> plan_;
   std::vector<double> middle_, decay_half_, decay_;  // advance's scratch: u at a sub-step's middle, e^(−h/2τ), e^(−h/τ)

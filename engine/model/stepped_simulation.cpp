@@ -73,6 +73,7 @@ std::vector<int> kernel_substeps(const Model& model, std::span<const double> par
     for (const auto& [name, column] : data.operating_signals)
       if (k < column.size()) variables[name] = column[k];
     stepper->set_parameters(params, variables);
+    stepper->reset();  // a driver lag's u at the probe's command
     lambda = std::max(lambda, stepper->stiffness(data.velocity_max_abs, data.displacement_ptp));
   }
   std::vector<int> counts;
@@ -102,9 +103,9 @@ std::vector<double> simulate_stepped(const Model& model, std::span<const double>
     counts = kernel_substeps(model, params, data);
     if (counts.empty() && n > 1) return force;  // masked as too stiff
   }
+  if (n == 0) return force;
   hold(0);
   stepper->reset();
-  if (n == 0) return force;
   const auto a = [&](std::size_t k) { return k < data.a_m_s2.size() ? data.a_m_s2[k] : 0.0; };
   force[0] = stepper->force(data.x_m[0], data.v_m_s[0], a(0));
   for (std::size_t k = 1; k < n; ++k) {

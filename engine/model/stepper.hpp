@@ -27,6 +27,9 @@ class ModelStepper {
   /// New parameters with the variables of the last set_parameters (a lagged law model's laws move its base's
   /// parameters at every sub-step).
   virtual void set_parameter_values(std::span<const double> params) = 0;
+  /// Whether the model reads the variables of set_parameters itself (beyond its parameters): a lagged law model
+  /// then gives it the lagged values at every sub-step.
+  [[nodiscard]] virtual bool reads_variables() const { return true; }
   /// Internal states at rest (zero).
   virtual void reset() = 0;
   /// The force [N] at the current states and the inputs x [m], v [m/s], a [m/s²].

@@ -94,6 +94,7 @@ Dataset average_cycles(const Dataset& r, int cycles, int drop) {
   average(r.v_m_s, out.v_m_s);
   average(r.a_m_s2, out.a_m_s2);
   average(r.F_N, out.F_N);
+  for (const auto& [name, column] : r.operating_signals) average(column, out.operating_signals[name]);
   return out;
 }
 

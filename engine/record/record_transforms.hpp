@@ -31,7 +31,8 @@ Dataset to_rotary(const Dataset& mts, const SliderCrank& rig);
 /// Cycle averaging (crfd: 10 cycles, cycles 1–3 and 8–10 dropped, 4–7 averaged): the record is split into
 /// `cycles` periods of equal duration, the first and last `drop` are discarded, and the rest are averaged
 /// sample by sample on the time grid of the first kept cycle (linear interpolation), giving one cycle
-/// starting at t = 0. Throws InputError if fewer than one cycle would remain or a cycle has < 4 samples.
+/// starting at t = 0 (a command column that varies is averaged with them). Throws InputError if fewer than one
+/// cycle would remain or a cycle has < 4 samples.
 Dataset average_cycles(const Dataset& record, int cycles, int drop);
 
 /// Operating variables from a UTFSM data file name `<amp mm>mm<freq Hz>Hz<current A>A` with 'x' as the

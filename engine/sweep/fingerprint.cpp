@@ -43,6 +43,8 @@ std::string dataset_hash(const Signals& d) {
   std::uint64_t h = hash_name(d.name);
   for (const auto* v : {&d.t_s, &d.x_m, &d.v_m_s, &d.a_m_s2, &d.F_N}) h = mix_doubles(h, *v);
   for (const auto& [k, x] : d.operating) h = hash_key({h, hash_name(k), std::bit_cast<std::uint64_t>(x)});
+  // A command column that varies (none for a constant record, whose hash stays what it was).
+  for (const auto& [k, column] : d.operating_signals) h = mix_doubles(hash_key({h, hash_name(k)}), column);
   return fmt::format("{:016x}", h);
 }
 

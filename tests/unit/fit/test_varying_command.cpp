@@ -19,6 +19,7 @@
 #include "engine/model/metrics.hpp"
 #include "engine/model/stepped_simulation.hpp"
 #include "engine/record/record_options.hpp"
+#include "engine/record/record_transforms.hpp"
 #include "models/registry.hpp"
 #include "tests/test_support.hpp"
 
@@ -157,19 +158,34 @@ TEST(VaryingCommand, EveryBatchPathFollowsTheColumnAndAConstantRecordKeepsTheKer
   const auto simulated = law.simulate(p, varying);
   ASSERT_EQ(simulated.size(), stepped.size());
   for (std::size_t k = 0; k < stepped.size(); ++k) ASSERT_EQ(bits(simulated[k]), bits(stepped[k])) << "sample " << k;
-  CandidateBatch batch(law.dim(), 2);
-  for (int j = 0; j < law.dim(); ++j) batch.at(0, j) = batch.at(1, j) = p[static_cast<std::size_t>(j)];
+  // Three candidates, the block from the second: p, then p with another τ (each lane its own candidate).
+  auto q = p;
+  q[static_cast<std::size_t>(law.parameter_index("tau_I"))] = 0.05;
+  const auto stepped_q = simulate_stepped(law, q, varying, kKernelSubsteps);
+  CandidateBatch batch(law.dim(), 3);
+  for (int j = 0; j < law.dim(); ++j) {
+    batch.at(0, j) = 0.5 * p[static_cast<std::size_t>(j)];
+    batch.at(1, j) = p[static_cast<std::size_t>(j)];
+    batch.at(2, j) = q[static_cast<std::size_t>(j)];
+  }
   std::vector<double> block(2 * varying.size());
-  law.simulate_block(batch, 0, 2, varying, block.data());
-  EXPECT_EQ(bits(block[varying.size() + 500]), bits(stepped[500]));
-  const MetricSums expected = metric_sums(stepped, varying);
+  law.simulate_block(batch, 1, 2, varying, block.data());
+  EXPECT_EQ(bits(block[500]), bits(stepped[500]));
+  EXPECT_EQ(bits(block[varying.size() + 500]), bits(stepped_q[500]));
+  const MetricSums expected = metric_sums(stepped, varying), expected_q = metric_sums(stepped_q, varying);
+  ASSERT_NE(bits(expected.sq), bits(expected_q.sq));
   MetricSums sums[2];
-  law.evaluate_block(batch, 0, 2, varying, SumSet::every, sums);
-  EXPECT_EQ(bits(sums[1].sq), bits(expected.sq));
-  law.evaluate_block_float32(batch, 0, 2, varying, SumSet::sq, sums);
+  law.evaluate_block(batch, 1, 2, varying, SumSet::every, sums);
   EXPECT_EQ(bits(sums[0].sq), bits(expected.sq));
-  law.evaluate_scalar(batch, 0, 1, varying, SumSet::abs, sums);
+  EXPECT_EQ(bits(sums[1].sq), bits(expected_q.sq));
+  law.evaluate_block_float32(batch, 1, 2, varying, SumSet::sq, sums);
+  EXPECT_EQ(bits(sums[1].sq), bits(expected_q.sq));
+  law.evaluate_scalar(batch, 1, 1, varying, SumSet::abs, sums);
   EXPECT_EQ(bits(sums[0].abs), bits(expected.abs));
+  // A τ below 0 (a user's box) is a failed candidate, not an error that stops the fit.
+  batch.at(2, law.parameter_index("tau_I")) = -0.01;
+  law.evaluate_block(batch, 2, 1, varying, SumSet::every, sums);
+  EXPECT_TRUE(std::isinf(sums[0].sq));
   // The kernels' sub-step rule is accurate: against 256 fixed sub-steps per sample.
   EXPECT_LT(testing::relative_l2(stepped, simulate_stepped(law, p, varying, 256)), 1e-4);
   // The current matters: the same record at its mean current is another force.
@@ -182,6 +198,23 @@ TEST(VaryingCommand, EveryBatchPathFollowsTheColumnAndAConstantRecordKeepsTheKer
   const auto kernels = base.simulate(law.base_parameters(p, held), held);
   const auto at_mean = law.simulate(p, held);
   for (std::size_t k = 0; k < kernels.size(); ++k) ASSERT_EQ(bits(at_mean[k]), bits(kernels[k])) << "sample " << k;
+}
+
+TEST(VaryingCommand, SubstepsFollowTheStiffestCommandAlsoBehindALag) {
+  // γ = 300 + 2e5·I 1/m: at 1 A the gauged Bouc–Wen needs ~38 sub-steps per 1 ms sample, at 0 A the record's few.
+  // The current stays within 0.5–1 A: the counts with a lag must be those without it (the lag's u is the command
+  // at each probe, never 0 A).
+  const Model& base = find_model("mrd.bouc_wen");
+  const LawModel plain(base, parse_laws("gamma=poly(I,1)", "test")), lagged(base, parse_laws("gamma=poly(I,1);tau_I=0.02", "test"));
+  const std::vector<std::pair<std::string, double>> values{{"c0", 1400}, {"k0", 1000}, {"x0", 0}, {"alpha", 130},
+                                                           {"beta", 100}, {"gamma_I0", 300}, {"gamma_I1", 2e5}, {"n", 2}};
+  Dataset high = sine_record(1.0, [](double t) { return t < 0.5 ? 0.5 : 1.0; });
+  Dataset none = sine_record(1.0, [](double t) { return t < 0.5 ? 0.0 : 0.01; });
+  const auto counts = kernel_substeps(plain, named(plain, values), prepare_signals(high));
+  EXPECT_EQ(kernel_substeps(lagged, named(lagged, values), prepare_signals(high)), counts);
+  const auto at_zero = kernel_substeps(plain, named(plain, values), prepare_signals(none));
+  ASSERT_FALSE(counts.empty());
+  EXPECT_GT(*std::max_element(counts.begin(), counts.end()), 4 * *std::max_element(at_zero.begin(), at_zero.end()));
 }
 
 TEST(VaryingCommand, FitRecoversTheLawsAndTheDriversLagWithinTwoPercent) {
@@ -229,6 +262,18 @@ TEST(VaryingCommand, AFitGivesTheSameBitsOnOneAndTwoThreads) {
   for (std::size_t run = 0; run < 2; ++run)
     for (std::size_t j = 0; j < best[run].size(); ++j)
       EXPECT_EQ(bits(best[run][j]), bits(best[run + 2][j])) << "run " << run << ", " << j;
+}
+
+TEST(VaryingCommand, CycleAveragingAveragesTheCommandColumn) {
+  // Three cycles of the 1.5 Hz sine with the current on for the first 0.3 s of each: one averaged cycle, whose
+  // current column has its samples and is still the on/off command (the cycles agree).
+  Dataset r = sine_record(2.0, [](double t) { return std::fmod(t, 1.0 / 1.5) < 0.3 ? 1.0 : 0.0; });
+  r.F_N.assign(r.size(), 0.0);
+  const Dataset one = average_cycles(r, 3, 1);
+  const auto& column = one.operating_signals.at("I");
+  ASSERT_EQ(column.size(), one.size());
+  EXPECT_NEAR(column[100], 1.0, 1e-9);
+  EXPECT_NEAR(column[500], 0.0, 1e-9);
 }
 
 TEST(VaryingCommand, ALawOfAStatedConstantIgnoresTheColumn) {
