@@ -14,6 +14,11 @@
 namespace dampbench {
 namespace {
 
+/// Candidate `index` of the batch into `c` (sized to the law model's coefficients).
+void candidate_coefficients(const CandidateBatch& batch, int index, std::vector<double>& c) {
+  for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(index, static_cast<int>(j));
+}
+
 using Family = LawFactor::Family;
 
 /// Typical magnitude of each operating variable, to scale default bounds of higher-order coefficients.
@@ -262,7 +267,7 @@ const CandidateBatch& LawModel::base_block(const CandidateBatch& batch, int firs
   c.resize(coefficients_.size());
   p.resize(laws_.size());
   for (int i = 0; i < count; ++i) {
-    for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
+    candidate_coefficients(batch, first + i, c);
     base_values(c.data(), data.law_variables, p.data());
     for (std::size_t j = 0; j < p.size(); ++j) scratch.at(i, static_cast<int>(j)) = p[j];
   }
@@ -289,7 +294,7 @@ void LawModel::evaluate_stepped(const CandidateBatch& batch, int first, int coun
                                 MetricSums* out) const {
   std::vector<double> c(coefficients_.size());
   for (int i = 0; i < count; ++i) {
-    for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
+    candidate_coefficients(batch, first + i, c);
     const auto force = stepped_force(c, data);
     const double inf = std::numeric_limits<double>::infinity();
     out[i] = !force.empty() && std::isnan(force.front()) ? MetricSums{inf, inf, inf, inf, inf} : metric_sums(force, data);
@@ -333,7 +338,7 @@ void LawModel::simulate_block(const CandidateBatch& batch, int first, int count,
   if (follows_columns(data)) {
     std::vector<double> c(coefficients_.size());
     for (int i = 0; i < count; ++i) {
-      for (std::size_t j = 0; j < c.size(); ++j) c[j] = batch.at(first + i, static_cast<int>(j));
+      candidate_coefficients(batch, first + i, c);
       const auto force = stepped_force(c, data);
       std::copy(force.begin(), force.end(), out + static_cast<std::size_t>(i) * data.size());
     }
