@@ -1,7 +1,10 @@
 #include "engine/cli/export_command.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -9,6 +12,8 @@
 #include "engine/common/error.hpp"
 #include "engine/common/text_file.hpp"
 #include "engine/export/c_export.hpp"
+#include "engine/export/fixed_step_check.hpp"
+#include "engine/model/law_model.hpp"
 
 namespace dampbench::cli {
 
@@ -16,18 +21,89 @@ void add_export_options(CLI::App* c, ExportOptions& o) {
   add_model_by_name_options(c, o.model);
   c->add_option("--lang", o.lang, "c (default; C99, no dependency but libm)");
   c->add_option("--substeps", o.substeps, "fixed RK4 sub-steps per step, as simulate --fixed-step (default 4)");
+  c->add_option("--stroke-m", o.stroke_m,
+                "peak-to-peak stroke [m] of the motion the step size is checked on (default: the fitted records')");
+  c->add_option("--velocity-m-s", o.velocity_m_s,
+                "peak |v| [m/s] of that motion (default: the fitted records')");
   c->add_option("-o,--output", o.output, "folder for dampbench_model.h and dampbench_model.c")->required();
 }
 
+namespace {
+
+/// A record's stroke and peak velocity: its "motion" key, or for a file written before it a sinusoid's from the
+/// record's stated amp [m] and vamp [m/s] (or 2π·amp·freq).
+std::pair<double, double> record_motion(const ModelFileRecord& r) {
+  if (r.displacement_ptp_m > 0) return {r.displacement_ptp_m, r.velocity_max_abs_m_s};
+  const auto value = [&](const char* name) {
+    return r.operating.contains(name) ? r.operating.at(name).at("value").get<double>() : 0.0;
+  };
+  const double amp = value("amp"), vamp = value("vamp") > 0 ? value("vamp") : 2 * std::numbers::pi * amp * value("freq");
+  return {2 * amp, vamp};
+}
+
+/// Every combination of each law variable's smallest and largest fitted value.
+std::vector<std::map<std::string, double>> variable_corners(const Model& model, const ModelFile& file) {
+  std::vector<std::map<std::string, double>> corners{{}};
+  const auto* law = dynamic_cast<const LawModel*>(&model);
+  if (!law) return corners;
+  for (const std::string& name : law->law_variables()) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const ModelFileRecord& r : file.records)
+      if (r.operating.contains(name)) {
+        lo = std::min(lo, r.operating.at(name).at("value").get<double>());
+        hi = std::max(hi, r.operating.at(name).at("value").get<double>());
+      }
+    if (lo > hi) return {};  // no record states it: the range is unknown
+    std::vector<std::map<std::string, double>> next;
+    for (auto corner : corners)
+      for (const double value : lo == hi ? std::vector<double>{lo} : std::vector<double>{lo, hi}) {
+        corner[name] = value;
+        next.push_back(corner);
+      }
+    corners = std::move(next);
+  }
+  return corners;
+}
+
+/// The head comment's step-size lines: the check on the fitted motion, or why there is none.
+std::string step_statement(const ExportOptions& o, const LoadedModel& loaded, exporting::FixedStepCheck& check) {
+  check.has_states = exporting::steps_states(*loaded.model.model);
+  if (!check.has_states) return exporting::fixed_step_statement(check, o.substeps);
+  exporting::CheckedMotion motion;
+  for (const ModelFileRecord& r : loaded.file.records) {
+    const auto [stroke, velocity] = record_motion(r);
+    motion.stroke_m = std::max(motion.stroke_m, stroke);
+    motion.velocity_max_abs_m_s = std::max(motion.velocity_max_abs_m_s, velocity);
+  }
+  if (o.stroke_m) motion.stroke_m = *o.stroke_m;
+  if (o.velocity_m_s) motion.velocity_max_abs_m_s = *o.velocity_m_s;
+  motion.variables = variable_corners(*loaded.model.model, loaded.file);
+  if (motion.variables.empty())
+    return " * Step size: not checked (the law variables' fitted range is unknown: export from a model file).\n";
+  if (!(motion.stroke_m > 0) || !(motion.velocity_max_abs_m_s > 0))
+    return " * Step size: not checked (no motion known: export from a model file, or give --stroke-m and\n"
+           " * --velocity-m-s).\n";
+  check = exporting::check_fixed_step(*loaded.model.model, loaded.params, o.substeps, motion);
+  return exporting::fixed_step_statement(check, o.substeps);
+}
+
+}  // namespace
+
 ExportedModel run_export(const ExportOptions& o) {
   if (o.lang != "c") throw InputError(fmt::format("--lang: expected c, got '{}'", o.lang));
+  if (o.substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", o.substeps));
   const LoadedModel loaded = load_named_model(o.model, "export");
   const std::string description =
       o.model.model_file.empty() ? "From the command line's parameters."
                                  : fmt::format("From {} (metric {} {:.6g} on the fitted records).", o.model.model_file,
                                                loaded.file.metric, loaded.file.fitted_value);
-  return {exporting::export_c(*loaded.model.model, loaded.params, o.substeps, description),
-          std::string(loaded.model.model->id())};
+  // The exporter's refusal comes before the check, which would step a model it does not cover.
+  exporting::export_c(*loaded.model.model, loaded.params, o.substeps, description, "");
+  ExportedModel out;
+  out.model_id = std::string(loaded.model.model->id());
+  const std::string statement = step_statement(o, loaded, out.check);
+  out.c = exporting::export_c(*loaded.model.model, loaded.params, o.substeps, description, statement);
+  return out;
 }
 
 int export_command(const ExportOptions& o) {
@@ -40,6 +116,14 @@ int export_command(const ExportOptions& o) {
   write_text_file((dir / "dampbench_model.c").string(), e.c.source);
   std::cout << fmt::format("wrote {} and {} ({}, {} RK4 sub-steps per step)\n", (dir / "dampbench_model.h").string(),
                            (dir / "dampbench_model.c").string(), e.model_id, o.substeps);
+  if (!e.check.has_states) std::cout << "step size: no states, any dt\n";
+  else if (e.check.dt_max_s > 0)
+    std::cout << fmt::format("step size: checked stable for dt <= {:.3g} s on {:.6g} m stroke, {:.6g} m/s peak velocity\n",
+                             e.check.dt_max_s, e.check.motion.stroke_m, e.check.motion.velocity_max_abs_m_s);
+  else if (e.check.dt_tried_last_s > 0)
+    std::cout << fmt::format("step size: NOT stable down to dt = {:.3g} s: raise --substeps\n", e.check.dt_tried_last_s);
+  else
+    std::cout << "step size: not checked (see the head comment)\n";
   return 0;
 }
 

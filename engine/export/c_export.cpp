@@ -238,7 +238,8 @@ std::vector<std::string> exported_models() {
   return out;
 }
 
-CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description) {
+CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description,
+                 const std::string& step_statement) {
   if (substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", substeps));
   const auto* law = dynamic_cast<const LawModel*>(&model);
   if (law && dynamic_cast<const LawModel*>(&law->base()))
@@ -254,9 +255,8 @@ CSource export_c(const Model& model, std::span<const double> params, int substep
       "/* {}: {} ({}), written by dampbench export.\n"
       " * {}\n"
       " * Scheme: {} fixed RK4 sub-steps per dbm_step, x and v linear over the step (dampbench simulate --fixed-step {}).\n"
-      " * Stability: RK4 holds while (dt / DBM_SUBSTEPS) times the model's fastest rate stays below 2.78; check dt on\n"
-      " * the motions the controller will see (simulate --fixed-step with your dt and this sub-step count). */\n",
-      model.id(), base.law(), base.citation(), description, substeps, substeps);
+      "{} */\n",
+      model.id(), base.law(), base.citation(), description, substeps, substeps, step_statement);
   CSource out;
   out.header = head + fmt::format(R"c(#ifndef DAMPBENCH_MODEL_H
 #define DAMPBENCH_MODEL_H

@@ -19,10 +19,12 @@ struct CSource {
   std::string header, source;
 };
 
-/// The C pair of `model` at `params` with `substeps` RK4 sub-steps per dbm_step; `description` goes into the
-/// files' head comment (where the model came from). InputError naming what the exporter does not cover: a base
-/// model other than mrd.bouc_wen, mrd.spencer, mrd.magic_formula and mrd.bingham, a mono law, a law over a law.
-CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description);
+/// The C pair of `model` at `params` with `substeps` RK4 sub-steps per dbm_step; `description` (where the model
+/// came from) and `step_statement` (the dt checked, fixed_step_statement) go into the files' head comment.
+/// InputError naming what the exporter does not cover: a base model other than mrd.bouc_wen, mrd.spencer,
+/// mrd.magic_formula and mrd.bingham, a mono law, a law over a law.
+CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description,
+                 const std::string& step_statement);
 
 /// The base models the exporter writes.
 std::vector<std::string> exported_models();

@@ -78,7 +78,12 @@ std::string model_file_text(const ModelFile& f) {
   j["metric"] = {{"name", f.metric}, {"fitted_value", f.fitted_value}};
   Json records = Json::array();
   for (const ModelFileRecord& r : f.records)
-    records.push_back({{"name", r.name}, {"path", r.path}, {"metric_value", r.metric_value}, {"operating", r.operating}});
+    records.push_back({{"name", r.name},
+                       {"path", r.path},
+                       {"metric_value", r.metric_value},
+                       {"operating", r.operating},
+                       {"motion", {{"displacement_ptp_m", r.displacement_ptp_m},
+                                   {"velocity_max_abs_m_s", r.velocity_max_abs_m_s}}}});
   j["records"] = records;
   return exact_json_text(j);
 }
@@ -101,6 +106,11 @@ std::vector<ModelFileRecord> parse_records(const Keys& top) {
       if (!entry.is_object()) operating.fail(name, "expected an object {\"value\": number, \"source\": string}");
       const Keys e{top.source, entry, operating.key_path(name)};
       rec.operating[name] = {{"value", e.number("value")}, {"source", e.string("source")}};
+    }
+    if (r.find("motion", false)) {  // optional: files written before it existed have none
+      const Keys motion = r.object_at("motion");
+      rec.displacement_ptp_m = motion.number("displacement_ptp_m");
+      rec.velocity_max_abs_m_s = motion.number("velocity_max_abs_m_s");
     }
     records.push_back(std::move(rec));
   }

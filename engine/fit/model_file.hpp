@@ -25,6 +25,9 @@ struct ModelFileRecord {
   std::string path;          ///< the file as the command line gave it
   double metric_value = 0;   ///< the fit's metric on this record alone (what `evaluate` prints for it)
   nlohmann::ordered_json operating;  ///< operating_json of the record
+  /// The record's motion, what `export` checks its step size on (0 in a file written before the key existed).
+  double displacement_ptp_m = 0;
+  double velocity_max_abs_m_s = 0;
 };
 
 struct ModelFile {

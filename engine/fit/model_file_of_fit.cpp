@@ -30,7 +30,7 @@ ModelFile model_file_of_fit(const FitSpec& spec, const PreparedFit& prepared, co
     BatchEvaluator(model, s).evaluate_all(batch, row);  // as `evaluate` does, so that it reproduces these bits
     // A record loaded beforehand (the Python module's) names its file, or "arrays", as its source.
     const std::string& path = spec.paths.empty() ? spec.records.at(r).source : spec.paths.at(r);
-    f.records.push_back({s.name, path, row[0][metric_at], operating_json(s)});
+    f.records.push_back({s.name, path, row[0][metric_at], operating_json(s), s.displacement_ptp, s.velocity_max_abs});
   }
   return f;
 }

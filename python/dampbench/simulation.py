@@ -184,8 +184,10 @@ def structure(model=None, params=None, *, building, ground, laws=None, fixture=N
 def export_c(model=None, params=None, *, laws=None, fixture=None, model_file=None, substeps=4, output=None):
     """The model as a dependency-free C99 pair, as `dampbench export --lang c` writes it (the same text).
 
-    The model as in simulate. substeps: RK4 sub-steps per dbm_step. Returns {"header", "source", "model"} (the
-    texts of dampbench_model.h and dampbench_model.c); with output (an existing folder) also writes them there.
+    The model as in simulate. substeps: RK4 sub-steps per dbm_step. Returns {"header", "source", "model",
+    "dt_max_s"} (the texts of dampbench_model.h and dampbench_model.c; the largest step checked stable on the
+    fitted records' motion, inf for a model without states, 0 when none passed or nothing was checked, as the
+    header's comment says); with output (an existing folder) also writes them there.
     A model the exporter does not cover raises UsageError before anything is written.
     """
     out = _core.export_c(**_model_args(model, params, laws, model_file), fixture=fixture or "", substeps=int(substeps))

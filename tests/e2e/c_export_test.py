@@ -7,12 +7,14 @@ driver lag (tau_I free and fixed): the exported pair is compiled with gcc and
 clang (-std=c99 -Wall -Wextra -Werror -pedantic), driven over the motion `simulate --fixed-step 4` used (its x and
 v), and each force must be within 1e-9 of the largest force of the record. Then the driver times Spencer's step at
 1/4096 s (printed, never asserted: figures go to docs/performance.md). A model the exporter does not cover leaves no
-file behind and names the covered ones.
+file behind and names the covered ones. The step size the export states holds for the compiled pair
+(check_stated_step).
 
 usage: c_export_test.py DAMPBENCH_EXE WORK_DIR
 """
 import math
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -147,9 +149,49 @@ def main():
         failures.append(f"an uncovered model: exit {r.returncode}, message {r.stderr!r}")
     if any(refused.iterdir()):
         failures.append(f"an uncovered model left files: {sorted(p.name for p in refused.iterdir())}")
+    failures += check_stated_step(exe, work)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0
+
+
+def check_stated_step(exe, work):
+    """The dt the export states for Spencer at 1 A on ±10 mm at 1 Hz: the compiled pair stays finite there and within
+    2 % of `simulate --fixed-step 64` on another motion inside that envelope (stroke 16 mm, peak |v| 0.0628 m/s); a model file states a dt from its records'
+    motion; a law model from the command line, whose fitted range is unknown, says it was not checked."""
+    failures = []
+    d = work / "stated_step"
+    d.mkdir()
+    model = ["--model", "mrd.spencer", "--params", SPENCER_1A]
+    out = run([exe, "export", *model, "--stroke-m", "0.02", "--velocity-m-s", "0.0628", "-o", d])
+    header = (d / "dampbench_model.h").read_text() if out.returncode == 0 else ""
+    found = re.search(r"checked stable for dt <= ([0-9.e+-]+) s", header)
+    if not found or f"dt <= {found.group(1)} s" not in out.stdout:
+        return [f"stated step: no dt in the header or the output: {out.stdout}{out.stderr}"]
+    dt = float(found.group(1))
+    w = 2 * math.pi
+    samples = [(k * dt, 0.006 * math.sin(w * k * dt) + 0.002 * math.sin(2 * w * k * dt)) for k in range(int(2 / dt) + 1)]
+    (d / "record.csv").write_text("t,x\n" + "".join(f"{t!r},{x!r}\n" for t, x in samples))
+    sim = run([exe, "simulate", *model, "--fixed-step", "64", "--input", d / "record.csv", "-o", d / "fine.csv"])
+    rows = [list(map(float, line.split(","))) for line in (d / "fine.csv").read_text().splitlines()[1:]]
+    (d / "driver.c").write_text(DRIVER)
+    built = run(["gcc", "-std=c99", "-O2", "-I", d, d / "dampbench_model.c", d / "driver.c", "-lm", "-o", d / "driver"])
+    if sim.returncode or built.returncode:
+        return [f"stated step: {sim.stderr}{built.stderr}"]
+    forces = [float(s) for s in run([d / "driver"], input="".join(f"{r[0]!r} {r[1]!r} {r[2]!r}\n" for r in rows)).stdout.split()]
+    fine = [r[4] for r in rows]
+    error = math.sqrt(sum((a - b) ** 2 for a, b in zip(forces, fine)) / sum(b * b for b in fine))
+    print(f"Spencer at 1 A, 4 sub-steps: stated dt {dt:.3g} s; at it, {error:.2e} relative L2 to 64 sub-steps")
+    if len(forces) != len(fine) or not all(math.isfinite(f) for f in forces) or not error <= 0.02:
+        failures.append(f"stated step: at dt = {dt} the export gives {error:.3g} relative L2 ({len(forces)} forces)")
+    model_file = pathlib.Path(__file__).resolve().parents[2] / "datasets" / "models" / "utfsm_spencer_I.json"
+    out = run([exe, "export", "--model-file", model_file, "-o", d])
+    if out.returncode or "step size: checked stable for dt <=" not in out.stdout:
+        failures.append(f"stated step of a model file: {out.stdout}{out.stderr}")
+    out = run([exe, "export", "--fixture", "mfm.table3", "-o", d])
+    if out.returncode or "step size: not checked" not in out.stdout or "Step size: not checked" not in (d / "dampbench_model.h").read_text():
+        failures.append(f"a law model without a model file: {out.stdout}{out.stderr}")
+    return failures
 
 
 if __name__ == "__main__":

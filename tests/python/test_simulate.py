@@ -336,5 +336,10 @@ def test_export_c_is_the_command_lines_text_and_refuses_what_it_does_not_cover(e
     for name, key in (("dampbench_model.h", "header"), ("dampbench_model.c", "source")):
         assert (cli_dir / name).read_text() == out[key] == (tmp_path / name).read_text()
     assert "#define DBM_SUBSTEPS 3" in out["header"]
+    assert out["dt_max_s"] == 0 and "Step size: not checked" in out["header"]  # a fixture: no fitted range
+    model_file = SOURCE_DIR / "datasets" / "models" / "utfsm_spencer_I.json"
+    checked = dampbench.export_c(model_file=model_file)
+    assert f"checked stable for dt <= {checked['dt_max_s']:.3g} s" in checked["header"]
+    assert dampbench.export_c("mrd.bingham", {"f_c": 300, "c0": 2000, "f0": -5})["dt_max_s"] == math.inf
     with pytest.raises(dampbench.UsageError, match="fvd.linear_viscous"):
         dampbench.export_c("fvd.linear_viscous", {"m": 0, "C": 1000})

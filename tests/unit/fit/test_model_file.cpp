@@ -29,7 +29,7 @@ ModelFile law_model_file() {
   f.coefficients = {{"m", 0.1}, {"C_I0", 1.0 / 3.0}, {"C_I1", 2.2250738585072014e-308 * 3}};
   f.metric = "of_abs";
   f.fitted_value = std::nextafter(1.0, 2.0);
-  f.records.push_back({"a", "dir/a.csv", 5e-324, nlohmann::ordered_json::object()});
+  f.records.push_back({"a", "dir/a.csv", 5e-324, nlohmann::ordered_json::object(), 0.02, 1.0 / 7.0});
   f.records.back().operating["I"] = {{"value", 0.7}, {"source", "--set"}};
   return f;
 }
@@ -58,6 +58,8 @@ TEST(ModelFile, NumbersReadBackToTheSameBits) {
   EXPECT_EQ(back.choice.laws, "C=poly(I,1)");
   EXPECT_EQ(back.records[0].operating["I"]["source"], "--set");
   EXPECT_EQ(back.records[0].path, "dir/a.csv");
+  EXPECT_EQ(back.records[0].displacement_ptp_m, 0.02);
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(back.records[0].velocity_max_abs_m_s), std::bit_cast<std::uint64_t>(1.0 / 7.0));
   EXPECT_EQ(model_file_text(back), text);
 
   const LoadedModel loaded = load_model_file(write_temp("good", text));
@@ -108,6 +110,8 @@ TEST(ModelFile, EveryErrorNamesTheFileAndTheKey) {
             "key 'records[0].path': missing");
   EXPECT_EQ(load_error("source", text, "\"source\": \"--set\"", "\"source\": null"),
             "key 'records[0].operating.I.source': expected a string, got null");
+  EXPECT_EQ(load_error("motion", text, "\"displacement_ptp_m\": 0.02", "\"displacement_ptp_m\": \"2 cm\""),
+            "key 'records[0].motion.displacement_ptp_m': expected a number, got \"2 cm\"");
   const std::string unknown = load_error("unknown", text, "\"base\": \"fvd.linear_viscous\"", "\"base\": \"fvd.nope\"");
   EXPECT_TRUE(unknown.starts_with("key 'model.base': unknown model 'fvd.nope'")) << unknown;
   const std::string laws = load_error("laws", text, "\"laws\": \"C=poly(I,1)\"", "\"laws\": \"C=poly(Q,1)\"");
