@@ -8,8 +8,10 @@ values, the paper's, their differences in %, the models' means, the numbers of a
 rows"); numbers that name a condition (5 Hz, 25 mm), a table or an equation, or a test ("test 4") are not results.
 A count "N of M" must be one an item's detail gives ("on N of M rows"), since small numbers
 alone occur in many items. A figure the presets no longer give then fails here instead of going stale. The other bullets hold measurements
-(times, speed ratios) or come from presets too long for the test command (the real-data utfsm presets, the whole-
-damper fit): docs/reproduce.md and docs/performance.md give how each was measured.
+(times, speed ratios), are checked by their own tests (Real MR-damper data: utfsm_table_test.py; In a building:
+ControlCli.ExamplesBuildingTableIsTheCommandsOutput) or come from runs too long for the test command (the
+whole-damper fits, the Bouc–Wen benchmark's five seeds at full budget): docs/reproduce.md and docs/performance.md
+give how each was measured.
 
 ctest runs it after the paper_claims tests (FIXTURES_REQUIRED). Exit 77 (skipped) when a preset's output is absent
 (the real-data presets skip without ../shared/data).
