@@ -1,10 +1,12 @@
 #include "engine/cli/export_command.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <numbers>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -41,28 +43,50 @@ std::pair<double, double> record_motion(const ModelFileRecord& r) {
   return {2 * amp, vamp};
 }
 
-/// Every combination of each law variable's smallest and largest fitted value.
-std::vector<std::map<std::string, double>> variable_corners(const Model& model, const ModelFile& file) {
-  std::vector<std::map<std::string, double>> corners{{}};
+/// A record's range of one law variable: its value, or the ends of a column that varies over the record (the value
+/// is then the column's mean; the loader's source text holds the ends).
+std::optional<std::pair<double, double>> record_range(const ModelFileRecord& r, const std::string& name) {
+  if (!r.operating.contains(name)) return std::nullopt;
+  const auto& entry = r.operating.at(name);
+  const double value = entry.at("value").get<double>();
+  double lo = 0, hi = 0;
+  if (std::sscanf(entry.at("source").get<std::string>().c_str(), "column varying from %lf to %lf", &lo, &hi) == 2)
+    return std::pair{lo, hi};
+  return std::pair{value, value};
+}
+
+/// Each law variable's fitted range over the file's records; empty when a record-less or variable-less file leaves
+/// one unknown.
+std::vector<std::pair<std::string, std::pair<double, double>>> fitted_ranges(const Model& model, const ModelFile& file) {
+  std::vector<std::pair<std::string, std::pair<double, double>>> ranges;
   const auto* law = dynamic_cast<const LawModel*>(&model);
-  if (!law) return corners;
+  if (!law) return ranges;
   for (const std::string& name : law->law_variables()) {
     double lo = INFINITY, hi = -INFINITY;
     for (const ModelFileRecord& r : file.records)
-      if (r.operating.contains(name)) {
-        lo = std::min(lo, r.operating.at(name).at("value").get<double>());
-        hi = std::max(hi, r.operating.at(name).at("value").get<double>());
-      }
-    if (lo > hi) return {};  // no record states it: the range is unknown
-    std::vector<std::map<std::string, double>> next;
-    for (auto corner : corners)
-      for (const double value : lo == hi ? std::vector<double>{lo} : std::vector<double>{lo, hi}) {
-        corner[name] = value;
-        next.push_back(corner);
-      }
-    corners = std::move(next);
+      if (const auto range = record_range(r, name)) lo = std::min(lo, range->first), hi = std::max(hi, range->second);
+    if (lo > hi) return {};
+    ranges.push_back({name, {lo, hi}});
   }
-  return corners;
+  return ranges;
+}
+
+/// Every combination of `points` values evenly spread over each range (2: the ends).
+std::vector<std::map<std::string, double>> grid(const std::vector<std::pair<std::string, std::pair<double, double>>>& ranges,
+                                               int points) {
+  std::vector<std::map<std::string, double>> out{{}};
+  for (const auto& [name, range] : ranges) {
+    std::vector<std::map<std::string, double>> next;
+    const int n = range.first == range.second ? 1 : points;
+    for (const auto& point : out)
+      for (int i = 0; i < n; ++i) {
+        auto p = point;
+        p[name] = n == 1 ? range.first : range.first + (range.second - range.first) * i / (n - 1);
+        next.push_back(std::move(p));
+      }
+    out = std::move(next);
+  }
+  return out;
 }
 
 /// The head comment's step-size lines: the check on the fitted motion, or why there is none.
@@ -77,9 +101,13 @@ std::string step_statement(const ExportOptions& o, const LoadedModel& loaded, ex
   }
   if (o.stroke_m) motion.stroke_m = *o.stroke_m;
   if (o.velocity_m_s) motion.velocity_max_abs_m_s = *o.velocity_m_s;
-  motion.variables = variable_corners(*loaded.model.model, loaded.file);
-  if (motion.variables.empty())
-    return " * Step size: not checked (the law variables' fitted range is unknown: export from a model file).\n";
+  const auto* law = dynamic_cast<const LawModel*>(loaded.model.model);
+  const auto ranges = fitted_ranges(*loaded.model.model, loaded.file);
+  if (law && ranges.size() != law->law_variables().size())
+    return " * Step size: not checked (the law variables' fitted range is unknown: export from a model file whose\n"
+           " * records state them).\n";
+  motion.variables = grid(ranges, 2);
+  motion.probes = grid(ranges, ranges.size() > 2 ? 5 : 9);
   if (!(motion.stroke_m > 0) || !(motion.velocity_max_abs_m_s > 0))
     return " * Step size: not checked (no motion known: export from a model file, or give --stroke-m and\n"
            " * --velocity-m-s).\n";
@@ -91,7 +119,12 @@ std::string step_statement(const ExportOptions& o, const LoadedModel& loaded, ex
 
 ExportedModel run_export(const ExportOptions& o) {
   if (o.lang != "c") throw InputError(fmt::format("--lang: expected c, got '{}'", o.lang));
-  if (o.substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", o.substeps));
+  if (o.substeps < 1 || o.substeps > exporting::kMaxExportSubsteps)
+    throw InputError(fmt::format("--substeps: expected a whole number from 1 to {}, got {}", exporting::kMaxExportSubsteps,
+                                 o.substeps));
+  for (const auto& [option, value] : {std::pair{"--stroke-m", o.stroke_m}, std::pair{"--velocity-m-s", o.velocity_m_s}})
+    if (value && !(std::isfinite(*value) && *value > 0))
+      throw InputError(fmt::format("{}: expected a finite number above 0, got {}", option, *value));
   const LoadedModel loaded = load_named_model(o.model, "export");
   const std::string description =
       o.model.model_file.empty() ? "From the command line's parameters."
@@ -118,8 +151,8 @@ int export_command(const ExportOptions& o) {
                            (dir / "dampbench_model.c").string(), e.model_id, o.substeps);
   if (!e.check.has_states) std::cout << "step size: no states, any dt\n";
   else if (e.check.dt_max_s > 0)
-    std::cout << fmt::format("step size: checked stable for dt <= {:.3g} s on {:.6g} m stroke, {:.6g} m/s peak velocity\n",
-                             e.check.dt_max_s, e.check.motion.stroke_m, e.check.motion.velocity_max_abs_m_s);
+    std::cout << fmt::format("step size: checked stable for dt <= {} s on {:.6g} m stroke, {:.6g} m/s peak velocity\n",
+                             exporting::printed_step(e.check), e.check.motion.stroke_m, e.check.motion.velocity_max_abs_m_s);
   else if (e.check.dt_tried_last_s > 0)
     std::cout << fmt::format("step size: NOT stable down to dt = {:.3g} s: raise --substeps\n", e.check.dt_tried_last_s);
   else

@@ -101,7 +101,8 @@ void bind_control(py::module_& m) {
         out["header"] = e.c.header;
         out["source"] = e.c.source;
         out["model"] = e.model_id;
-        out["dt_max_s"] = e.check.has_states ? e.check.dt_max_s : INFINITY;  // 0: not stable or not checked
+        // As the header prints it (rounded down); 0: not stable or not checked.
+        out["dt_max_s"] = !e.check.has_states ? INFINITY : e.check.dt_max_s > 0 ? std::stod(exporting::printed_step(e.check)) : 0.0;
         return out;
       },
       py::arg("model"), py::arg("fixture"), py::arg("laws"), py::arg("params"), py::arg("model_file"),

@@ -174,11 +174,11 @@ def check_stated_step(exe, work):
     samples = [(k * dt, 0.006 * math.sin(w * k * dt) + 0.002 * math.sin(2 * w * k * dt)) for k in range(int(2 / dt) + 1)]
     (d / "record.csv").write_text("t,x\n" + "".join(f"{t!r},{x!r}\n" for t, x in samples))
     sim = run([exe, "simulate", *model, "--fixed-step", "64", "--input", d / "record.csv", "-o", d / "fine.csv"])
-    rows = [list(map(float, line.split(","))) for line in (d / "fine.csv").read_text().splitlines()[1:]]
     (d / "driver.c").write_text(DRIVER)
     built = run(["gcc", "-std=c99", "-O2", "-I", d, d / "dampbench_model.c", d / "driver.c", "-lm", "-o", d / "driver"])
     if sim.returncode or built.returncode:
         return [f"stated step: {sim.stderr}{built.stderr}"]
+    rows = [list(map(float, line.split(","))) for line in (d / "fine.csv").read_text().splitlines()[1:]]
     forces = [float(s) for s in run([d / "driver"], input="".join(f"{r[0]!r} {r[1]!r} {r[2]!r}\n" for r in rows)).stdout.split()]
     fine = [r[4] for r in rows]
     error = math.sqrt(sum((a - b) ** 2 for a, b in zip(forces, fine)) / sum(b * b for b in fine))
@@ -189,6 +189,9 @@ def check_stated_step(exe, work):
     out = run([exe, "export", "--model-file", model_file, "-o", d])
     stated = next((line for line in out.stdout.splitlines() if line.startswith("step size: ")), "")
     examples = (model_file.parents[2] / "docs" / "examples.md").read_text()
+    header = (d / "dampbench_model.h").read_text() if out.returncode == 0 else ""
+    if "on a sinusoid of 0.02 m stroke and 0.0942478 m/s peak velocity at I = 0 and at I = 1" not in header:
+        failures.append(f"the model file's motion (its records' amp and vamp) and current range are not stated: {header[:900]}")
     if out.returncode or "step size: checked stable for dt <=" not in stated or f"`{stated}`" not in examples:
         failures.append(f"stated step of a model file (docs/examples.md quotes it): {out.stdout}{out.stderr}")
     out = run([exe, "export", "--fixture", "mfm.table3", "-o", d])

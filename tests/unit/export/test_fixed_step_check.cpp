@@ -42,6 +42,15 @@ Signals two_tone(double dt_s) {
   return prepare_signals(d);
 }
 
+/// The motion checked: stroke [m], peak velocity [m/s], the variables' points.
+CheckedMotion envelope(double stroke_m, double velocity_m_s, std::vector<std::map<std::string, double>> variables = {{}}) {
+  CheckedMotion m;
+  m.stroke_m = stroke_m;
+  m.velocity_max_abs_m_s = velocity_m_s;
+  m.variables = std::move(variables);
+  return m;
+}
+
 double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
   double e = 0, s = 0;
   for (std::size_t k = 0; k < a.size(); ++k) e += (a[k] - b[k]) * (a[k] - b[k]), s += b[k] * b[k];
@@ -53,11 +62,11 @@ double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
 TEST(FixedStepCheck, StableAtTheStatedStepOnAnotherMotionAndNotFourTimesAbove) {
   const Model& spencer = find_model("mrd.spencer");
   const auto p = by_name(spencer, kSpencer1A);
-  const FixedStepCheck c = check_fixed_step(spencer, p, 4, {.stroke_m = 0.02, .velocity_max_abs_m_s = 0.126});
+  const FixedStepCheck c = check_fixed_step(spencer, p, 4, envelope(0.02, 0.126));
   ASSERT_TRUE(c.has_states);
   ASSERT_GT(c.dt_max_s, 0);
   EXPECT_FALSE(c.period_bound);  // the stiffness limits it, not the motion's sampling
-  EXPECT_LE(c.dt_max_s, 4 * kRk4StabilityBound / c.stiffness_per_s);
+  EXPECT_GE(c.dt_max_s, 0.5 * 4 * kRk4StabilityBound / c.stiffness_per_s);  // the estimate is not far off
   // Another motion of the same envelope, at the stated dt and at four times it.
   const Signals at = two_tone(c.dt_max_s), above = two_tone(4 * c.dt_max_s);
   const auto coarse = simulate_stepped(spencer, p, at, 4), fine = simulate_stepped(spencer, p, at, 64);
@@ -72,14 +81,14 @@ TEST(FixedStepCheck, StableAtTheStatedStepOnAnotherMotionAndNotFourTimesAbove) {
 TEST(FixedStepCheck, MoreSubstepsAllowALargerStep) {
   const Model& spencer = find_model("mrd.spencer");
   const auto p = by_name(spencer, kSpencer1A);
-  const CheckedMotion m{.stroke_m = 0.02, .velocity_max_abs_m_s = 0.126};
+  const CheckedMotion m = envelope(0.02, 0.126);
   EXPECT_GT(check_fixed_step(spencer, p, 16, m).dt_max_s, 2 * check_fixed_step(spencer, p, 4, m).dt_max_s);
 }
 
 TEST(FixedStepCheck, AnAlgebraicModelHoldsAtAnyStep) {
   const Model& bingham = find_model("mrd.bingham");
   const FixedStepCheck c =
-      check_fixed_step(bingham, by_name(bingham, {{"f_c", 300}, {"c0", 2000}, {"f0", -5}}), 4, {0.02, 0.126});
+      check_fixed_step(bingham, by_name(bingham, {{"f_c", 300}, {"c0", 2000}, {"f0", -5}}), 4, envelope(0.02, 0.126));
   EXPECT_FALSE(c.has_states);
   EXPECT_NE(fixed_step_statement(c, 4).find("any dt"), std::string::npos);
 }
@@ -90,17 +99,42 @@ TEST(FixedStepCheck, ALawModelIsCheckedAtItsStifferFittedEnd) {
   const auto p = by_name(model, {{"c0", 2000}, {"k0", 1000}, {"x0", 0}, {"alpha", 500}, {"A_I0", 600},
                                  {"A_I1", 5400}, {"beta", 3000}, {"gamma", 3000}, {"n", 1.5}});
   const auto at = [&](std::vector<std::map<std::string, double>> variables) {
-    return check_fixed_step(model, p, 4, {0.02, 0.126, std::move(variables)}).dt_max_s;
+    return check_fixed_step(model, p, 4, envelope(0.02, 0.126, std::move(variables))).dt_max_s;
   };
   const double both = at({{{"I", 0.0}}, {{"I", 1.0}}}), low = at({{{"I", 0.0}}}), high = at({{{"I", 1.0}}});
   EXPECT_EQ(both, high);
   EXPECT_LT(high, low);
 }
 
+TEST(FixedStepCheck, ALawStiffestInsideItsRangeIsCheckedThere) {
+  // A = 600 + 21600 I − 21600 I²: 600 at 0 and 1 A, 6000 at 0.5 A.
+  const LawModel model(find_model("mrd.bouc_wen"), parse_laws("A=poly(I,2)", "--laws"));
+  const auto p = by_name(model, {{"c0", 2000}, {"k0", 1000}, {"x0", 0}, {"alpha", 500}, {"A_I0", 600},
+                                 {"A_I1", 21600}, {"A_I2", -21600}, {"beta", 3000}, {"gamma", 3000}, {"n", 1.5}});
+  CheckedMotion ends = envelope(0.02, 0.126, {{{"I", 0.0}}, {{"I", 1.0}}});
+  const double at_ends = check_fixed_step(model, p, 4, ends).dt_max_s;
+  for (int i = 0; i <= 8; ++i) ends.probes.push_back({{"I", i / 8.0}});
+  const FixedStepCheck c = check_fixed_step(model, p, 4, ends);
+  ASSERT_EQ(c.motion.variables.size(), 3u);
+  EXPECT_EQ(c.motion.variables.back().at("I"), 0.5);
+  EXPECT_LT(c.dt_max_s, at_ends);
+  EXPECT_NE(fixed_step_statement(c, 4).find("at I = 0 and at I = 1 and at I = 0.5"), std::string::npos);
+}
+
+TEST(FixedStepCheck, TheStatedStepIsRoundedDown) {
+  const Model& spencer = find_model("mrd.spencer");
+  const FixedStepCheck c = check_fixed_step(spencer, by_name(spencer, kSpencer1A), 4, envelope(0.02, 0.126));
+  EXPECT_LE(std::stod(printed_step(c)), c.dt_max_s);
+  EXPECT_GT(std::stod(printed_step(c)), 0.99 * c.dt_max_s);
+}
+
 TEST(FixedStepCheck, AMotionWithoutStrokeIsRefused) {
   const Model& spencer = find_model("mrd.spencer");
-  EXPECT_NE(testing::error_of([&] { check_fixed_step(spencer, by_name(spencer, kSpencer1A), 4, {0, 0.1}); })
-                .find("expected a stroke and a peak velocity above 0"),
+  EXPECT_NE(testing::error_of([&] { check_fixed_step(spencer, by_name(spencer, kSpencer1A), 4, envelope(0, 0.1)); })
+                .find("expected a finite stroke and peak velocity above 0"),
+            std::string::npos);
+  EXPECT_NE(testing::error_of([&] { check_fixed_step(spencer, by_name(spencer, kSpencer1A), 4, envelope(INFINITY, 0.1)); })
+                .find("expected a finite stroke"),
             std::string::npos);
 }
 
