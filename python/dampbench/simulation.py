@@ -181,16 +181,20 @@ def structure(model=None, params=None, *, building, ground, laws=None, fixture=N
                            command=command or "", lqr_r=float(lqr_r), output_every=int(output_every))
 
 
-def export_c(model=None, params=None, *, laws=None, fixture=None, model_file=None, substeps=4, output=None):
+def export_c(model=None, params=None, *, laws=None, fixture=None, model_file=None, substeps=4, output=None,
+             stroke_m=None, velocity_m_s=None):
     """The model as a dependency-free C99 pair, as `dampbench export --lang c` writes it (the same text).
 
     The model as in simulate. substeps: RK4 sub-steps per dbm_step. Returns {"header", "source", "model",
     "dt_max_s"} (the texts of dampbench_model.h and dampbench_model.c; the largest step checked stable on the
     fitted records' motion, inf for a model without states, 0 when none passed or nothing was checked, as the
-    header's comment says); with output (an existing folder) also writes them there.
+    header's comment says; stroke_m and velocity_m_s [m, m/s] set the motion checked, by default the fitted
+    records'); with output (an existing folder) also writes them there.
     A model the exporter does not cover raises UsageError before anything is written.
     """
-    out = _core.export_c(**_model_args(model, params, laws, model_file), fixture=fixture or "", substeps=int(substeps))
+    out = _core.export_c(**_model_args(model, params, laws, model_file), fixture=fixture or "", substeps=int(substeps),
+                         stroke_m=None if stroke_m is None else float(stroke_m),
+                         velocity_m_s=None if velocity_m_s is None else float(velocity_m_s))
     if output is not None:
         folder = os.fspath(output)
         if not os.path.isdir(folder):

@@ -92,10 +92,12 @@ void bind_control(py::module_& m) {
   m.def(
       "export_c",
       [](const std::string& model, const std::string& fixture, const std::string& laws, const std::string& params,
-         const std::string& model_file, int substeps) {
+         const std::string& model_file, int substeps, std::optional<double> stroke_m, std::optional<double> velocity_m_s) {
         cli::ExportOptions o;
         o.model = {model_file, model, fixture, laws, params};
         o.substeps = substeps;
+        o.stroke_m = stroke_m;
+        o.velocity_m_s = velocity_m_s;
         const cli::ExportedModel e = cli::run_export(o);
         py::dict out;
         out["header"] = e.c.header;
@@ -106,7 +108,7 @@ void bind_control(py::module_& m) {
         return out;
       },
       py::arg("model"), py::arg("fixture"), py::arg("laws"), py::arg("params"), py::arg("model_file"),
-      py::arg("substeps"));
+      py::arg("substeps"), py::arg("stroke_m") = py::none(), py::arg("velocity_m_s") = py::none());
 }
 
 }  // namespace dampbench::python

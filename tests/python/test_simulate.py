@@ -341,5 +341,12 @@ def test_export_c_is_the_command_lines_text_and_refuses_what_it_does_not_cover(e
     checked = dampbench.export_c(model_file=model_file)
     assert f"checked stable for dt <= {checked['dt_max_s']:.3g} s" in checked["header"]
     assert dampbench.export_c("mrd.bingham", {"f_c": 300, "c0": 2000, "f0": -5})["dt_max_s"] == math.inf
+    spencer = {"c0": 4110, "c1": 4.542e5, "k0": 42.83, "k1": 561.2, "x0": -6.678e-2, "alpha": 166.01, "beta": 6.079e3,
+               "gamma": 1.083e4, "A": 5.021e4, "n": 0.9929}
+    slow = dampbench.export_c("mrd.spencer", spencer, stroke_m=0.02, velocity_m_s=0.0628)["dt_max_s"]
+    fast = dampbench.export_c("mrd.spencer", spencer, stroke_m=0.02, velocity_m_s=0.5)["dt_max_s"]
+    assert 0 < fast < slow  # a faster motion stiffens the hysteresis
+    with pytest.raises(dampbench.UsageError, match="--stroke-m: expected a finite number above 0"):
+        dampbench.export_c("mrd.spencer", spencer, stroke_m=-1, velocity_m_s=0.1)
     with pytest.raises(dampbench.UsageError, match="fvd.linear_viscous"):
         dampbench.export_c("fvd.linear_viscous", {"m": 0, "C": 1000})
