@@ -15,6 +15,7 @@
 #include "engine/common/text_file.hpp"
 #include "engine/export/c_export.hpp"
 #include "engine/export/fixed_step_check.hpp"
+#include "engine/fit/fitted_range.hpp"
 #include "engine/model/law_model.hpp"
 
 namespace dampbench::cli {
@@ -43,32 +44,23 @@ std::pair<double, double> record_motion(const ModelFileRecord& r) {
   return {2 * amp, vamp};
 }
 
-/// A record's range of one law variable: its value, or the ends of a column that varies over the record (the value
-/// is then the column's mean; the loader's source text holds the ends).
-std::optional<std::pair<double, double>> record_range(const ModelFileRecord& r, const std::string& name) {
-  if (!r.operating.contains(name)) return std::nullopt;
-  const auto& entry = r.operating.at(name);
-  const double value = entry.at("value").get<double>();
-  double lo = 0, hi = 0;
-  if (std::sscanf(entry.at("source").get<std::string>().c_str(), "column varying from %lf to %lf", &lo, &hi) == 2)
-    return std::pair{lo, hi};
-  return std::pair{value, value};
-}
-
-/// Each law variable's fitted range over the file's records; empty when a record-less or variable-less file leaves
-/// one unknown.
-std::vector<std::pair<std::string, std::pair<double, double>>> fitted_ranges(const Model& model, const ModelFile& file) {
-  std::vector<std::pair<std::string, std::pair<double, double>>> ranges;
-  const auto* law = dynamic_cast<const LawModel*>(&model);
-  if (!law) return ranges;
-  for (const std::string& name : law->law_variables()) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (const ModelFileRecord& r : file.records)
-      if (const auto range = record_range(r, name)) lo = std::min(lo, range->first), hi = std::max(hi, range->second);
-    if (lo > hi) return {};
-    ranges.push_back({name, {lo, hi}});
+/// The records' operating values as FittedRange reads them, a column that varied over a record as two points, its
+/// ends (the record's value is then the column's mean; the loader's source text holds the ends).
+std::vector<std::map<std::string, double>> fitted_points(const ModelFile& file) {
+  std::vector<std::map<std::string, double>> points;
+  for (const ModelFileRecord& r : file.records) {
+    std::map<std::string, double> low, high;
+    for (const auto& [name, entry] : r.operating.items()) {
+      double lo = entry.at("value").get<double>(), hi = lo, from = 0, to = 0;
+      if (std::sscanf(entry.at("source").get<std::string>().c_str(), "column varying from %lf to %lf", &from, &to) == 2)
+        lo = from, hi = to;
+      low[name] = lo;
+      high[name] = hi;
+    }
+    points.push_back(std::move(low));
+    points.push_back(std::move(high));
   }
-  return ranges;
+  return points;
 }
 
 /// Every combination of `points` values evenly spread over each range (2: the ends).
@@ -101,11 +93,16 @@ std::string step_statement(const ExportOptions& o, const LoadedModel& loaded, ex
   }
   if (o.stroke_m) motion.stroke_m = *o.stroke_m;
   if (o.velocity_m_s) motion.velocity_max_abs_m_s = *o.velocity_m_s;
-  const auto* law = dynamic_cast<const LawModel*>(loaded.model.model);
-  const auto ranges = fitted_ranges(*loaded.model.model, loaded.file);
-  if (law && ranges.size() != law->law_variables().size())
-    return " * Step size: not checked (the law variables' fitted range is unknown: export from a model file whose\n"
-           " * records state them).\n";
+  const FittedRange fitted(*loaded.model.model, fitted_points(loaded.file));
+  std::vector<std::pair<std::string, std::pair<double, double>>> ranges;  // in the laws' order of variables
+  if (const auto* law = dynamic_cast<const LawModel*>(loaded.model.model))
+    for (const std::string& name : law->law_variables()) {
+      const auto range = fitted.ranges().find(name);
+      if (range == fitted.ranges().end())
+        return " * Step size: not checked (the law variables' fitted range is unknown: export from a model file whose\n"
+               " * records state them).\n";
+      ranges.push_back(*range);
+    }
   motion.variables = grid(ranges, 2);
   motion.probes = grid(ranges, ranges.size() > 2 ? 5 : 9);
   if (!(motion.stroke_m > 0) || !(motion.velocity_max_abs_m_s > 0))
@@ -131,7 +128,7 @@ ExportedModel run_export(const ExportOptions& o) {
                                  : fmt::format("From {} (metric {} {:.6g} on the fitted records).", o.model.model_file,
                                                loaded.file.metric, loaded.file.fitted_value);
   // The exporter's refusal comes before the check, which would step a model it does not cover.
-  exporting::export_c(*loaded.model.model, loaded.params, o.substeps, description, "");
+  exporting::require_exportable(*loaded.model.model);
   ExportedModel out;
   out.model_id = std::string(loaded.model.model->id());
   const std::string statement = step_statement(o, loaded, out.check);

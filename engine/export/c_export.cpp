@@ -238,12 +238,18 @@ std::vector<std::string> exported_models() {
   return out;
 }
 
-CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description,
-                 const std::string& step_statement) {
-  if (substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", substeps));
+void require_exportable(const Model& model) {
   const auto* law = dynamic_cast<const LawModel*>(&model);
   if (law && dynamic_cast<const LawModel*>(&law->base()))
     throw InputError(fmt::format("export: {} is a law model over a law model, which the C export does not cover", model.id()));
+  c_model(law ? law->base() : model);
+}
+
+CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description,
+                 const std::string& step_statement) {
+  if (substeps < 1) throw InputError(fmt::format("--substeps: expected a whole number >= 1, got {}", substeps));
+  require_exportable(model);
+  const auto* law = dynamic_cast<const LawModel*>(&model);
   const Model& base = law ? law->base() : model;
   const CModel& cm = c_model(base);
   if (static_cast<int>(params.size()) != model.dim())

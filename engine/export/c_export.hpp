@@ -26,6 +26,9 @@ struct CSource {
 CSource export_c(const Model& model, std::span<const double> params, int substeps, const std::string& description,
                  const std::string& step_statement);
 
+/// InputError, as export_c gives it, for a model the exporter does not cover.
+void require_exportable(const Model& model);
+
 /// The base models the exporter writes.
 std::vector<std::string> exported_models();
 

@@ -22,6 +22,8 @@ class FittedRange {
   /// Each variable of `record` outside its fitted range, e.g. "amp = 0.002 (fitted on 0.005 to 0.025)", joined by
   /// ", "; "" when every one lies inside (a value same_operating_value as an end is inside, as folds compare).
   [[nodiscard]] std::string outside(const std::map<std::string, double>& record) const;
+  /// Each variable's smallest and largest fitted value (a variable no record gives has none).
+  [[nodiscard]] const std::map<std::string, std::pair<double, double>>& ranges() const { return range_; }
 
  private:
   std::map<std::string, std::pair<double, double>> range_;

@@ -51,12 +51,6 @@ CheckedMotion envelope(double stroke_m, double velocity_m_s, std::vector<std::ma
   return m;
 }
 
-double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
-  double e = 0, s = 0;
-  for (std::size_t k = 0; k < a.size(); ++k) e += (a[k] - b[k]) * (a[k] - b[k]), s += b[k] * b[k];
-  return std::sqrt(e / s);
-}
-
 }  // namespace
 
 TEST(FixedStepCheck, StableAtTheStatedStepOnAnotherMotionAndNotFourTimesAbove) {
@@ -71,11 +65,11 @@ TEST(FixedStepCheck, StableAtTheStatedStepOnAnotherMotionAndNotFourTimesAbove) {
   const Signals at = two_tone(c.dt_max_s), above = two_tone(4 * c.dt_max_s);
   const auto coarse = simulate_stepped(spencer, p, at, 4), fine = simulate_stepped(spencer, p, at, 64);
   for (double f : coarse) ASSERT_TRUE(std::isfinite(f));
-  EXPECT_LT(relative_l2(coarse, fine), 0.02);
+  EXPECT_LT(testing::relative_l2(coarse, fine), 0.02);
   const auto coarse4 = simulate_stepped(spencer, p, above, 4), fine4 = simulate_stepped(spencer, p, above, 64);
   bool finite = true;
   for (double f : coarse4) finite = finite && std::isfinite(f);
-  EXPECT_TRUE(!finite || relative_l2(coarse4, fine4) > 0.01) << "the stated dt is over 4 times too cautious";
+  EXPECT_TRUE(!finite || testing::relative_l2(coarse4, fine4) > 0.01) << "the stated dt is over 4 times too cautious";
 }
 
 TEST(FixedStepCheck, MoreSubstepsAllowALargerStep) {
